@@ -1,0 +1,167 @@
+// reference: the exact image. Captures every fragment in per-pixel linked
+// lists (the pool grows and the frame is re-rendered when it overflows),
+// orders each pixel's fragments by (view depth, stable triangle id) and
+// blends them front to back in double precision. The resolve's local array
+// is compiled for the longest list of the frame, so nothing is truncated.
+#include <algorithm>
+#include <bit>
+#include <map>
+#include <stdexcept>
+
+#include "core/technique.h"
+#include "gl/check.h"
+#include "gl/shader_program.h"
+#include "../../shaders/bindings.h"
+
+namespace oit {
+namespace {
+
+constexpr GLsizeiptr kNodeBytes = 32;  // ReferenceNode in reference_nodes.glsl
+constexpr GLuint kHeadsBinding = OIT_FIRST_TECHNIQUE_BINDING + 0;
+constexpr GLuint kNodesBinding = OIT_FIRST_TECHNIQUE_BINDING + 1;
+constexpr GLuint kCounterBinding = OIT_FIRST_TECHNIQUE_BINDING + 2;
+constexpr GLuint kLengthsBinding = OIT_FIRST_TECHNIQUE_BINDING + 3;
+// Longest list the resolve accepts; beyond it the run fails with a message.
+constexpr uint32_t kMaxListLength = 16384;
+constexpr GLint kCapacityLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
+constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
+
+class Reference final : public Technique {
+ public:
+  explicit Reference(const ParamSet& params)
+      : nodes_per_pixel_(params.integer("initial_nodes_per_pixel")),
+        fill_(build_geometry_program("algorithms/reference/fill.frag")),
+        counter_(make_buffer(2 * sizeof(GLuint))) {}
+
+  void resize(int width, int height) override {
+    width_ = width;
+    height_ = height;
+    heads_ = make_buffer(GLsizeiptr(width) * height * 4);
+    lengths_ = make_buffer(GLsizeiptr(width) * height * 4);
+    allocate_pool(uint64_t(width) * uint64_t(height) * uint64_t(nodes_per_pixel_));
+    dummy_framebuffer_ = make_framebuffer();
+    glNamedFramebufferParameteri(dummy_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
+    glNamedFramebufferParameteri(dummy_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+  }
+
+  void render(const Frame& frame) override {
+    passes_ = 0;
+    for (;;) {
+      {
+        auto clear = frame.clock.stage("clear");
+        const GLuint nil = 0xffffffffu, zero = 0;
+        glClearNamedBufferData(heads_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &nil);
+        glClearNamedBufferData(lengths_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        glClearNamedBufferData(counter_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      }
+      {
+        auto fill = frame.clock.stage("fill");
+        glBindFramebuffer(GL_FRAMEBUFFER, dummy_framebuffer_.id());
+        glViewport(0, 0, width_, height_);
+        glUseProgram(fill_.id());
+        frame.set_shared_uniforms(fill_.id());
+        bind_storage();
+        frame.scene.draw();
+        ++passes_;
+      }
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+      GLuint counts[2] = {0, 0};  // node_count, max_length
+      glGetNamedBufferSubData(counter_.id(), 0, sizeof(counts), counts);
+      const GLuint produced = counts[0];
+      max_length_ = counts[1];
+      stored_ = produced;
+      if (produced <= capacity_) break;
+      // Overflow: grow to what this view needs (plus slack) and render again.
+      ++overflow_retries_;
+      allocate_pool(uint64_t(produced) + uint64_t(produced) / 4 + 1);
+    }
+    auto compose = frame.clock.stage("compose");
+    const GLuint resolve = resolve_program(max_length_);
+    frame.bind_target();
+    glUseProgram(resolve);
+    frame.set_shared_uniforms(resolve);
+    bind_storage();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+
+  TechniqueCounters counters() const override {
+    TechniqueCounters c;
+    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * 8 + capacity_ * uint64_t(kNodeBytes) + 8;
+    c.fragments_stored = stored_;
+    c.passes = passes_;
+    c.overflow_retries = overflow_retries_;
+    return c;
+  }
+
+ private:
+  // Resolve programs by local array size (powers of two from 16).
+  GLuint resolve_program(uint32_t max_length) {
+    if (max_length > kMaxListLength) {
+      throw std::runtime_error("reference: a pixel has " + std::to_string(max_length) +
+                               " fragments, more than the supported " + std::to_string(kMaxListLength));
+    }
+    const uint32_t size = std::max<uint32_t>(16, std::bit_ceil(std::max<uint32_t>(max_length, 1)));
+    auto it = resolve_.find(size);
+    if (it == resolve_.end()) {
+      it = resolve_.emplace(size, build_fullscreen_program("algorithms/reference/resolve.frag",
+                                                           {{"MAX_FRAGMENTS", std::to_string(size)}}))
+               .first;
+      glProgramUniform1i(it->second.id(), kWidthLocation, width_);
+    }
+    return it->second.id();
+  }
+
+  void allocate_pool(uint64_t capacity) {
+    capacity = std::max<uint64_t>(capacity, 1);
+    GLint64 max_block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    if (capacity > 0xfffffffeull || (max_block > 0 && GLint64(capacity) * kNodeBytes > max_block)) {
+      throw std::runtime_error("reference: " + std::to_string(capacity) + " fragments (" +
+                               std::to_string(capacity * kNodeBytes >> 20) +
+                               " MiB) exceed the device's largest storage buffer (" + std::to_string(max_block >> 20) +
+                               " MiB); render at a smaller size");
+    }
+    nodes_ = make_buffer(GLsizeiptr(capacity) * kNodeBytes);
+    gl_check("allocating the reference node pool");
+    capacity_ = capacity;
+    glProgramUniform1ui(fill_.id(), kCapacityLocation, GLuint(capacity_));
+    glProgramUniform1i(fill_.id(), kWidthLocation, width_);
+    for (auto& [size, program] : resolve_) glProgramUniform1i(program.id(), kWidthLocation, width_);
+  }
+
+  void bind_storage() const {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kHeadsBinding, heads_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNodesBinding, nodes_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCounterBinding, counter_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLengthsBinding, lengths_.id());
+  }
+
+  int64_t nodes_per_pixel_;
+  Program fill_;
+  std::map<uint32_t, Program> resolve_;
+  Buffer counter_, heads_, lengths_, nodes_;
+  Framebuffer dummy_framebuffer_;
+  int width_ = 0, height_ = 0;
+  uint64_t capacity_ = 0, stored_ = 0, passes_ = 0, overflow_retries_ = 0;
+  uint32_t max_length_ = 0;
+};
+
+}  // namespace
+
+void register_technique_reference(TechniqueRegistry& registry) {
+  TechniqueDescriptor d;
+  d.id = "reference";
+  d.display_name = "Exact reference (all fragments, double-precision blend)";
+  d.paper = "A-buffer (Carpenter 1984) as linked lists (Yang et al. 2010)";
+  d.params = {ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,
+                                 "initial pool size per pixel; the pool grows on overflow")};
+  d.stages = {"clear", "fill", "compose"};
+  d.needs.fp64 = true;
+  d.needs.int64 = true;
+  d.exactness = Exactness::exact;
+  d.is_reference = true;
+  d.create = [](const ParamSet& params) { return std::make_unique<Reference>(params); };
+  registry.add(std::move(d));
+}
+
+}  // namespace oit

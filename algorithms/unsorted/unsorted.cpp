@@ -1,0 +1,50 @@
+// unsorted: alpha blending in submission order, no sorting at all. The speed
+// floor and the error ceiling of every comparison.
+#include "core/technique.h"
+#include "gl/shader_program.h"
+
+namespace oit {
+namespace {
+
+class Unsorted final : public Technique {
+ public:
+  Unsorted() : program_(build_geometry_program("algorithms/unsorted/unsorted.frag")) {}
+
+  void resize(int, int) override {}
+
+  void render(const Frame& frame) override {
+    auto fill = frame.clock.stage("fill");
+    frame.bind_target();
+    glEnable(GL_BLEND);
+    // rgb: src over dst; alpha accumulates coverage 1 - prod(1 - a).
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glUseProgram(program_.id());
+    frame.set_shared_uniforms(program_.id());
+    frame.scene.draw();
+    glDisable(GL_BLEND);
+  }
+
+  TechniqueCounters counters() const override {
+    TechniqueCounters c;
+    c.passes = 1;
+    return c;
+  }
+
+ private:
+  Program program_;
+};
+
+}  // namespace
+
+void register_technique_unsorted(TechniqueRegistry& registry) {
+  TechniqueDescriptor d;
+  d.id = "unsorted";
+  d.display_name = "Unsorted alpha blending";
+  d.paper = "(baseline)";
+  d.stages = {"fill"};
+  d.exactness = Exactness::approximate;
+  d.create = [](const ParamSet&) { return std::make_unique<Unsorted>(); };
+  registry.add(std::move(d));
+}
+
+}  // namespace oit

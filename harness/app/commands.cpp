@@ -1,0 +1,124 @@
+#include "app/commands.h"
+
+#include <cstdio>
+#include <iostream>
+
+#include "core/results_csv.h"
+#include "scene_library.h"
+
+namespace oit {
+namespace {
+
+std::unique_ptr<GlContext> open_context(const CommonOptions& common) {
+  return create_headless_context(parse_device_preference(common.device), common.debug_gl);
+}
+
+RunContext run_context(const DeviceInfo& device) {
+  return {device.renderer, device.version, device.platform, OIT_GIT_REVISION, utc_timestamp()};
+}
+
+void print_params(const ParamSchema& schema) {
+  for (const auto& p : schema) {
+    std::printf("      %-24s default %-8s %s — %s\n", p.name.c_str(), p.default_value.c_str(), p.range_text().c_str(),
+                p.description.c_str());
+  }
+}
+
+}  // namespace
+
+int run_list(const CommonOptions& common) {
+  auto context = open_context(common);
+  const DeviceInfo& device = context->device();
+  std::printf("Device: %s (%s, %s)%s\n\n", device.renderer.c_str(), device.version.c_str(), device.platform.c_str(),
+              device.software ? " — software GL: stage clock defaults to wall+glFinish" : "");
+  std::printf("Techniques:\n");
+  for (const auto& t : builtin_techniques().all()) {
+    std::string stages;
+    for (const auto& s : t.stages) stages += (stages.empty() ? "" : ", ") + s;
+    std::printf("  %-20s %s [%s%s]\n      paper: %s\n      stages: %s\n", t.id.c_str(), t.display_name.c_str(),
+                t.exactness == Exactness::exact ? "exact" : "approximate", t.is_reference ? ", reference" : "",
+                t.paper.c_str(), stages.c_str());
+    print_params(t.params);
+  }
+  std::printf("\nScenes (or a .gltf/.glb file path):\n");
+  for (const auto& s : scene_library()) {
+    std::printf("  %-20s %s\n", s.id.c_str(), s.description.c_str());
+    print_params(s.params);
+  }
+  return 0;
+}
+
+int run_render(const CommonOptions& common, const RenderOptions& options) {
+  auto context = open_context(common);
+  Harness harness(*context, builtin_techniques());
+  RunSpec spec;
+  spec.technique = options.technique;
+  for (const auto& s : options.sets) parse_assignment(s, spec.params);
+  spec.scene = options.scene;
+  for (const auto& s : options.scene_sets) parse_assignment(s, spec.scene_params);
+  parse_size(options.size, spec.width, spec.height);
+  spec.background = parse_background(options.background);
+  spec.warmup = 0;
+  spec.frames = 1;
+  RunResult result = harness.run(spec);
+  if (result.status != RunStatus::ok) {
+    std::fprintf(stderr, "oitbench render: %s %s: %s\n", options.technique.c_str(), to_string(result.status).c_str(),
+                 result.message.c_str());
+    return 1;
+  }
+  write_image(result.image, options.out);
+  std::printf("%s on %s %dx%d -> %s (max error %.3g, rmse %.3g vs reference)\n", options.technique.c_str(),
+              options.scene.c_str(), spec.width, spec.height, options.out.c_str(), result.error->max_abs,
+              result.error->rmse);
+  return 0;
+}
+
+int run_bench(const CommonOptions& common, const BenchOptions& options) {
+  auto context = open_context(common);
+  Harness harness(*context, builtin_techniques());
+  const std::vector<RunSpec> runs = expand_sweep(options.sweep, builtin_techniques());
+  CsvWriter csv(options.csv);
+  const RunContext ctx = run_context(harness.device());
+  std::fprintf(stderr, "oitbench bench: %zu runs on %s, clock %s -> %s\n", runs.size(),
+               harness.device().renderer.c_str(),
+               options.sweep.clock == "auto" ? to_string(harness.default_clock()).c_str() : options.sweep.clock.c_str(),
+               options.csv.c_str());
+  std::vector<RunResult> results;
+  for (size_t i = 0; i < runs.size(); ++i) {
+    const RunSpec& spec = runs[i];
+    std::string params;
+    for (const auto& [key, value] : spec.params) params += " " + key + "=" + value;
+    std::fprintf(stderr, "[%zu/%zu] %s%s on %s %dx%d ... ", i + 1, runs.size(), spec.technique.c_str(),
+                 params.c_str(), spec.scene.c_str(), spec.width, spec.height);
+    RunResult result = harness.run(spec);
+    csv.write(result, ctx);
+    if (result.status == RunStatus::ok) {
+      const StageResult* total = result.stage("total", result.clock == ClockKind::gl ? "gl" : "wall");
+      std::fprintf(stderr, "%.2f ms, max error %.3g%s\n", total ? total->summary.median : 0.0,
+                   result.error->max_abs, result.noisy ? " (noisy: other processes were busy)" : "");
+      if (result.clock_disagreement && *result.clock_disagreement > 0.10) {
+        std::fprintf(stderr, "  warning: gl and wall clocks disagree by %.0f%% on total\n",
+                     *result.clock_disagreement * 100.0);
+      }
+      if (!options.images_dir.empty()) write_image(result.image, options.images_dir + "/" + run_label(result) + ".png");
+    } else {
+      std::fprintf(stderr, "%s: %s\n", to_string(result.status).c_str(), result.message.c_str());
+    }
+    result.image = {};
+    results.push_back(std::move(result));
+  }
+  std::printf("\n%-20s %-28s %-10s %12s %12s %10s\n", "technique", "params", "status", "total ms", "max error",
+              "rmse");
+  for (const auto& r : results) {
+    const StageResult* total = r.stage("total", r.clock == ClockKind::gl ? "gl" : "wall");
+    std::printf("%-20s %-28s %-10s %12.3f %12.3g %10.3g\n", r.spec.technique.c_str(), r.technique_params.c_str(),
+                to_string(r.status).c_str(), total ? total->summary.median : 0.0, r.error ? r.error->max_abs : 0.0,
+                r.error ? r.error->rmse : 0.0);
+  }
+  std::printf("\ndevice: %s | clock: %s | rows appended to %s\n", harness.device().renderer.c_str(),
+              options.sweep.clock == "auto" ? to_string(harness.default_clock()).c_str() : options.sweep.clock.c_str(),
+              options.csv.c_str());
+  return 0;
+}
+
+}  // namespace oit

@@ -1,0 +1,57 @@
+// oitbench: command-line entry point (list, render, bench).
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+
+#include "app/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"oitbench: order-independent transparency techniques, timed stage by stage and compared "
+               "with the exact image"};
+  app.require_subcommand(1);
+  oit::CommonOptions common;
+  app.add_option("--device", common.device, "auto (GPU if present, else software), gpu or software")
+      ->check(CLI::IsMember({"auto", "gpu", "software"}));
+  app.add_flag("--debug-gl", common.debug_gl, "create a debug context and print KHR_debug messages");
+
+  auto* list = app.add_subcommand("list", "techniques with their parameters, scenes, device");
+
+  oit::RenderOptions render;
+  auto* render_cmd = app.add_subcommand("render", "render one image (.png: 8-bit linear RGBA, .pfm: float RGB)");
+  render_cmd->add_option("--technique,-t", render.technique, "technique id (see `list`)");
+  render_cmd->add_option("--set", render.sets, "technique parameter key=value (repeatable)");
+  render_cmd->add_option("--scene,-s", render.scene, "scene id or .gltf/.glb file");
+  render_cmd->add_option("--scene-set", render.scene_sets, "scene parameter key=value (repeatable)");
+  render_cmd->add_option("--size", render.size, "WIDTHxHEIGHT");
+  render_cmd->add_option("--background", render.background, "r,g,b (linear, default 0,0,0)");
+  render_cmd->add_option("--out,-o", render.out, "output .png or .pfm")->required();
+
+  oit::BenchOptions bench;
+  auto* bench_cmd = app.add_subcommand("bench", "time every combination and append long-form CSV rows");
+  bench_cmd->add_option("--technique,-t", bench.sweep.techniques, "technique ids or 'all' (repeatable)");
+  bench_cmd->add_option("--scene,-s", bench.sweep.scenes, "scene ids or files (repeatable)");
+  bench_cmd->add_option("--set", bench.sweep.technique_sets,
+                        "key=v1,v2 or technique.key=v1,v2: parameter values to sweep (repeatable)");
+  bench_cmd->add_option("--scene-set", bench.sweep.scene_sets, "scene key=v1,v2 to sweep (repeatable)");
+  bench_cmd->add_option("--size", bench.sweep.sizes, "WIDTHxHEIGHT (repeatable)");
+  bench_cmd->add_option("--frames", bench.sweep.frames, "timed frames per run")->check(CLI::Range(1, 100000));
+  bench_cmd->add_option("--warmup", bench.sweep.warmup, "untimed frames first (shader compilation)")
+      ->check(CLI::Range(0, 1000));
+  bench_cmd->add_option("--clock", bench.sweep.clock, "auto, gl, wall or both")
+      ->check(CLI::IsMember({"auto", "gl", "wall", "both"}));
+  bench_cmd->add_option("--background", bench.sweep.background, "r,g,b");
+  bench_cmd->add_option("--csv", bench.csv, "CSV file to append to")->required();
+  bench_cmd->add_option("--images", bench.images_dir, "directory for one PNG per run");
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*list) return oit::run_list(common);
+    if (*render_cmd) return oit::run_render(common, render);
+    if (*bench_cmd) return oit::run_bench(common, bench);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "oitbench: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

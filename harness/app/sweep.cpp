@@ -1,0 +1,157 @@
+#include "app/sweep.h"
+
+#include <algorithm>
+#include <sstream>
+#include <stdexcept>
+
+namespace oit {
+namespace {
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, separator)) parts.push_back(part);
+  if (parts.empty()) parts.push_back("");
+  return parts;
+}
+
+struct Assignment {
+  std::string scope;  // technique id, or "" for every technique that has the key
+  std::string key;
+  std::vector<std::string> values;
+};
+
+Assignment parse_sweep_assignment(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) throw std::invalid_argument("'" + text + "' is not of the form key=value");
+  Assignment a;
+  a.key = text.substr(0, eq);
+  if (const auto dot = a.key.find('.'); dot != std::string::npos) {
+    a.scope = a.key.substr(0, dot);
+    a.key = a.key.substr(dot + 1);
+  }
+  a.values = split(text.substr(eq + 1), ',');
+  return a;
+}
+
+// Cartesian product of the assignments as raw parameter maps.
+std::vector<RawParams> combinations(const std::vector<Assignment>& assignments) {
+  std::vector<RawParams> result{RawParams{}};
+  for (const auto& a : assignments) {
+    std::vector<RawParams> next;
+    for (const auto& partial : result) {
+      for (const auto& value : a.values) {
+        RawParams p = partial;
+        p[a.key] = value;
+        next.push_back(p);
+      }
+    }
+    result = std::move(next);
+  }
+  return result;
+}
+
+bool has_param(const TechniqueDescriptor& t, const std::string& key) {
+  return std::any_of(t.params.begin(), t.params.end(), [&](const ParamSpec& s) { return s.name == key; });
+}
+
+}  // namespace
+
+void parse_size(const std::string& text, int& width, int& height) {
+  const auto x = text.find('x');
+  try {
+    if (x == std::string::npos) throw std::invalid_argument("");
+    size_t used_w = 0, used_h = 0;
+    width = std::stoi(text.substr(0, x), &used_w);
+    height = std::stoi(text.substr(x + 1), &used_h);
+    if (used_w != x || used_h != text.size() - x - 1) throw std::invalid_argument("");
+  } catch (const std::exception&) {
+    throw std::invalid_argument("size '" + text + "' is not of the form WIDTHxHEIGHT");
+  }
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw std::invalid_argument("size '" + text + "' is outside 1x1 .. 16384x16384");
+}
+
+glm::vec3 parse_background(const std::string& text) {
+  const auto parts = split(text, ',');
+  if (parts.size() != 3) throw std::invalid_argument("background '" + text + "' must be r,g,b");
+  glm::vec3 color;
+  for (int i = 0; i < 3; ++i) {
+    try {
+      size_t used = 0;
+      color[i] = std::stof(parts[size_t(i)], &used);
+      if (used != parts[size_t(i)].size()) throw std::invalid_argument("");
+    } catch (const std::exception&) {
+      throw std::invalid_argument("background '" + text + "': '" + parts[size_t(i)] + "' is not a number");
+    }
+  }
+  return color;
+}
+
+std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRegistry& registry) {
+  std::vector<const TechniqueDescriptor*> techniques;
+  for (const auto& id : options.techniques) {
+    if (id == "all") {
+      for (const auto& t : registry.all())
+        if (std::find(techniques.begin(), techniques.end(), &t) == techniques.end()) techniques.push_back(&t);
+    } else {
+      techniques.push_back(&registry.get(id));
+    }
+  }
+  std::vector<Assignment> technique_assignments;
+  for (const auto& text : options.technique_sets) {
+    Assignment a = parse_sweep_assignment(text);
+    const bool used = std::any_of(techniques.begin(), techniques.end(), [&](const TechniqueDescriptor* t) {
+      return (a.scope.empty() || a.scope == t->id) && has_param(*t, a.key);
+    });
+    if (!used) throw std::invalid_argument("--set " + text + ": no selected technique has a parameter '" + a.key + "'");
+    technique_assignments.push_back(a);
+  }
+  std::vector<Assignment> scene_assignments;
+  for (const auto& text : options.scene_sets) scene_assignments.push_back(parse_sweep_assignment(text));
+
+  std::optional<ClockKind> clock;
+  if (options.clock != "auto") clock = parse_clock_kind(options.clock);
+  const glm::vec3 background = parse_background(options.background);
+
+  std::vector<RunSpec> runs;
+  for (const auto& scene : options.scenes) {
+    for (const auto& scene_params : combinations(scene_assignments)) {
+      for (const auto& size : options.sizes) {
+        int width = 0, height = 0;
+        parse_size(size, width, height);
+        for (const TechniqueDescriptor* t : techniques) {
+          std::vector<Assignment> own;
+          for (const auto& a : technique_assignments)
+            if ((a.scope.empty() || a.scope == t->id) && has_param(*t, a.key)) own.push_back(a);
+          for (const auto& params : combinations(own)) {
+            RunSpec spec;
+            spec.technique = t->id;
+            spec.params = params;
+            spec.scene = scene;
+            spec.scene_params = scene_params;
+            spec.width = width;
+            spec.height = height;
+            spec.frames = options.frames;
+            spec.warmup = options.warmup;
+            spec.clock = clock;
+            spec.background = background;
+            runs.push_back(spec);
+          }
+        }
+      }
+    }
+  }
+  return runs;
+}
+
+std::string run_label(const RunResult& result) {
+  std::string label = result.spec.technique;
+  for (const auto& [key, value] : result.spec.params) label += "_" + key + "-" + value;
+  for (char& c : label)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-' && c != '.') c = '-';
+  return label;
+}
+
+}  // namespace oit

@@ -1,0 +1,32 @@
+#pragma once
+// Expansion of command-line sweep options into individual runs, shared by
+// the `oitbench` CLI and the Google Benchmark binary.
+#include <string>
+#include <vector>
+
+#include "core/runner.h"
+
+namespace oit {
+
+struct SweepOptions {
+  std::vector<std::string> techniques{"all"};
+  std::vector<std::string> scenes{"quads"};
+  // "key=v1,v2" or "technique.key=v1,v2"; a key applies to the selected
+  // techniques that have it (and must exist in at least one of them).
+  std::vector<std::string> technique_sets;
+  std::vector<std::string> scene_sets;  // "key=v1,v2"
+  std::vector<std::string> sizes{"256x256"};
+  int frames = 10;
+  int warmup = 2;
+  std::string clock = "auto";
+  std::string background = "0,0,0";
+};
+
+std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRegistry& registry);
+
+void parse_size(const std::string& text, int& width, int& height);
+glm::vec3 parse_background(const std::string& text);
+// Short label for file names: "kbuffer_k-16_tail-drop".
+std::string run_label(const RunResult& result);
+
+}  // namespace oit

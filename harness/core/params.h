@@ -1,0 +1,60 @@
+#pragma once
+// Typed, validated parameters shared by techniques and scenes. A schema lists
+// each parameter's type, default and range; user text ("k=16") is checked
+// against it once, at construction, and errors name the key and the range.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace oit {
+
+enum class ParamType { integer, real, boolean, choice };
+
+struct ParamSpec {
+  std::string name;
+  ParamType type = ParamType::integer;
+  std::string default_value;         // as the user would type it
+  double min = 0.0;                  // inclusive range for integer/real
+  double max = 0.0;
+  std::vector<std::string> choices;  // for choice
+  std::string description;
+
+  static ParamSpec integer(std::string name, int64_t default_value, int64_t min, int64_t max, std::string description);
+  static ParamSpec real(std::string name, double default_value, double min, double max, std::string description);
+  static ParamSpec boolean(std::string name, bool default_value, std::string description);
+  static ParamSpec choice(std::string name, std::string default_value, std::vector<std::string> choices,
+                          std::string description);
+  std::string range_text() const;    // "[1, 64]", "{drop, blend}", "{true, false}"
+};
+
+using ParamSchema = std::vector<ParamSpec>;
+using RawParams = std::map<std::string, std::string>;
+using ParamValue = std::variant<int64_t, double, bool, std::string>;
+
+// The validated values of every parameter of a schema (defaults filled in).
+class ParamSet {
+ public:
+  ParamSet() = default;
+  ParamSet(const ParamSchema& schema, const RawParams& raw, const std::string& owner);
+
+  int64_t integer(const std::string& name) const;
+  double real(const std::string& name) const;
+  bool boolean(const std::string& name) const;
+  const std::string& choice(const std::string& name) const;
+  // "k=16 tail=drop" in schema order: the canonical text for CSV and cache keys.
+  std::string canonical() const;
+  const std::vector<std::pair<std::string, ParamValue>>& values() const { return values_; }
+
+ private:
+  const ParamValue& find(const std::string& name) const;
+  std::string owner_;
+  std::vector<std::pair<std::string, ParamValue>> values_;
+};
+
+// Parses "key=value" into raw params; throws naming the malformed text.
+void parse_assignment(const std::string& text, RawParams& into);
+std::string to_string(const ParamValue& value);
+
+}  // namespace oit

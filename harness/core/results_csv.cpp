@@ -1,0 +1,115 @@
+#include "core/results_csv.h"
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+namespace oit {
+
+const std::vector<std::string>& csv_columns() {
+  static const std::vector<std::string> columns = {
+      "timestamp", "git_revision", "device", "gl_version", "platform",
+      "technique", "params", "scene", "scene_params", "width", "height",
+      "clock", "stage", "median_ms", "min_ms", "p05_ms", "p95_ms", "mean_ms", "frames", "warmup",
+      "status", "message",
+      "fragments", "max_depth_complexity", "mean_depth_complexity",
+      "bytes_allocated", "fragments_stored", "fragments_dropped", "passes", "overflow_retries",
+      "error_max", "error_rmse", "psnr",
+      "other_cpu_load", "noisy", "clock_disagreement"};
+  return columns;
+}
+
+std::string csv_escape(const std::string& field) {
+  if (field.find_first_of(",\"\n\r") == std::string::npos) return field;
+  std::string escaped = "\"";
+  for (char c : field) escaped += (c == '"') ? std::string("\"\"") : std::string(1, c);
+  return escaped + "\"";
+}
+
+std::string utc_timestamp() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+namespace {
+
+std::string number(double value) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.6g", value);
+  return text;
+}
+
+std::string header_line() {
+  std::string line;
+  for (const auto& column : csv_columns()) line += (line.empty() ? "" : ",") + column;
+  return line;
+}
+
+}  // namespace
+
+std::vector<std::vector<std::string>> csv_rows(const RunResult& r, const RunContext& context) {
+  const bool ran = r.status == RunStatus::ok;
+  auto per_run = [&](const std::string& clock, const std::string& stage, const Summary* s) {
+    std::vector<std::string> row = {
+        context.timestamp, context.git_revision, context.device, context.gl_version, context.platform,
+        r.spec.technique, r.technique_params, r.spec.scene, r.scene_params,
+        std::to_string(r.spec.width), std::to_string(r.spec.height), clock, stage,
+        s ? number(s->median) : "", s ? number(s->min) : "", s ? number(s->p05) : "", s ? number(s->p95) : "",
+        s ? number(s->mean) : "", s ? std::to_string(s->count) : "", std::to_string(r.spec.warmup),
+        to_string(r.status), r.message,
+        ran ? std::to_string(r.scene_fragments) : "", ran ? std::to_string(r.max_depth_complexity) : "",
+        ran ? number(r.mean_depth_complexity) : "",
+        ran ? std::to_string(r.counters.bytes_allocated) : "", ran ? std::to_string(r.counters.fragments_stored) : "",
+        ran ? std::to_string(r.counters.fragments_dropped) : "", ran ? std::to_string(r.counters.passes) : "",
+        ran ? std::to_string(r.counters.overflow_retries) : "",
+        r.error ? number(r.error->max_abs) : "", r.error ? number(r.error->rmse) : "",
+        r.error ? number(r.error->psnr_db) : "",
+        r.other_process_load >= 0.0 ? number(r.other_process_load) : "", r.noisy ? "true" : "false",
+        r.clock_disagreement ? number(*r.clock_disagreement) : ""};
+    return row;
+  };
+  std::vector<std::vector<std::string>> rows;
+  if (!ran || r.stages.empty()) {
+    rows.push_back(per_run(to_string(r.clock), "", nullptr));
+    return rows;
+  }
+  for (const auto& stage : r.stages) rows.push_back(per_run(stage.clock, stage.stage, &stage.summary));
+  return rows;
+}
+
+CsvWriter::CsvWriter(const std::string& path) : path_(path) {
+  const std::filesystem::path file(path);
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+  bool write_header = true;
+  if (std::filesystem::exists(file) && std::filesystem::file_size(file) > 0) {
+    std::ifstream existing(path);
+    std::string first;
+    std::getline(existing, first);
+    if (first != header_line()) {
+      throw std::runtime_error("CSV '" + path + "' exists with different columns; choose another --csv file");
+    }
+    write_header = false;
+  }
+  out_.open(path, std::ios::app);
+  if (!out_) throw std::runtime_error("cannot open CSV '" + path + "' for appending");
+  if (write_header) out_ << header_line() << "\n" << std::flush;
+}
+
+void CsvWriter::write(const RunResult& result, const RunContext& context) {
+  for (const auto& row : csv_rows(result, context)) {
+    std::string line;
+    for (size_t i = 0; i < row.size(); ++i) line += (i ? "," : "") + csv_escape(row[i]);
+    out_ << line << "\n";
+  }
+  out_.flush();
+  if (!out_) throw std::runtime_error("failed writing CSV '" + path_ + "'");
+}
+
+}  // namespace oit

@@ -1,0 +1,90 @@
+#pragma once
+// Runs one technique on one scene/camera/size: warm-up, timed frames, stage
+// statistics, counters, image and its error against the cached exact
+// reference. A run that cannot happen is `skipped` with the reason; a run
+// that fails is `error` with the message. Nothing here knows any technique.
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/complexity.h"
+#include "core/error_metrics.h"
+#include "core/image.h"
+#include "core/statistics.h"
+#include "core/technique.h"
+
+namespace oit {
+
+struct RunSpec {
+  std::string technique;
+  RawParams params;
+  std::string scene = "quads";
+  RawParams scene_params;
+  int width = 256;
+  int height = 256;
+  int warmup = 2;
+  int frames = 10;
+  std::optional<ClockKind> clock;  // default: wall on software GL, gl on GPUs
+  glm::vec3 background{0.0f};
+};
+
+enum class RunStatus { ok, skipped, error };
+std::string to_string(RunStatus status);
+
+struct StageResult {
+  std::string stage;
+  std::string clock;  // "gl" or "wall"
+  Summary summary;
+  std::vector<double> samples_ms;
+};
+
+struct RunResult {
+  RunSpec spec;
+  std::string technique_params;  // canonical "k=16 tail=drop"
+  std::string scene_params;      // canonical
+  ClockKind clock = ClockKind::wall;
+  RunStatus status = RunStatus::ok;
+  std::string message;
+  std::vector<StageResult> stages;
+  TechniqueCounters counters;
+  std::optional<ImageError> error;
+  uint64_t scene_fragments = 0;
+  uint32_t max_depth_complexity = 0;
+  double mean_depth_complexity = 0.0;
+  double other_process_load = -1.0;  // share of all cores; -1 unknown
+  bool noisy = false;
+  // |gl - wall| / wall of the median total, when both clocks ran.
+  std::optional<double> clock_disagreement;
+  Image image;
+
+  const StageResult* stage(const std::string& name, const std::string& clock) const;
+};
+
+class Harness {
+ public:
+  Harness(GlContext& context, const TechniqueRegistry& registry);
+  ~Harness();
+
+  const DeviceInfo& device() const { return context_.device(); }
+  const TechniqueRegistry& registry() const { return registry_; }
+  ClockKind default_clock() const { return device().software ? ClockKind::wall : ClockKind::gl; }
+
+  RunResult run(const RunSpec& spec);
+  // The exact image of a scene/size/background, computed once and cached.
+  const Image& reference_image(const std::string& scene, const RawParams& scene_params, int width, int height,
+                               const glm::vec3& background);
+
+ private:
+  struct LoadedScene;
+  LoadedScene& scene(const std::string& spec, const RawParams& params);
+  void execute(const RunSpec& spec, RunResult& result);
+
+  GlContext& context_;
+  const TechniqueRegistry& registry_;
+  std::map<std::string, std::unique_ptr<LoadedScene>> scenes_;
+  std::map<std::string, Image> references_;
+};
+
+}  // namespace oit

@@ -1,0 +1,47 @@
+#include "core/scene_gpu.h"
+
+#include <cstddef>
+
+#include "../../shaders/bindings.h"
+
+namespace oit {
+
+SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
+  vertices_ = make_buffer(GLsizeiptr(scene.vertices.size() * sizeof(Vertex)), scene.vertices.data(), 0);
+  indices_ = make_buffer(GLsizeiptr(scene.indices.size() * sizeof(uint32_t)), scene.indices.data(), 0);
+  triangle_ids_ = make_buffer(GLsizeiptr(scene.triangle_ids.size() * sizeof(uint32_t)), scene.triangle_ids.data(), 0);
+  bytes_ = scene.vertices.size() * sizeof(Vertex) + (scene.indices.size() + scene.triangle_ids.size()) * 4;
+
+  vertex_array_ = make_vertex_array();
+  const GLuint vao = vertex_array_.id();
+  glVertexArrayVertexBuffer(vao, 0, vertices_.id(), 0, sizeof(Vertex));
+  glVertexArrayElementBuffer(vao, indices_.id());
+  auto float_attribute = [vao](GLuint location, GLint size, size_t offset) {
+    glEnableVertexArrayAttrib(vao, location);
+    glVertexArrayAttribFormat(vao, location, size, GL_FLOAT, GL_FALSE, GLuint(offset));
+    glVertexArrayAttribBinding(vao, location, 0);
+  };
+  auto uint_attribute = [vao](GLuint location, size_t offset) {
+    glEnableVertexArrayAttrib(vao, location);
+    glVertexArrayAttribIFormat(vao, location, 1, GL_UNSIGNED_INT, GLuint(offset));
+    glVertexArrayAttribBinding(vao, location, 0);
+  };
+  float_attribute(OIT_ATTRIB_POSITION, 3, offsetof(Vertex, position));
+  float_attribute(OIT_ATTRIB_NORMAL, 3, offsetof(Vertex, normal));
+  float_attribute(OIT_ATTRIB_COLOR, 4, offsetof(Vertex, color));
+  uint_attribute(OIT_ATTRIB_OBJECT_ID, offsetof(Vertex, object_id));
+  uint_attribute(OIT_ATTRIB_SURFACE_ID, offsetof(Vertex, surface_id));
+  float_attribute(OIT_ATTRIB_UV, 2, offsetof(Vertex, uv));
+}
+
+void SceneGpu::bind() const {
+  glBindVertexArray(vertex_array_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BINDING_TRIANGLE_IDS, triangle_ids_.id());
+}
+
+void SceneGpu::draw() const {
+  bind();
+  glDrawElements(GL_TRIANGLES, GLsizei(scene_.indices.size()), GL_UNSIGNED_INT, nullptr);
+}
+
+}  // namespace oit

@@ -1,0 +1,139 @@
+#include "core/stage_clock.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace oit {
+
+ClockKind parse_clock_kind(const std::string& text) {
+  if (text == "gl") return ClockKind::gl;
+  if (text == "wall") return ClockKind::wall;
+  if (text == "both") return ClockKind::both;
+  throw std::invalid_argument("clock '" + text + "' is not one of gl, wall, both");
+}
+
+std::string to_string(ClockKind kind) {
+  switch (kind) {
+    case ClockKind::gl: return "gl";
+    case ClockKind::wall: return "wall";
+    case ClockKind::both: return "both";
+  }
+  return "?";
+}
+
+const std::vector<std::string>& stage_vocabulary() {
+  static const std::vector<std::string> names = {"clear", "count",     "fill",    "store",   "peel", "sort",
+                                                 "bucket", "neighbors", "stylize", "compose", "total"};
+  return names;
+}
+
+ScopedStage::ScopedStage(StageClock& clock, std::string_view name) : clock_(clock), slot_(clock.open(name)) {}
+ScopedStage::~ScopedStage() { clock_.close(slot_); }
+
+StageClock::StageClock(ClockKind kind) : kind_(kind) {}
+
+void StageClock::begin_frame(bool record) {
+  recording_ = record;
+  if (record) {
+    for (auto& s : samples_) {
+      s.wall_ms.push_back(0.0);
+      s.gl_ms.push_back(0.0);
+    }
+  }
+  // Results of earlier frames are usually ready now: read them without waiting.
+  collect_ready_queries(false);
+}
+
+void StageClock::end_frame() {
+  if (!open_.empty()) throw std::logic_error("a stage is still open at the end of a frame");
+  if (recording_) ++frame_;
+}
+
+size_t StageClock::stage_index(std::string_view name) {
+  const auto& vocabulary = stage_vocabulary();
+  if (std::find(vocabulary.begin(), vocabulary.end(), name) == vocabulary.end()) {
+    throw std::logic_error("stage name '" + std::string(name) + "' is not in the stage vocabulary");
+  }
+  for (size_t i = 0; i < stage_names_.size(); ++i)
+    if (stage_names_[i] == name) return i;
+  stage_names_.emplace_back(name);
+  // A stage first seen mid-run gets zeros for the frames it did not run in.
+  samples_.push_back({std::vector<double>(frame_ + (recording_ ? 1 : 0), 0.0),
+                      std::vector<double>(frame_ + (recording_ ? 1 : 0), 0.0)});
+  return stage_names_.size() - 1;
+}
+
+GLuint StageClock::acquire_query() {
+  if (free_queries_.empty()) {
+    queries_.push_back(make_query(GL_TIMESTAMP));
+    return queries_.back().id();
+  }
+  GLuint id = free_queries_.back();
+  free_queries_.pop_back();
+  return id;
+}
+
+size_t StageClock::open(std::string_view name) {
+  Interval interval{stage_index(name), frame_};
+  if (recording_ && kind_ != ClockKind::wall) {
+    interval.begin_query = acquire_query();
+    glQueryCounter(interval.begin_query, GL_TIMESTAMP);
+  }
+  if (kind_ != ClockKind::gl) {
+    glFinish();  // the stage starts with an idle GPU
+    interval.wall_begin = std::chrono::steady_clock::now();
+  }
+  open_.push_back(interval);
+  return open_.size() - 1;
+}
+
+void StageClock::close(size_t slot) {
+  if (slot + 1 != open_.size()) throw std::logic_error("stages must close in reverse order of opening");
+  Interval interval = open_.back();
+  open_.pop_back();
+  if (kind_ != ClockKind::gl) {
+    glFinish();
+    const auto now = std::chrono::steady_clock::now();
+    if (recording_) {
+      samples_[interval.stage].wall_ms[interval.frame] +=
+          std::chrono::duration<double, std::milli>(now - interval.wall_begin).count();
+    }
+  }
+  if (recording_ && kind_ != ClockKind::wall) {
+    interval.end_query = acquire_query();
+    glQueryCounter(interval.end_query, GL_TIMESTAMP);
+    pending_.push_back(interval);
+  }
+}
+
+void StageClock::collect_ready_queries(bool wait) {
+  auto ready = [&](const Interval& interval) {
+    if (!wait) {
+      GLint available = 0;
+      glGetQueryObjectiv(interval.end_query, GL_QUERY_RESULT_AVAILABLE, &available);
+      if (!available) return false;
+    }
+    GLuint64 begin = 0, end = 0;
+    glGetQueryObjectui64v(interval.begin_query, GL_QUERY_RESULT, &begin);
+    glGetQueryObjectui64v(interval.end_query, GL_QUERY_RESULT, &end);
+    samples_[interval.stage].gl_ms[interval.frame] += double(end - begin) * 1e-6;
+    free_queries_.push_back(interval.begin_query);
+    free_queries_.push_back(interval.end_query);
+    return true;
+  };
+  pending_.erase(std::remove_if(pending_.begin(), pending_.end(), ready), pending_.end());
+}
+
+std::vector<std::pair<std::string, StageSamples>> StageClock::results() {
+  collect_ready_queries(true);
+  std::vector<std::pair<std::string, StageSamples>> out;
+  for (size_t i = 0; i < stage_names_.size(); ++i) {
+    StageSamples s = samples_[i];
+    s.wall_ms.resize(frame_);
+    s.gl_ms.resize(frame_);
+    out.emplace_back(stage_names_[i], std::move(s));
+  }
+  return out;
+}
+
+}  // namespace oit

@@ -1,0 +1,85 @@
+#pragma once
+// Per-stage timing with two clocks:
+//  - gl:   GL_TIMESTAMP query pairs, read back frames later (never stalls);
+//  - wall: CPU steady clock bracketed by glFinish (the only trustworthy
+//          clock on Mesa llvmpipe, whose per-pass GL timestamps are wrong).
+// Techniques open a ScopedStage per stage; names come from a fixed
+// vocabulary so that they become plot series.
+#include <chrono>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gl/handles.h"
+
+namespace oit {
+
+enum class ClockKind { gl, wall, both };
+ClockKind parse_clock_kind(const std::string& text);
+std::string to_string(ClockKind kind);
+
+// clear, count, fill, store, peel, sort, bucket, neighbors, stylize, compose, total
+const std::vector<std::string>& stage_vocabulary();
+
+// Milliseconds per recorded frame for one stage (a stage that runs several
+// times in a frame, e.g. one peel per layer, is summed within the frame).
+struct StageSamples {
+  std::vector<double> wall_ms;
+  std::vector<double> gl_ms;
+};
+
+class StageClock;
+
+class ScopedStage {
+ public:
+  ScopedStage(StageClock& clock, std::string_view name);
+  ~ScopedStage();
+  ScopedStage(const ScopedStage&) = delete;
+  ScopedStage& operator=(const ScopedStage&) = delete;
+
+ private:
+  StageClock& clock_;
+  size_t slot_;
+};
+
+class StageClock {
+ public:
+  explicit StageClock(ClockKind kind);
+  ClockKind kind() const { return kind_; }
+
+  // Frames opened with record=false (warm-up) time nothing but behave alike.
+  void begin_frame(bool record);
+  void end_frame();
+  ScopedStage stage(std::string_view name) { return ScopedStage(*this, name); }
+
+  // Reads every outstanding query and returns samples per stage name, in
+  // the order stages first appeared.
+  std::vector<std::pair<std::string, StageSamples>> results();
+
+ private:
+  friend class ScopedStage;
+  size_t open(std::string_view name);
+  void close(size_t slot);
+  void collect_ready_queries(bool wait);
+  GLuint acquire_query();
+  size_t stage_index(std::string_view name);
+
+  struct Interval {
+    size_t stage;
+    size_t frame;
+    GLuint begin_query = 0, end_query = 0;
+    std::chrono::steady_clock::time_point wall_begin;
+  };
+  ClockKind kind_;
+  bool recording_ = false;
+  size_t frame_ = 0;  // index of the current recorded frame
+  std::vector<std::string> stage_names_;
+  std::vector<StageSamples> samples_;
+  std::vector<Interval> open_;     // by slot
+  std::vector<Interval> pending_;  // closed, GL result not read yet
+  std::vector<Query> queries_;
+  std::vector<GLuint> free_queries_;
+};
+
+}  // namespace oit

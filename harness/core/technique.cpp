@@ -1,0 +1,63 @@
+#include "core/technique.h"
+
+#include <stdexcept>
+
+#include "../../shaders/bindings.h"
+
+namespace oit {
+
+namespace {
+// Shared uniforms are optional in a program (a depth-only pass has no u_lit,
+// a compose pass no matrices); setting an inactive location is a GL error.
+bool is_active(GLuint program, const char* name) {
+  return glGetProgramResourceIndex(program, GL_UNIFORM, name) != GL_INVALID_INDEX;
+}
+}  // namespace
+
+void Frame::set_shared_uniforms(GLuint program) const {
+  if (is_active(program, "u_view")) glProgramUniformMatrix4fv(program, OIT_UNIFORM_VIEW, 1, GL_FALSE, &view[0][0]);
+  if (is_active(program, "u_projection"))
+    glProgramUniformMatrix4fv(program, OIT_UNIFORM_PROJECTION, 1, GL_FALSE, &projection[0][0]);
+  if (is_active(program, "u_lit")) glProgramUniform1i(program, OIT_UNIFORM_LIT, scene.scene().lit ? 1 : 0);
+  if (is_active(program, "u_background"))
+    glProgramUniform3f(program, OIT_UNIFORM_BACKGROUND, background.r, background.g, background.b);
+}
+
+void Frame::bind_target() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, target_framebuffer);
+  glViewport(0, 0, width, height);
+}
+
+std::string supports(const TechniqueDescriptor& technique, const ParamSet& params, const DeviceInfo& device,
+                     const SceneFacts& scene) {
+  if (technique.needs.fp64 && !device.has_fp64) return "device has no double-precision shaders (GL_ARB_gpu_shader_fp64)";
+  if (technique.needs.int64 && !device.has_int64) return "device has no 64-bit integers in shaders (GL_ARB_gpu_shader_int64)";
+  if (technique.needs.indexed_geometry && !scene.indexed) return "scene has no shared vertex indices";
+  if (technique.needs.multiple_objects && scene.objects < 2) return "scene has a single object";
+  return technique.extra_support_check ? technique.extra_support_check(params, scene) : "";
+}
+
+void TechniqueRegistry::add(TechniqueDescriptor descriptor) {
+  for (const auto& existing : techniques_) {
+    if (existing.id == descriptor.id) throw std::logic_error("technique '" + descriptor.id + "' registered twice");
+  }
+  if (!descriptor.create) throw std::logic_error("technique '" + descriptor.id + "' has no factory");
+  techniques_.push_back(std::move(descriptor));
+}
+
+const TechniqueDescriptor& TechniqueRegistry::get(const std::string& id) const {
+  std::string ids;
+  for (const auto& technique : techniques_) {
+    if (technique.id == id) return technique;
+    ids += (ids.empty() ? "" : ", ") + technique.id;
+  }
+  throw std::invalid_argument("unknown technique '" + id + "'; registered: " + ids);
+}
+
+const TechniqueDescriptor& TechniqueRegistry::reference() const {
+  for (const auto& technique : techniques_)
+    if (technique.is_reference) return technique;
+  throw std::logic_error("no reference technique is registered");
+}
+
+}  // namespace oit

@@ -1,0 +1,105 @@
+#pragma once
+// The interface every OIT technique implements, and the registry that lists
+// them. A technique lives in algorithms/<id>/ and registers itself through
+// the build-generated registry; nothing here knows any technique.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/params.h"
+#include "core/scene_gpu.h"
+#include "core/stage_clock.h"
+#include "gl/context.h"
+
+namespace oit {
+
+struct TechniqueCounters {
+  uint64_t bytes_allocated = 0;    // GPU memory the technique owns now
+  uint64_t fragments_stored = 0;   // fragments kept in the last frame
+  uint64_t fragments_dropped = 0;  // fragments lost (truncation) in the last frame
+  uint64_t passes = 0;             // geometry passes in the last frame
+  uint64_t overflow_retries = 0;   // re-renders after a buffer overflow, since construction
+};
+
+struct TechniqueNeeds {
+  bool fp64 = false;              // double precision in shaders
+  bool int64 = false;             // 64-bit integers in shaders (GL_ARB_gpu_shader_int64)
+  bool indexed_geometry = false;  // shared vertex indices (triangle adjacency)
+  bool multiple_objects = false;  // more than one object id
+};
+
+// What a technique may ask of the scene it is about to run on.
+struct SceneFacts {
+  size_t triangles = 0;
+  uint32_t objects = 0;
+  bool indexed = true;
+};
+
+enum class Exactness { exact, approximate };
+
+// Everything a technique needs to render one frame.
+struct Frame {
+  const SceneGpu& scene;
+  glm::mat4 view;
+  glm::mat4 projection;
+  int width;
+  int height;
+  glm::vec3 background;
+  GLuint target_framebuffer;  // RGBA32F; compose passes write here
+  StageClock& clock;
+
+  // Sets whichever shared uniforms `program` uses: the camera of
+  // shaders/geometry.vert, u_lit of shading.glsl, u_background of compose.glsl.
+  void set_shared_uniforms(GLuint program) const;
+  // Binds the target framebuffer with a full viewport.
+  void bind_target() const;
+};
+
+class Technique {
+ public:
+  virtual ~Technique() = default;
+  // Resolution-dependent resources are (re)built here, not in the constructor.
+  virtual void resize(int width, int height) = 0;
+  virtual void render(const Frame& frame) = 0;
+  virtual TechniqueCounters counters() const = 0;
+};
+
+struct TechniqueDescriptor {
+  std::string id;            // snake_case, the CSV key
+  std::string display_name;
+  std::string paper;         // citation shown by `list` and the README
+  ParamSchema params;
+  std::vector<std::string> stages;  // stage names it emits, in order
+  TechniqueNeeds needs;
+  Exactness exactness = Exactness::approximate;
+  bool is_reference = false;  // the exact technique the harness compares against
+  // Optional extra check; returns "" when the run can happen, else the reason.
+  std::function<std::string(const ParamSet&, const SceneFacts&)> extra_support_check;
+  std::function<std::unique_ptr<Technique>(const ParamSet&)> create;
+};
+
+// "" when a run can happen, otherwise the reason it cannot (device features,
+// scene facts, or the technique's own check).
+std::string supports(const TechniqueDescriptor& technique, const ParamSet& params, const DeviceInfo& device,
+                     const SceneFacts& scene);
+
+class TechniqueRegistry {
+ public:
+  void add(TechniqueDescriptor descriptor);
+  const std::vector<TechniqueDescriptor>& all() const { return techniques_; }
+  // Throws listing the registered ids when `id` is unknown.
+  const TechniqueDescriptor& get(const std::string& id) const;
+  const TechniqueDescriptor& reference() const;
+
+ private:
+  std::vector<TechniqueDescriptor> techniques_;
+};
+
+// Defined by the build-generated registry (algorithms/CMakeLists.txt).
+TechniqueRegistry& builtin_techniques();
+
+}  // namespace oit

@@ -1,0 +1,158 @@
+#include "gl/shader_program.h"
+
+#include <algorithm>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "gl/embedded_shaders.h"
+
+namespace oit {
+namespace {
+
+const std::string& source_of(const std::string& path, const std::string& included_from) {
+  const auto& sources = embedded_shader_sources();
+  auto it = sources.find(path);
+  if (it == sources.end()) {
+    throw ShaderError("shader file '" + path + "' not found among embedded sources" +
+                      (included_from.empty() ? "" : " (included from " + included_from + ")"));
+  }
+  return it->second;
+}
+
+class Preprocessor {
+ public:
+  PreprocessedShader run(const std::string& path, const ShaderDefines& defines) {
+    const std::string& text = source_of(path, "");
+    std::istringstream in(text);
+    std::string first_line;
+    std::getline(in, first_line);
+    if (first_line.rfind("#version", 0) != 0) {
+      throw ShaderError(path + ":1: first line must be a #version directive");
+    }
+    out_ << first_line << "\n";
+    for (const auto& [name, value] : defines) out_ << "#define " << name << " " << value << "\n";
+    files_.push_back(path);
+    included_.insert(path);
+    emit_body(in, 0, 2);
+    return {out_.str(), files_};
+  }
+
+ private:
+  void emit_body(std::istream& in, int file_index, int first_line_number) {
+    static const std::regex include_re(R"re(^\s*#\s*include\s+"([^"]+)"\s*$)re");
+    out_ << "#line " << first_line_number << " " << file_index << "\n";
+    std::string line;
+    int line_number = first_line_number - 1;
+    while (std::getline(in, line)) {
+      ++line_number;
+      std::smatch match;
+      if (!std::regex_match(line, match, include_re)) {
+        out_ << line << "\n";
+        continue;
+      }
+      const std::string include_path = match[1];
+      if (included_.insert(include_path).second) {
+        const std::string& text = source_of(include_path, files_[file_index] + ":" + std::to_string(line_number));
+        files_.push_back(include_path);
+        std::istringstream nested(text);
+        emit_body(nested, static_cast<int>(files_.size()) - 1, 1);
+      }
+      out_ << "#line " << line_number + 1 << " " << file_index << "\n";
+    }
+  }
+
+  std::ostringstream out_;
+  std::vector<std::string> files_;
+  std::set<std::string> included_;
+};
+
+const char* stage_name(GLenum stage) {
+  switch (stage) {
+    case GL_VERTEX_SHADER: return "vertex";
+    case GL_FRAGMENT_SHADER: return "fragment";
+    case GL_COMPUTE_SHADER: return "compute";
+    case GL_GEOMETRY_SHADER: return "geometry";
+    default: return "shader";
+  }
+}
+
+Shader compile(const ShaderStageSource& stage, const ShaderDefines& defines) {
+  PreprocessedShader pre = preprocess_shader(stage.path, defines);
+  Shader shader(glCreateShader(stage.stage));
+  const char* text = pre.text.c_str();
+  glShaderSource(shader.id(), 1, &text, nullptr);
+  glCompileShader(shader.id());
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    GLint length = 0;
+    glGetShaderiv(shader.id(), GL_INFO_LOG_LENGTH, &length);
+    std::string log(static_cast<size_t>(std::max(length, 1)), '\0');
+    glGetShaderInfoLog(shader.id(), length, nullptr, log.data());
+    throw ShaderError(std::string("failed to compile ") + stage_name(stage.stage) + " shader '" + stage.path +
+                      "':\n" + translate_shader_log(log, pre.files));
+  }
+  return shader;
+}
+
+}  // namespace
+
+PreprocessedShader preprocess_shader(const std::string& path, const ShaderDefines& defines) {
+  return Preprocessor().run(path, defines);
+}
+
+std::string translate_shader_log(const std::string& log, const std::vector<std::string>& files) {
+  // Mesa writes "0:12(5): error: ...", NVIDIA "0(12) : error ...".
+  static const std::regex location_re(R"re((\d+):(\d+)\((\d+)\)|(\d+)\((\d+)\))re");
+  std::string result;
+  auto begin = std::sregex_iterator(log.begin(), log.end(), location_re);
+  size_t last = 0;
+  for (auto it = begin; it != std::sregex_iterator(); ++it) {
+    const std::smatch& m = *it;
+    const bool mesa_form = m[1].matched;
+    const size_t file = std::stoul(mesa_form ? m[1].str() : m[4].str());
+    const std::string line = mesa_form ? m[2].str() : m[5].str();
+    result += log.substr(last, static_cast<size_t>(m.position()) - last);
+    result += (file < files.size() ? files[file] : "source " + std::to_string(file)) + ":" + line;
+    last = static_cast<size_t>(m.position() + m.length());
+  }
+  result += log.substr(last);
+  return result;
+}
+
+Program build_program(const std::vector<ShaderStageSource>& stages, const ShaderDefines& defines) {
+  std::vector<Shader> shaders;
+  for (const auto& stage : stages) shaders.push_back(compile(stage, defines));
+  Program program(glCreateProgram());
+  for (const auto& shader : shaders) glAttachShader(program.id(), shader.id());
+  glLinkProgram(program.id());
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    GLint length = 0;
+    glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
+    std::string log(static_cast<size_t>(std::max(length, 1)), '\0');
+    glGetProgramInfoLog(program.id(), length, nullptr, log.data());
+    std::string names;
+    for (const auto& stage : stages) names += (names.empty() ? "" : " + ") + stage.path;
+    throw ShaderError("failed to link program (" + names + "):\n" + log);
+  }
+  for (const auto& shader : shaders) glDetachShader(program.id(), shader.id());
+  return program;
+}
+
+Program build_geometry_program(const std::string& fragment_path, const ShaderDefines& defines) {
+  return build_program({{GL_VERTEX_SHADER, "shaders/geometry.vert"}, {GL_FRAGMENT_SHADER, fragment_path}}, defines);
+}
+
+Program build_fullscreen_program(const std::string& fragment_path, const ShaderDefines& defines) {
+  return build_program({{GL_VERTEX_SHADER, "shaders/fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragment_path}}, defines);
+}
+
+Program build_compute_program(const std::string& compute_path, const ShaderDefines& defines) {
+  return build_program({{GL_COMPUTE_SHADER, compute_path}}, defines);
+}
+
+}  // namespace oit

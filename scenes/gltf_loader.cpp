@@ -1,0 +1,227 @@
+#include "gltf_loader.h"
+
+#include <tiny_gltf.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cstring>
+#include <functional>
+#include <stdexcept>
+
+namespace oit {
+namespace {
+
+class GltfReader {
+ public:
+  GltfReader(const tinygltf::Model& model, const std::string& path) : model_(model), path_(path) {}
+
+  [[noreturn]] void fail(const std::string& what) const { throw std::invalid_argument(path_ + ": " + what); }
+
+  // Reads `components` values per element of an accessor as doubles, with
+  // every offset checked against the buffer it points into.
+  std::vector<double> read(int accessor_index, int components) const {
+    if (accessor_index < 0 || size_t(accessor_index) >= model_.accessors.size())
+      fail("accessor " + std::to_string(accessor_index) + " does not exist");
+    const auto& accessor = model_.accessors[size_t(accessor_index)];
+    if (accessor.sparse.isSparse) fail("sparse accessor " + std::to_string(accessor_index) + " is not supported");
+    const int have = tinygltf::GetNumComponentsInType(uint32_t(accessor.type));
+    if (have != components)
+      fail("accessor " + std::to_string(accessor_index) + " has " + std::to_string(have) + " components, expected " +
+           std::to_string(components));
+    const int component_size = tinygltf::GetComponentSizeInBytes(uint32_t(accessor.componentType));
+    if (component_size <= 0) fail("accessor " + std::to_string(accessor_index) + " has an invalid component type");
+    std::vector<double> values(accessor.count * size_t(components), 0.0);
+    if (accessor.bufferView < 0) return values;  // all zeros by the spec
+    if (size_t(accessor.bufferView) >= model_.bufferViews.size()) fail("buffer view out of range");
+    const auto& view = model_.bufferViews[size_t(accessor.bufferView)];
+    if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size()) fail("buffer out of range");
+    const auto& buffer = model_.buffers[size_t(view.buffer)].data;
+    const size_t element_size = size_t(component_size) * size_t(components);
+    const size_t stride = view.byteStride ? view.byteStride : element_size;
+    const size_t start = view.byteOffset + accessor.byteOffset;
+    if (accessor.count > 0) {
+      const size_t end = start + (accessor.count - 1) * stride + element_size;
+      if (end > view.byteOffset + view.byteLength || end > buffer.size() || end < start)
+        fail("accessor " + std::to_string(accessor_index) + " reads past the end of its buffer");
+    }
+    for (size_t i = 0; i < accessor.count; ++i) {
+      const unsigned char* element = buffer.data() + start + i * stride;
+      for (int c = 0; c < components; ++c) {
+        values[i * size_t(components) + size_t(c)] =
+            component(element + size_t(c) * size_t(component_size), accessor.componentType, accessor.normalized);
+      }
+    }
+    return values;
+  }
+
+ private:
+  static double component(const unsigned char* p, int type, bool normalized) {
+    switch (type) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: { float v; std::memcpy(&v, p, 4); return v; }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); return v; }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return normalized ? v / 65535.0 : v; }
+      case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t v; std::memcpy(&v, p, 2); return normalized ? std::max(v / 32767.0, -1.0) : v; }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? *p / 255.0 : *p;
+      case TINYGLTF_COMPONENT_TYPE_BYTE: { auto v = static_cast<int8_t>(*p); return normalized ? std::max(v / 127.0, -1.0) : v; }
+      default: return 0.0;
+    }
+  }
+
+  const tinygltf::Model& model_;
+  const std::string& path_;
+};
+
+glm::mat4 local_transform(const tinygltf::Node& node) {
+  if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data());
+  glm::mat4 m(1.0f);
+  if (node.translation.size() == 3) m = glm::translate(m, glm::vec3(glm::make_vec3(node.translation.data())));
+  if (node.rotation.size() == 4) {
+    const glm::quat q(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]), float(node.rotation[2]));
+    m *= glm::mat4_cast(q);
+  }
+  if (node.scale.size() == 3) m = glm::scale(m, glm::vec3(glm::make_vec3(node.scale.data())));
+  return m;
+}
+
+}  // namespace
+
+Scene load_gltf_scene(const std::string& path) {
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string error, warning;
+  const bool binary = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;
+  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
+                         : loader.LoadASCIIFromFile(&model, &error, &warning, path);
+  if (!ok) throw std::invalid_argument(path + ": cannot load glTF: " + (error.empty() ? "unknown error" : error));
+  GltfReader reader(model, path);
+
+  Scene scene;
+  scene.name = path;
+  bool all_unlit = true;
+  std::optional<Camera> camera;
+  uint32_t next_object = 0;
+
+  auto material_color = [&](int material_index) {
+    if (material_index < 0) {
+      all_unlit = false;
+      return glm::vec4(1.0f);
+    }
+    if (size_t(material_index) >= model.materials.size()) reader.fail("material index out of range");
+    const auto& material = model.materials[size_t(material_index)];
+    if (!material.extensions.count("KHR_materials_unlit")) all_unlit = false;
+    const auto& f = material.pbrMetallicRoughness.baseColorFactor;
+    glm::vec4 color(1.0f);
+    if (f.size() == 4) color = glm::vec4(float(f[0]), float(f[1]), float(f[2]), float(f[3]));
+    if (material.alphaMode == "OPAQUE") color.a = 1.0f;
+    return color;
+  };
+
+  auto add_mesh = [&](const tinygltf::Mesh& mesh, const glm::mat4& world) {
+    const uint32_t object = next_object++;
+    const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(world)));
+    for (const auto& primitive : mesh.primitives) {
+      if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1)
+        reader.fail("mesh '" + mesh.name + "' has a primitive of mode " + std::to_string(primitive.mode) +
+                    "; only triangles are supported");
+      auto position_it = primitive.attributes.find("POSITION");
+      if (position_it == primitive.attributes.end()) reader.fail("mesh '" + mesh.name + "' has no POSITION");
+      const auto positions = reader.read(position_it->second, 3);
+      const size_t vertex_count = positions.size() / 3;
+      std::vector<double> normals;
+      if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
+        normals = reader.read(it->second, 3);
+        if (normals.size() != positions.size()) reader.fail("mesh '" + mesh.name + "' NORMAL count differs from POSITION");
+      }
+      std::vector<uint32_t> local_indices;
+      if (primitive.indices >= 0) {
+        for (double i : reader.read(primitive.indices, 1)) {
+          if (i >= double(vertex_count))
+            reader.fail("mesh '" + mesh.name + "' index " + std::to_string(uint64_t(i)) + " is past its " +
+                        std::to_string(vertex_count) + " vertices");
+          local_indices.push_back(uint32_t(i));
+        }
+      } else {
+        for (uint32_t i = 0; i < vertex_count; ++i) local_indices.push_back(i);
+      }
+      if (local_indices.size() % 3 != 0) reader.fail("mesh '" + mesh.name + "' index count is not a multiple of 3");
+      const glm::vec4 color = material_color(primitive.material);
+      const auto base = uint32_t(scene.vertices.size());
+      for (size_t i = 0; i < vertex_count; ++i) {
+        Vertex v;
+        v.position = glm::vec3(world * glm::vec4(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2], 1.0));
+        v.normal = normals.empty() ? glm::vec3(0.0f)
+                                   : glm::normalize(normal_matrix * glm::vec3(normals[3 * i], normals[3 * i + 1],
+                                                                              normals[3 * i + 2]));
+        v.color = color;
+        v.object_id = object;
+        scene.vertices.push_back(v);
+      }
+      for (size_t t = 0; t + 2 < local_indices.size(); t += 3) {
+        const uint32_t a = base + local_indices[t], b = base + local_indices[t + 1], c = base + local_indices[t + 2];
+        if (normals.empty()) {
+          // Face normal accumulated per vertex (area weighted) when the file has none.
+          const glm::vec3 n = glm::cross(scene.vertices[b].position - scene.vertices[a].position,
+                                         scene.vertices[c].position - scene.vertices[a].position);
+          for (uint32_t k : {a, b, c}) scene.vertices[k].normal += n;
+        }
+        scene.indices.insert(scene.indices.end(), {a, b, c});
+        scene.triangle_ids.push_back(uint32_t(scene.triangle_ids.size()));
+      }
+      if (normals.empty()) {
+        for (size_t i = base; i < scene.vertices.size(); ++i) {
+          glm::vec3& n = scene.vertices[i].normal;
+          n = glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0.0f, 0.0f, 1.0f);
+        }
+      }
+    }
+  };
+
+  std::function<void(int, const glm::mat4&, int)> visit = [&](int node_index, const glm::mat4& parent, int depth) {
+    if (node_index < 0 || size_t(node_index) >= model.nodes.size()) reader.fail("node index out of range");
+    if (depth > 256) reader.fail("node hierarchy deeper than 256 (cycle?)");
+    const auto& node = model.nodes[size_t(node_index)];
+    const glm::mat4 world = parent * local_transform(node);
+    if (node.mesh >= 0) {
+      if (size_t(node.mesh) >= model.meshes.size()) reader.fail("node mesh index out of range");
+      add_mesh(model.meshes[size_t(node.mesh)], world);
+    }
+    if (node.camera >= 0 && !camera) {
+      if (size_t(node.camera) >= model.cameras.size()) reader.fail("node camera index out of range");
+      const auto& source = model.cameras[size_t(node.camera)];
+      Camera c;
+      c.view = glm::inverse(world);
+      if (source.type == "orthographic") {
+        c.orthographic = true;
+        c.xmag = float(source.orthographic.xmag);
+        c.ymag = float(source.orthographic.ymag);
+        c.znear = float(source.orthographic.znear);
+        c.zfar = float(source.orthographic.zfar);
+      } else {
+        c.yfov_radians = float(source.perspective.yfov);
+        c.znear = float(source.perspective.znear);
+        c.zfar = source.perspective.zfar > 0 ? float(source.perspective.zfar) : c.znear * 1e4f;
+      }
+      if (!(c.znear > 0.0f || c.orthographic) || !(c.zfar > c.znear)) reader.fail("camera has an invalid depth range");
+      camera = c;
+    }
+    for (int child : node.children) visit(child, world, depth + 1);
+  };
+
+  const int scene_index = model.defaultScene >= 0 ? model.defaultScene : 0;
+  if (model.scenes.empty()) {
+    for (size_t i = 0; i < model.nodes.size(); ++i) visit(int(i), glm::mat4(1.0f), 0);
+  } else {
+    if (size_t(scene_index) >= model.scenes.size()) reader.fail("default scene index out of range");
+    for (int root : model.scenes[size_t(scene_index)].nodes) visit(root, glm::mat4(1.0f), 0);
+  }
+  if (scene.indices.empty()) reader.fail("contains no triangles");
+  scene.object_count = next_object;
+  scene.lit = !all_unlit;
+  scene.camera = camera ? *camera : frame_bounding_sphere(scene.bounds());
+  scene.validate();
+  return scene;
+}
+
+}  // namespace oit

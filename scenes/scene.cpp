@@ -1,0 +1,80 @@
+#include "scene.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+namespace oit {
+
+glm::mat4 Camera::projection(float aspect) const {
+  if (orthographic) {
+    const float half_width = xmag > 0.0f ? xmag : ymag * aspect;
+    return glm::ortho(-half_width, half_width, -ymag, ymag, znear, zfar);
+  }
+  return glm::perspective(yfov_radians, aspect, znear, zfar);
+}
+
+BoundingSphere Scene::bounds() const {
+  if (vertices.empty()) return {};
+  glm::vec3 lo(vertices[0].position), hi(vertices[0].position);
+  for (const auto& v : vertices) {
+    lo = glm::min(lo, v.position);
+    hi = glm::max(hi, v.position);
+  }
+  BoundingSphere sphere{(lo + hi) * 0.5f, 0.0f};
+  for (const auto& v : vertices) sphere.radius = std::max(sphere.radius, glm::length(v.position - sphere.center));
+  return sphere;
+}
+
+std::string Scene::content_hash() const {
+  // FNV-1a over the raw bytes: stable, dependency-free, good enough to key a cache.
+  uint64_t hash = 1469598103934665603ull;
+  auto mix = [&hash](const void* data, size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < bytes; ++i) hash = (hash ^ p[i]) * 1099511628211ull;
+  };
+  mix(vertices.data(), vertices.size() * sizeof(Vertex));
+  mix(indices.data(), indices.size() * sizeof(uint32_t));
+  mix(triangle_ids.data(), triangle_ids.size() * sizeof(uint32_t));
+  mix(&camera, sizeof(Camera));
+  mix(&lit, sizeof(lit));
+  char text[17];
+  std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+
+void Scene::validate() const {
+  if (indices.size() % 3 != 0) throw std::invalid_argument(name + ": index count is not a multiple of 3");
+  if (triangle_ids.size() != triangle_count())
+    throw std::invalid_argument(name + ": triangle id count does not match the triangle count");
+  for (size_t i = 0; i < indices.size(); ++i) {
+    if (indices[i] >= vertices.size()) {
+      throw std::invalid_argument(name + ": index " + std::to_string(i) + " = " + std::to_string(indices[i]) +
+                                  " is past the vertex count " + std::to_string(vertices.size()));
+    }
+  }
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    const glm::vec3& p = vertices[i].position;
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      throw std::invalid_argument(name + ": vertex " + std::to_string(i) + " has a non-finite position");
+    }
+  }
+}
+
+Camera frame_bounding_sphere(const BoundingSphere& sphere) {
+  Camera camera;
+  const float radius = sphere.radius > 0.0f ? sphere.radius : 1.0f;
+  camera.yfov_radians = glm::radians(45.0f);
+  // Distance at which the sphere touches the top and bottom of the view.
+  const float distance = radius / std::sin(camera.yfov_radians * 0.5f);
+  const glm::vec3 eye = sphere.center + glm::vec3(0.0f, 0.0f, distance);
+  camera.view = glm::lookAt(eye, sphere.center, glm::vec3(0.0f, 1.0f, 0.0f));
+  camera.znear = std::max(distance - radius * 1.01f, distance * 1e-3f);
+  camera.zfar = distance + radius * 1.01f;
+  return camera;
+}
+
+}  // namespace oit

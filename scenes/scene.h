@@ -1,0 +1,66 @@
+#pragma once
+// CPU-side scene: one merged, indexed triangle mesh plus a camera. Every
+// technique draws it with ONE draw call, so gl_PrimitiveID is the triangle's
+// position in `indices`; `triangle_ids` gives each submitted triangle a
+// stable id used as the depth tie-break, independent of submission order.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace oit {
+
+struct Vertex {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};
+  // Straight (not premultiplied) RGBA; constant per triangle (read flat from
+  // the provoking = last vertex of each triangle).
+  glm::vec4 color{1.0f};
+  uint32_t object_id = 0;   // distinct object / shape id (BKB buckets)
+  uint32_t surface_id = 0;  // parametric surface id (neighbour accuracy)
+  glm::vec2 uv{0.0f};       // surface parameters
+};
+
+// A camera independent of the image aspect ratio: projection(aspect) builds
+// the matrix for the image being rendered.
+struct Camera {
+  glm::mat4 view{1.0f};
+  bool orthographic = false;
+  float yfov_radians = 0.8f;   // perspective
+  float ymag = 1.0f;           // orthographic half height
+  float xmag = 0.0f;           // orthographic half width; 0 = ymag * aspect
+  float znear = 0.1f;
+  float zfar = 100.0f;
+  glm::mat4 projection(float aspect) const;
+};
+
+struct BoundingSphere {
+  glm::vec3 center{0.0f};
+  float radius = 0.0f;
+};
+
+struct Scene {
+  std::string name;    // library id or file path
+  std::string params;  // canonical scene parameters ("" for files)
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;       // 3 per triangle
+  std::vector<uint32_t> triangle_ids;  // 1 per triangle, stable across reorderings
+  uint32_t object_count = 0;
+  bool lit = true;                     // false: colour is output unshaded (unlit materials)
+  Camera camera;
+
+  size_t triangle_count() const { return indices.size() / 3; }
+  BoundingSphere bounds() const;
+  // Stable hash of geometry, colours and camera: the key of cached references.
+  std::string content_hash() const;
+  // Throws naming the scene when indices are out of range or positions are
+  // not finite.
+  void validate() const;
+};
+
+// A camera looking at the bounding sphere from +z so that it fills the view.
+Camera frame_bounding_sphere(const BoundingSphere& sphere);
+
+}  // namespace oit

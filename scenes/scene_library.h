@@ -1,0 +1,25 @@
+#pragma once
+// Named scenes with parameter schemas, and file loading by extension.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/params.h"
+#include "scene.h"
+
+namespace oit {
+
+struct SceneDescriptor {
+  std::string id;
+  std::string description;
+  ParamSchema params;
+  std::function<Scene(const ParamSet&)> make;
+};
+
+const std::vector<SceneDescriptor>& scene_library();
+
+// `spec` is a library id ("quads") or a file path (.gltf/.glb). Scene
+// parameters apply to library scenes only; giving any to a file is an error.
+Scene load_scene(const std::string& spec, const RawParams& params);
+
+}  // namespace oit

@@ -1,0 +1,38 @@
+// The shading function shared by every technique: each fragment gets the same
+// straight RGBA whatever the technique, so images differ only by how
+// fragments are stored, ordered and composited.
+#include "shaders/bindings.h"
+
+in vec3 v_view_position;
+in vec3 v_view_normal;
+flat in vec4 v_color;
+flat in uint v_object_id;
+flat in uint v_surface_id;
+in vec2 v_uv;
+
+layout(location = OIT_UNIFORM_LIT) uniform bool u_lit;
+
+layout(std430, binding = OIT_BINDING_TRIANGLE_IDS) readonly buffer OitTriangleIds { uint oit_triangle_ids[]; };
+
+// Stable triangle id: the deterministic depth tie-break, unchanged when the
+// triangles are submitted in another order.
+uint oit_triangle_id() { return oit_triangle_ids[gl_PrimitiveID]; }
+
+// Distance along the view direction (positive in front of the camera).
+float oit_view_depth() { return -v_view_position.z; }
+
+vec3 oit_view_normal() {
+  vec3 n = normalize(v_view_normal);
+  // Two-sided: the normal faces the viewer.
+  return gl_FrontFacing ? n : -n;
+}
+
+// Straight (not premultiplied) colour and opacity of this fragment.
+// Unlit scenes output the material colour exactly; lit ones use a two-sided
+// headlight: ambient 0.25 + diffuse 0.75 * |n.v|.
+vec4 oit_shade() {
+  if (!u_lit) return v_color;
+  vec3 to_eye = normalize(-v_view_position);
+  float lambert = abs(dot(normalize(v_view_normal), to_eye));
+  return vec4(v_color.rgb * (0.25 + 0.75 * lambert), v_color.a);
+}

@@ -1,0 +1,15 @@
+#pragma once
+// One headless GL context and harness per test process, created on first use.
+#include "core/runner.h"
+
+namespace oit::test {
+
+GlContext& gl_context();
+Harness& harness();
+
+// Runs one technique with a single untimed-warm-up frame and asserts that
+// the run did not error or skip.
+RunResult render_once(const std::string& technique, const RawParams& params, const std::string& scene,
+                      const RawParams& scene_params, int width, int height);
+
+}  // namespace oit::test
