@@ -2,6 +2,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -75,6 +76,41 @@ Camera frame_bounding_sphere(const BoundingSphere& sphere) {
   camera.znear = std::max(distance - radius * 1.01f, distance * 1e-3f);
   camera.zfar = distance + radius * 1.01f;
   return camera;
+}
+
+}  // namespace oit
+
+#include <numeric>
+#include <random>
+
+namespace oit {
+
+void reorder_triangles(Scene& scene, const std::string& order) {
+  std::vector<size_t> permutation(scene.triangle_count());
+  std::iota(permutation.begin(), permutation.end(), size_t(0));
+  if (order == "original") return;
+  if (order == "reversed") {
+    std::reverse(permutation.begin(), permutation.end());
+  } else if (order.rfind("shuffled:", 0) == 0) {
+    uint32_t seed = 0;
+    try {
+      seed = uint32_t(std::stoul(order.substr(9)));
+    } catch (const std::exception&) {
+      throw std::invalid_argument("submission order '" + order + "': seed is not a number");
+    }
+    std::mt19937 rng(seed);
+    for (size_t i = permutation.size(); i > 1; --i) std::swap(permutation[i - 1], permutation[rng() % i]);
+  } else {
+    throw std::invalid_argument("submission order '" + order + "' is not original, reversed or shuffled:SEED");
+  }
+  std::vector<uint32_t> indices(scene.indices.size());
+  std::vector<uint32_t> ids(scene.triangle_ids.size());
+  for (size_t t = 0; t < permutation.size(); ++t) {
+    for (size_t k = 0; k < 3; ++k) indices[3 * t + k] = scene.indices[3 * permutation[t] + k];
+    ids[t] = scene.triangle_ids[permutation[t]];
+  }
+  scene.indices = std::move(indices);
+  scene.triangle_ids = std::move(ids);
 }
 
 }  // namespace oit

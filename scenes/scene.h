@@ -64,3 +64,12 @@ struct Scene {
 Camera frame_bounding_sphere(const BoundingSphere& sphere);
 
 }  // namespace oit
+
+namespace oit {
+
+// Reorders the submitted triangles without changing the scene: "original",
+// "reversed", or "shuffled:SEED". Triangle ids move with their triangles,
+// so exact techniques must produce the same image. Throws on other text.
+void reorder_triangles(Scene& scene, const std::string& order);
+
+}  // namespace oit

@@ -73,12 +73,13 @@ void reset_gl_state() {
 Harness::Harness(GlContext& context, const TechniqueRegistry& registry) : context_(context), registry_(registry) {}
 Harness::~Harness() = default;
 
-Harness::LoadedScene& Harness::scene(const std::string& spec, const RawParams& params) {
-  const std::string key = key_of(spec, params);
+Harness::LoadedScene& Harness::scene(const std::string& spec, const RawParams& params, const std::string& order) {
+  const std::string key = key_of(spec, params) + "|order=" + order;
   auto it = scenes_.find(key);
   if (it == scenes_.end()) {
     auto loaded = std::make_unique<LoadedScene>();
     loaded->scene = load_scene(spec, params);
+    reorder_triangles(loaded->scene, order);
     loaded->gpu = std::make_unique<SceneGpu>(loaded->scene);
     loaded->hash = loaded->scene.content_hash();
     it = scenes_.emplace(key, std::move(loaded)).first;
@@ -123,7 +124,7 @@ RunResult Harness::run(const RunSpec& spec) {
                                   " is outside 1x1 .. 16384x16384");
     }
     if (spec.frames < 1 || spec.warmup < 0) throw std::invalid_argument("frames must be >= 1 and warmup >= 0");
-    LoadedScene& loaded = scene(spec.scene, spec.scene_params);
+    LoadedScene& loaded = scene(spec.scene, spec.scene_params, spec.submission_order);
     result.scene_params = loaded.scene.params;
     const SceneFacts facts{loaded.scene.triangle_count(), loaded.scene.object_count, true};
     if (std::string reason = supports(technique, params, device(), facts); !reason.empty()) {
@@ -164,7 +165,7 @@ RunResult Harness::run(const RunSpec& spec) {
 void Harness::execute(const RunSpec& spec, RunResult& result) {
   const TechniqueDescriptor& descriptor = registry_.get(spec.technique);
   const ParamSet params(descriptor.params, spec.params, "technique '" + spec.technique + "'");
-  LoadedScene& loaded = scene(spec.scene, spec.scene_params);
+  LoadedScene& loaded = scene(spec.scene, spec.scene_params, spec.submission_order);
   const ClockKind clock_kind = spec.clock.value_or(default_clock());
   result.clock = clock_kind;
 

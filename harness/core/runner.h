@@ -22,6 +22,9 @@ struct RunSpec {
   RawParams params;
   std::string scene = "quads";
   RawParams scene_params;
+  // Triangle submission order: "original", "reversed" or "shuffled:SEED".
+  // The reference is always rendered in the original order.
+  std::string submission_order = "original";
   int width = 256;
   int height = 256;
   int warmup = 2;
@@ -78,7 +81,7 @@ class Harness {
 
  private:
   struct LoadedScene;
-  LoadedScene& scene(const std::string& spec, const RawParams& params);
+  LoadedScene& scene(const std::string& spec, const RawParams& params, const std::string& order = "original");
   void execute(const RunSpec& spec, RunResult& result);
 
   GlContext& context_;
