@@ -74,7 +74,7 @@ GLuint StageClock::acquire_query() {
 }
 
 size_t StageClock::open(std::string_view name) {
-  Interval interval{stage_index(name), frame_};
+  Interval interval{stage_index(name), frame_, 0, 0, {}};
   if (recording_ && kind_ != ClockKind::wall) {
     interval.begin_query = acquire_query();
     glQueryCounter(interval.begin_query, GL_TIMESTAMP);

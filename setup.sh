@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# oitbench set-up: installs the Debian 12 packages it needs (when missing),
+# builds, then runs one job:
+#   bash setup.sh bench   the default benchmark (results/<date>/runs.csv + PNGs + table)
+#   bash setup.sh test    the whole test suite (CTest)
+#   bash setup.sh build   only install and build
+# Works as root on a bare Debian 12 machine; as another user it uses sudo.
+set -euo pipefail
+cd "$(dirname "$0")"
+mode="${1:-bench}"
+build_dir="${OIT_BUILD_DIR:-build}"
+
+packages=(
+  cmake ninja-build g++ pkg-config git
+  libglfw3-dev libegl-dev libgl-dev libepoxy-dev libglm-dev
+  libbenchmark-dev libgtest-dev libgmock-dev
+  libtinygltf-dev libopenmesh-dev libstb-dev nlohmann-json3-dev libcli11-dev libgsl-dev
+  libegl-mesa0 libgl1-mesa-dri mesa-utils xvfb xauth
+  python3-matplotlib python3-pandas
+)
+
+install_missing_packages() {
+  local missing=()
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  echo "setup.sh: installing ${missing[*]}" >&2
+  $sudo apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  ninja -C "$build_dir"
+}
+
+install_missing_packages
+build
+# Mesa's shader cache lives in the build directory: the first draw of a shader
+# compiles it (up to seconds on software GL); later runs reuse it.
+export MESA_SHADER_CACHE_DIR="$PWD/$build_dir/mesa_shader_cache"
+
+case "$mode" in
+  bench)
+    out="results/$(date +%F)"
+    mkdir -p "$out"
+    "$build_dir/harness/oitbench" bench --technique all --scene quads --size 256x256 \
+      --warmup 2 --frames 10 --csv "$out/runs.csv" --images "$out"
+    ;;
+  test)
+    cd "$build_dir"
+    ctest --output-on-failure --timeout 600
+    ;;
+  build) ;;
+  *)
+    echo "usage: bash setup.sh bench|test|build" >&2
+    exit 2
+    ;;
+esac

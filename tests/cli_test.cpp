@@ -1,0 +1,130 @@
+// The command line as users call it: `oitbench render` of the reference
+// equals the closed form, `oitbench bench --clock both` writes a row per
+// stage and clock of every technique, bad input exits non-zero with the key.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "core/image.h"
+#include "core/results_csv.h"
+#include "core/technique.h"
+#include "stacked_quads.h"
+
+namespace oit {
+namespace {
+
+const std::string kOitbench = std::string(OIT_BINARY_DIR) + "/harness/oitbench";
+const std::string kOut = std::string(OIT_BINARY_DIR) + "/test_output/cli";
+
+struct Outcome {
+  int exit_code;
+  std::string output;  // stdout and stderr
+};
+
+Outcome run_oitbench(const std::string& arguments) {
+  std::filesystem::create_directories(kOut);
+  const std::string log = kOut + "/last_command.txt";
+  const int status = std::system((kOitbench + " " + arguments + " > " + log + " 2>&1").c_str());
+  std::ifstream in(log);
+  std::stringstream text;
+  text << in.rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+std::vector<std::string> split_csv_line(const std::string& line) {
+  // The fields checked here hold no quotes; quoted fields are kept whole.
+  std::vector<std::string> fields;
+  std::string field;
+  bool quoted = false;
+  for (char c : line) {
+    if (c == '"') quoted = !quoted;
+    else if (c == ',' && !quoted) fields.push_back(std::exchange(field, ""));
+    else field += c;
+  }
+  fields.push_back(field);
+  return fields;
+}
+
+TEST(Cli, RenderOfTheReferenceEqualsTheClosedFormExactly) {
+  const std::string out = kOut + "/reference_quads.pfm";
+  std::filesystem::remove(out);
+  const Outcome o = run_oitbench("render --technique reference --scene quads --size 64x64 --out " + out);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const Image image = read_pfm(out);
+  ASSERT_EQ(image.width, 64);
+  ASSERT_EQ(image.height, 64);
+  const glm::vec4 expected = stacked_quads_closed_form(StackedQuadsParams{}, glm::vec3(0.0f));
+  size_t mismatches = 0;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x)
+      for (int c = 0; c < 3; ++c) mismatches += image.at(x, y, c) != expected[c];
+  EXPECT_EQ(mismatches, 0u);
+}
+
+TEST(Cli, BenchWithBothClocksWritesEveryStageOfEveryTechniqueTwice) {
+  const std::string csv = kOut + "/both_clocks.csv";
+  std::filesystem::remove(csv);
+  const Outcome o = run_oitbench(
+      "bench --technique unsorted --technique reference --scene quads --scene-set layers=4 --size 32x32 "
+      "--warmup 1 --frames 2 --clock both --csv " + csv);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("technique"), std::string::npos) << "no summary table:\n" << o.output;
+
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  const std::vector<std::string> header = split_csv_line(line);
+  ASSERT_EQ(header, csv_columns());
+  auto column = [&](const std::string& name) {
+    return size_t(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  std::set<std::string> seen;  // technique/stage/clock
+  while (std::getline(in, line)) {
+    const auto row = split_csv_line(line);
+    ASSERT_EQ(row.size(), header.size()) << line;
+    EXPECT_EQ(row[column("status")], "ok") << line;
+    EXPECT_FALSE(row[column("median_ms")].empty()) << line;
+    EXPECT_FALSE(row[column("device")].empty()) << line;
+    seen.insert(row[column("technique")] + "/" + row[column("stage")] + "/" + row[column("clock")]);
+  }
+  for (const char* id : {"unsorted", "reference"}) {
+    std::vector<std::string> stages = builtin_techniques().get(id).stages;
+    stages.push_back("total");
+    for (const auto& stage : stages)
+      for (const char* clock : {"gl", "wall"})
+        EXPECT_TRUE(seen.count(std::string(id) + "/" + stage + "/" + clock)) << id << " " << stage << " " << clock;
+  }
+}
+
+TEST(Cli, BadParameterExitsNonZeroNamingTheKey) {
+  const Outcome o = run_oitbench("render --technique reference --set initial_nodes_per_pixel=0 --scene quads "
+                                 "--size 8x8 --out " + kOut + "/never.png");
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("initial_nodes_per_pixel"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(kOut + "/never.png"));
+
+  const Outcome size = run_oitbench("render --technique unsorted --scene quads --size 8by8 --out " + kOut + "/x.png");
+  EXPECT_NE(size.exit_code, 0);
+  EXPECT_NE(size.output.find("8by8"), std::string::npos) << size.output;
+}
+
+TEST(Cli, BenchKeepsGoingPastAFailingRunAndRecordsIt) {
+  const std::string csv = kOut + "/error_row.csv";
+  std::filesystem::remove(csv);
+  // The second scene file does not exist: an error row, and the first run still lands.
+  const Outcome o = run_oitbench("bench --technique unsorted --scene quads --scene missing_scene.gltf --size 8x8 "
+                                 "--warmup 0 --frames 1 --csv " + csv);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  std::ifstream in(csv);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find(",ok,"), std::string::npos) << text.str();
+  EXPECT_NE(text.str().find("missing_scene.gltf' does not exist"), std::string::npos) << text.str();
+}
+
+}  // namespace
+}  // namespace oit

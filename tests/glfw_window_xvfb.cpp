@@ -1,0 +1,35 @@
+// The optional window path: a GLFW window (under Xvfb in CI, where Mesa
+// gives it llvmpipe) runs the same harness and gets the exact reference.
+// Registered in tests/CMakeLists.txt to run under `xvfb-run -a`.
+#include <gtest/gtest.h>
+
+#include "core/runner.h"
+#include "gl/glfw_window.h"
+#include "stacked_quads.h"
+
+namespace oit {
+namespace {
+
+TEST(GlfwWindow, HarnessRendersTheExactReferenceInAWindowContext) {
+  GlfwWindowContext window(64, 64, "oitbench test");
+  EXPECT_FALSE(window.device().renderer.empty());
+  EXPECT_EQ(window.device().platform, "glfw");
+  Harness harness(window, builtin_techniques());
+  RunSpec spec;
+  spec.technique = "reference";
+  spec.scene_params = {{"layers", "8"}};
+  spec.width = spec.height = 32;
+  spec.warmup = 0;
+  spec.frames = 1;
+  const RunResult r = harness.run(spec);
+  ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+  StackedQuadsParams p;
+  p.layers = 8;
+  const glm::vec4 expected = stacked_quads_closed_form(p, glm::vec3(0.0f));
+  for (int c = 0; c < 4; ++c) EXPECT_EQ(r.image.at(16, 16, c), expected[c]);
+  window.swap_buffers_and_poll();
+  EXPECT_FALSE(window.should_close());
+}
+
+}  // namespace
+}  // namespace oit

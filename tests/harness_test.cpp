@@ -1,0 +1,196 @@
+// The harness contract seen through Harness::run: registry, parameter errors,
+// skipped and error rows, both clocks, the stage vocabulary, and the shader
+// loader's #include / #define / error reporting.
+#include <gtest/gtest.h>
+
+#include "gl/check.h"
+#include "gl/shader_program.h"
+#include "gl_fixture.h"
+
+namespace oit {
+namespace {
+
+RunSpec small_run(const std::string& technique, RawParams params = {}) {
+  RunSpec spec;
+  spec.technique = technique;
+  spec.params = std::move(params);
+  spec.scene = "quads";
+  spec.scene_params = {{"layers", "4"}};
+  spec.width = 16;
+  spec.height = 16;
+  spec.warmup = 0;
+  spec.frames = 1;
+  return spec;
+}
+
+TEST(Registry, ListsTheFoundationTechniquesAndTheReference) {
+  const auto& registry = builtin_techniques();
+  EXPECT_NO_THROW(registry.get("unsorted"));
+  EXPECT_NO_THROW(registry.get("reference"));
+  EXPECT_EQ(registry.reference().id, "reference");
+  EXPECT_EQ(registry.get("unsorted").exactness, Exactness::approximate);
+  for (const auto& t : registry.all()) {
+    for (const auto& stage : t.stages) {
+      const auto& vocabulary = stage_vocabulary();
+      EXPECT_NE(std::find(vocabulary.begin(), vocabulary.end(), stage), vocabulary.end())
+          << t.id << " declares stage '" << stage << "' outside the vocabulary";
+    }
+  }
+}
+
+TEST(Registry, UnknownTechniqueNamesTheRegisteredOnes) {
+  const RunResult r = test::harness().run(small_run("no_such_technique"));
+  EXPECT_EQ(r.status, RunStatus::error);
+  EXPECT_NE(r.message.find("no_such_technique"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("reference"), std::string::npos) << r.message;
+}
+
+TEST(Harness, BadParameterIsAnErrorRowNamingKeyAndRange) {
+  const RunResult r = test::harness().run(small_run("reference", {{"initial_nodes_per_pixel", "0"}}));
+  EXPECT_EQ(r.status, RunStatus::error);
+  EXPECT_NE(r.message.find("initial_nodes_per_pixel"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("[1, 1024]"), std::string::npos) << r.message;
+  const RunResult unknown = test::harness().run(small_run("unsorted", {{"k", "4"}}));
+  EXPECT_EQ(unknown.status, RunStatus::error);
+  EXPECT_NE(unknown.message.find("'k'"), std::string::npos) << unknown.message;
+}
+
+TEST(Harness, BadSceneParameterAndSizeAreErrorRows) {
+  RunSpec spec = small_run("unsorted");
+  spec.scene_params = {{"layers", "0"}};
+  RunResult r = test::harness().run(spec);
+  EXPECT_EQ(r.status, RunStatus::error);
+  EXPECT_NE(r.message.find("layers"), std::string::npos) << r.message;
+  spec = small_run("unsorted");
+  spec.width = 0;
+  r = test::harness().run(spec);
+  EXPECT_EQ(r.status, RunStatus::error);
+  EXPECT_NE(r.message.find("0x16"), std::string::npos) << r.message;
+}
+
+// A technique registered only in this test: it draws nothing, and may throw
+// or use a stage name outside the vocabulary on request.
+class Probe final : public Technique {
+ public:
+  explicit Probe(std::string behaviour) : behaviour_(std::move(behaviour)) {}
+  void resize(int, int) override {}
+  void render(const Frame& frame) override {
+    if (behaviour_ == "throw") throw std::runtime_error("probe failed on purpose");
+    auto s = frame.clock.stage(behaviour_ == "bad_stage" ? "bogus" : "fill");
+  }
+  TechniqueCounters counters() const override { return {}; }
+
+ private:
+  std::string behaviour_;
+};
+
+TechniqueRegistry probe_registry() {
+  TechniqueRegistry registry;
+  registry.add(builtin_techniques().reference());
+  TechniqueDescriptor d;
+  d.id = "probe";
+  d.display_name = "probe";
+  d.params = {ParamSpec::choice("behaviour", "ok", {"ok", "throw", "bad_stage"}, "what render does")};
+  d.stages = {"fill"};
+  d.needs.multiple_objects = true;
+  d.create = [](const ParamSet& p) { return std::make_unique<Probe>(p.choice("behaviour")); };
+  registry.add(std::move(d));
+  return registry;
+}
+
+TEST(Harness, UnsupportedRunIsSkippedWithTheReasonAndTheSweepGoesOn) {
+  const TechniqueRegistry registry = probe_registry();
+  Harness harness(test::gl_context(), registry);
+  RunSpec spec = small_run("probe");
+  spec.scene_params = {{"layers", "4"}, {"objects", "1"}};
+  const RunResult skipped = harness.run(spec);
+  EXPECT_EQ(skipped.status, RunStatus::skipped);
+  EXPECT_NE(skipped.message.find("single object"), std::string::npos) << skipped.message;
+  spec.scene_params = {{"layers", "4"}, {"objects", "4"}};
+  EXPECT_EQ(harness.run(spec).status, RunStatus::ok);
+}
+
+TEST(Harness, DeviceWithoutInt64SkipsTheReference) {
+  DeviceInfo weak = test::gl_context().device();
+  weak.has_int64 = false;
+  const auto& reference = builtin_techniques().reference();
+  const std::string reason = supports(reference, ParamSet(reference.params, {}, "t"), weak, SceneFacts{2, 1, true});
+  EXPECT_NE(reason.find("64-bit integers"), std::string::npos) << reason;
+}
+
+TEST(Harness, FailingTechniqueIsAnErrorRowAndTheNextRunWorks) {
+  const TechniqueRegistry registry = probe_registry();
+  Harness harness(test::gl_context(), registry);
+  RunSpec spec = small_run("probe", {{"behaviour", "throw"}});
+  spec.scene_params = {{"layers", "4"}, {"objects", "4"}};
+  RunResult r = harness.run(spec);
+  EXPECT_EQ(r.status, RunStatus::error);
+  EXPECT_NE(r.message.find("probe failed on purpose"), std::string::npos) << r.message;
+
+  spec.params = {{"behaviour", "bad_stage"}};
+  r = harness.run(spec);
+  EXPECT_EQ(r.status, RunStatus::error);
+  EXPECT_NE(r.message.find("bogus"), std::string::npos) << r.message;
+
+  spec.params = {};
+  EXPECT_EQ(harness.run(spec).status, RunStatus::ok);
+}
+
+TEST(Harness, BothClocksGiveEveryStageTwiceAndACalibrationFigure) {
+  RunSpec spec = small_run("reference");
+  spec.frames = 3;
+  spec.clock = ClockKind::both;
+  const RunResult r = test::harness().run(spec);
+  ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+  for (const char* stage : {"clear", "fill", "compose", "total"}) {
+    for (const char* clock : {"gl", "wall"}) {
+      const StageResult* s = r.stage(stage, clock);
+      ASSERT_NE(s, nullptr) << stage << " " << clock;
+      EXPECT_EQ(s->samples_ms.size(), 3u);
+      EXPECT_GT(s->summary.median, 0.0) << stage << " " << clock;
+    }
+  }
+  ASSERT_TRUE(r.clock_disagreement.has_value());
+  EXPECT_GE(*r.clock_disagreement, 0.0);
+  // Stages nest inside total on the wall clock, frame by frame.
+  for (size_t i = 0; i < 3; ++i) {
+    double parts = 0.0;
+    for (const char* stage : {"clear", "fill", "compose"}) parts += r.stage(stage, "wall")->samples_ms[i];
+    EXPECT_LE(parts, r.stage("total", "wall")->samples_ms[i]) << "frame " << i;
+  }
+}
+
+TEST(ShaderLoader, CompileErrorNamesTheIncludedFileAndLine) {
+  test::gl_context();
+  try {
+    build_fullscreen_program("tests/shaders/broken.frag");
+    FAIL() << "a broken shader compiled";
+  } catch (const ShaderError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("tests/shaders/broken_include.glsl:3"), std::string::npos) << message;
+    EXPECT_NE(message.find("tests/shaders/broken.frag"), std::string::npos) << message;
+  }
+  EXPECT_THROW(build_fullscreen_program("tests/shaders/missing.frag"), ShaderError);
+}
+
+TEST(ShaderLoader, DefinesAreInjectedAndIncludesResolved) {
+  test::gl_context();
+  const Program program = build_fullscreen_program("tests/shaders/defined_value.frag", {{"VALUE", "0.625"}});
+  Texture color = make_texture_2d(GL_RGBA32F, 4, 4);
+  Framebuffer framebuffer = make_framebuffer();
+  glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, color.id(), 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+  glViewport(0, 0, 4, 4);
+  glUseProgram(program.id());
+  VertexArray empty = make_vertex_array();
+  glBindVertexArray(empty.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  const Image image = read_texture_rgba32f(color.id(), 4, 4);
+  gl_check("drawing the define test shader");
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  EXPECT_EQ(image.at(2, 2, 0), 0.625f);
+  EXPECT_EQ(image.at(2, 2, 1), 8.0f);  // OIT_FIRST_TECHNIQUE_UNIFORM from shaders/bindings.h
+}
+
+}  // namespace
+}  // namespace oit

@@ -1,0 +1,91 @@
+// Parameter schemas: defaults, parsing, ranges and the error messages users see.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "core/params.h"
+
+namespace oit {
+namespace {
+
+const ParamSchema kSchema = {
+    ParamSpec::integer("k", 16, 1, 64, "slots per pixel"),
+    ParamSpec::real("lambda", 0.05, 0.0, 1.0, "diffusion weight"),
+    ParamSpec::boolean("early_exit", true, "stop when a pass is empty"),
+    ParamSpec::choice("tail", "drop", {"drop", "blend"}, "what happens beyond k"),
+};
+
+std::string error_of(const RawParams& raw) {
+  try {
+    ParamSet set(kSchema, raw, "technique 'kbuffer'");
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Params, DefaultsFillEveryKeyInSchemaOrder) {
+  const ParamSet set(kSchema, {}, "t");
+  EXPECT_EQ(set.integer("k"), 16);
+  EXPECT_DOUBLE_EQ(set.real("lambda"), 0.05);
+  EXPECT_TRUE(set.boolean("early_exit"));
+  EXPECT_EQ(set.choice("tail"), "drop");
+  EXPECT_EQ(set.canonical(), "k=16 lambda=0.05 early_exit=true tail=drop");
+}
+
+TEST(Params, ParsesUserText) {
+  const ParamSet set(kSchema, {{"k", "64"}, {"lambda", "1e-1"}, {"early_exit", "off"}, {"tail", "blend"}}, "t");
+  EXPECT_EQ(set.integer("k"), 64);
+  EXPECT_DOUBLE_EQ(set.real("lambda"), 0.1);
+  EXPECT_FALSE(set.boolean("early_exit"));
+  EXPECT_EQ(set.choice("tail"), "blend");
+}
+
+TEST(Params, UnknownKeyNamesTheKeyAndTheKnownOnes) {
+  const std::string message = error_of({{"kk", "3"}});
+  EXPECT_NE(message.find("kk"), std::string::npos) << message;
+  EXPECT_NE(message.find("technique 'kbuffer'"), std::string::npos) << message;
+  EXPECT_NE(message.find("tail"), std::string::npos) << message;
+}
+
+TEST(Params, OutOfRangeValueNamesKeyValueAndRange) {
+  const std::string message = error_of({{"k", "65"}});
+  EXPECT_NE(message.find("'k'"), std::string::npos) << message;
+  EXPECT_NE(message.find("65"), std::string::npos) << message;
+  EXPECT_NE(message.find("[1, 64]"), std::string::npos) << message;
+  EXPECT_NE(error_of({{"k", "0"}}), "");
+  EXPECT_NE(error_of({{"lambda", "1.5"}}), "");
+}
+
+TEST(Params, MalformedValuesAreRejected) {
+  for (const RawParams& raw : std::vector<RawParams>{{{"k", "16x"}},
+                                                     {{"k", "1.5"}},
+                                                     {{"k", ""}},
+                                                     {{"lambda", "nan"}},
+                                                     {{"lambda", "abc"}},
+                                                     {{"early_exit", "maybe"}},
+                                                     {{"tail", "keep"}}}) {
+    const std::string message = error_of(raw);
+    EXPECT_NE(message.find(raw.begin()->first), std::string::npos) << "accepted " << raw.begin()->second;
+  }
+  EXPECT_NE(error_of({{"tail", "keep"}}).find("{drop, blend}"), std::string::npos);
+}
+
+TEST(Params, AssignmentParsing) {
+  RawParams raw;
+  parse_assignment("k=8", raw);
+  parse_assignment("tail=blend", raw);
+  EXPECT_EQ(raw.at("k"), "8");
+  EXPECT_EQ(raw.at("tail"), "blend");
+  EXPECT_THROW(parse_assignment("k", raw), std::invalid_argument);
+  EXPECT_THROW(parse_assignment("=3", raw), std::invalid_argument);
+}
+
+TEST(Params, AskingForAnUndeclaredParameterIsAProgrammingError) {
+  const ParamSet set(kSchema, {}, "t");
+  EXPECT_ANY_THROW(set.integer("missing"));
+  EXPECT_ANY_THROW(set.real("k"));  // wrong type
+}
+
+}  // namespace
+}  // namespace oit

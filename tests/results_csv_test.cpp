@@ -1,0 +1,122 @@
+// The long-form CSV contract: header, one row per stage x clock, per-run
+// columns repeated, skipped/error rows, escaping, appending.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/results_csv.h"
+
+namespace oit {
+namespace {
+
+RunContext context() { return {"llvmpipe (LLVM 15.0.6, 256 bits)", "4.5 (Core Profile) Mesa 22.3.6", "egl-surfaceless", "abc1234", "2026-11-22T09:00:00Z"}; }
+
+RunResult finished_run() {
+  RunResult r;
+  r.spec.technique = "kbuffer";
+  r.spec.scene = "quads";
+  r.spec.width = 64;
+  r.spec.height = 32;
+  r.spec.warmup = 2;
+  r.technique_params = "k=16 tail=drop";
+  r.scene_params = "layers=32";
+  r.clock = ClockKind::both;
+  for (const char* clock : {"gl", "wall"}) {
+    for (const char* stage : {"fill", "compose", "total"}) {
+      StageResult s{stage, clock, summarize({1.0, 2.0, 3.0}), {1.0, 2.0, 3.0}};
+      r.stages.push_back(s);
+    }
+  }
+  r.counters.bytes_allocated = 4096;
+  r.counters.fragments_dropped = 7;
+  r.counters.passes = 2;
+  r.error = ImageError{0.5, 0.25, 12.0};
+  r.scene_fragments = 65536;
+  r.max_depth_complexity = 32;
+  return r;
+}
+
+size_t column(const std::string& name) {
+  const auto& columns = csv_columns();
+  return size_t(std::find(columns.begin(), columns.end(), name) - columns.begin());
+}
+
+TEST(ResultsCsv, OneRowPerStageAndClockWithPerRunColumnsRepeated) {
+  const auto rows = csv_rows(finished_run(), context());
+  ASSERT_EQ(rows.size(), 6u);
+  for (const auto& row : rows) {
+    ASSERT_EQ(row.size(), csv_columns().size());
+    EXPECT_EQ(row[column("technique")], "kbuffer");
+    EXPECT_EQ(row[column("params")], "k=16 tail=drop");
+    EXPECT_EQ(row[column("status")], "ok");
+    EXPECT_EQ(row[column("fragments_dropped")], "7");
+    EXPECT_EQ(row[column("error_max")], "0.5");
+    EXPECT_EQ(row[column("median_ms")], "2");
+    EXPECT_EQ(row[column("frames")], "3");
+    EXPECT_EQ(row[column("device")], "llvmpipe (LLVM 15.0.6, 256 bits)");
+  }
+  EXPECT_EQ(rows[0][column("clock")], "gl");
+  EXPECT_EQ(rows[5][column("clock")], "wall");
+  EXPECT_EQ(rows[5][column("stage")], "total");
+}
+
+TEST(ResultsCsv, SkippedAndFailedRunsAreOneRowWithTheReason) {
+  RunResult skipped;
+  skipped.spec.technique = "reference";
+  skipped.status = RunStatus::skipped;
+  skipped.message = "needs 64-bit integers in shaders, which the device lacks";
+  auto rows = csv_rows(skipped, context());
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0][column("status")], "skipped");
+  EXPECT_EQ(rows[0][column("message")], skipped.message);
+  EXPECT_EQ(rows[0][column("median_ms")], "");
+  EXPECT_EQ(rows[0][column("error_max")], "");
+
+  RunResult failed = skipped;
+  failed.status = RunStatus::error;
+  failed.message = "technique 'kbuffer' parameter 'k' = 0 is out of range [1, 64]";
+  rows = csv_rows(failed, context());
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0][column("status")], "error");
+}
+
+TEST(ResultsCsv, FieldsWithCommasQuotesOrNewlinesAreQuoted) {
+  EXPECT_EQ(csv_escape("plain"), "plain");
+  EXPECT_EQ(csv_escape("a,b"), "\"a,b\"");
+  EXPECT_EQ(csv_escape("say \"hi\""), "\"say \"\"hi\"\"\"");
+  EXPECT_EQ(csv_escape("two\nlines"), "\"two\nlines\"");
+}
+
+TEST(ResultsCsv, WriterAppendsUnderOneHeaderAndRefusesAForeignFile) {
+  const std::string path = std::string(OIT_BINARY_DIR) + "/test_output/results_csv_test.csv";
+  std::filesystem::remove(path);
+  {
+    CsvWriter writer(path);
+    writer.write(finished_run(), context());
+  }
+  {
+    CsvWriter writer(path);  // appends, no second header
+    writer.write(finished_run(), context());
+  }
+  std::ifstream in(path);
+  std::string line;
+  std::vector<std::string> lines;
+  while (std::getline(in, line)) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 13u);
+  EXPECT_EQ(lines[0].rfind("timestamp,git_revision,device,", 0), 0u);
+  // The renderer string holds a comma, so it is quoted.
+  EXPECT_NE(lines[1].find("\"llvmpipe (LLVM 15.0.6, 256 bits)\""), std::string::npos) << lines[1];
+
+  const std::string foreign = std::string(OIT_BINARY_DIR) + "/test_output/foreign.csv";
+  std::ofstream(foreign) << "a,b,c\n1,2,3\n";
+  try {
+    CsvWriter writer(foreign);
+    FAIL() << "a CSV with other columns was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("foreign.csv"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace oit
