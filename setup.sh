@@ -49,6 +49,7 @@ case "$mode" in
     mkdir -p "$out"
     "$build_dir/harness/oitbench" bench --technique all --scene quads --size 256x256 \
       --warmup 2 --frames 10 --csv "$out/runs.csv" --images "$out"
+    /usr/bin/python3 analysis/plot_stages.py "$out/runs.csv" --out "$out/stages.png"
     ;;
   test)
     cd "$build_dir"
