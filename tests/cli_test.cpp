@@ -3,6 +3,8 @@
 // stage and clock of every technique, bad input exits non-zero with the key.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -124,6 +126,24 @@ TEST(Cli, BenchKeepsGoingPastAFailingRunAndRecordsIt) {
   text << in.rdbuf();
   EXPECT_NE(text.str().find(",ok,"), std::string::npos) << text.str();
   EXPECT_NE(text.str().find("missing_scene.gltf' does not exist"), std::string::npos) << text.str();
+}
+
+TEST(Cli, GoogleBenchmarkBinaryReportsManualTimeAndCounters) {
+  const std::string json_path = kOut + "/gbench.json";
+  std::filesystem::create_directories(kOut);
+  const std::string command = std::string(OIT_BINARY_DIR) + "/harness/oitbench_gbench --benchmark_filter=reference " +
+                              "--benchmark_format=json --technique unsorted --technique reference " +
+                              "--scene-set layers=4 --size 16x16 > " + json_path + " 2>/dev/null";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  std::ifstream in(json_path);
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_FALSE(report["context"]["device"].get<std::string>().empty());
+  ASSERT_EQ(report["benchmarks"].size(), 1u) << report.dump(2);  // the filter left only the reference
+  const auto& run = report["benchmarks"][0];
+  EXPECT_EQ(run["name"].get<std::string>().rfind("reference/", 0), 0u);
+  EXPECT_GT(run["real_time"].get<double>(), 0.0);
+  EXPECT_EQ(run["error_max"].get<double>(), 0.0);
+  EXPECT_EQ(run["fragments"].get<double>(), 4.0 * 16 * 16);
 }
 
 }  // namespace
