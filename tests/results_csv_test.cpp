@@ -31,6 +31,7 @@ RunResult finished_run() {
   r.counters.bytes_allocated = 4096;
   r.counters.fragments_dropped = 7;
   r.counters.passes = 2;
+  r.counters.extra = {{"links_left", 12.0}, {"neighbor_precision", 0.5}};
   r.error = ImageError{0.5, 0.25, 12.0};
   r.scene_fragments = 65536;
   r.max_depth_complexity = 32;
@@ -55,6 +56,7 @@ TEST(ResultsCsv, OneRowPerStageAndClockWithPerRunColumnsRepeated) {
     EXPECT_EQ(row[column("median_ms")], "2");
     EXPECT_EQ(row[column("frames")], "3");
     EXPECT_EQ(row[column("device")], "llvmpipe (LLVM 15.0.6, 256 bits)");
+    EXPECT_EQ(row[column("extra")], "links_left=12 neighbor_precision=0.5");
   }
   EXPECT_EQ(rows[0][column("clock")], "gl");
   EXPECT_EQ(rows[5][column("clock")], "wall");

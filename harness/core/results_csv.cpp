@@ -18,7 +18,7 @@ const std::vector<std::string>& csv_columns() {
       "fragments", "max_depth_complexity", "mean_depth_complexity",
       "bytes_allocated", "fragments_stored", "fragments_dropped", "passes", "overflow_retries",
       "error_max", "error_rmse", "psnr",
-      "other_cpu_load", "noisy", "clock_disagreement"};
+      "other_cpu_load", "noisy", "clock_disagreement", "extra"};
   return columns;
 }
 
@@ -43,6 +43,12 @@ namespace {
 std::string number(double value) {
   char text[64];
   std::snprintf(text, sizeof(text), "%.6g", value);
+  return text;
+}
+
+std::string extra_text(const std::vector<std::pair<std::string, double>>& extra) {
+  std::string text;
+  for (const auto& [name, value] : extra) text += (text.empty() ? "" : " ") + name + "=" + number(value);
   return text;
 }
 
@@ -72,7 +78,7 @@ std::vector<std::vector<std::string>> csv_rows(const RunResult& r, const RunCont
         r.error ? number(r.error->max_abs) : "", r.error ? number(r.error->rmse) : "",
         r.error ? number(r.error->psnr_db) : "",
         r.other_process_load >= 0.0 ? number(r.other_process_load) : "", r.noisy ? "true" : "false",
-        r.clock_disagreement ? number(*r.clock_disagreement) : ""};
+        r.clock_disagreement ? number(*r.clock_disagreement) : "", ran ? extra_text(r.counters.extra) : ""};
     return row;
   };
   std::vector<std::vector<std::string>> rows;

@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/params.h"
@@ -23,6 +24,10 @@ struct TechniqueCounters {
   uint64_t fragments_dropped = 0;  // fragments lost (truncation) in the last frame
   uint64_t passes = 0;             // geometry passes in the last frame
   uint64_t overflow_retries = 0;   // re-renders after a buffer overflow, since construction
+  // Technique-specific figures (e.g. neighbour links per direction,
+  // neighbour precision), written to the CSV's `extra` column as
+  // "name=value name=value". Names are snake_case.
+  std::vector<std::pair<std::string, double>> extra;
 };
 
 struct TechniqueNeeds {
