@@ -21,6 +21,9 @@ struct Vertex {
   uint32_t object_id = 0;   // distinct object / shape id (BKB buckets)
   uint32_t surface_id = 0;  // parametric surface id (neighbour accuracy)
   glm::vec2 uv{0.0f};       // surface parameters
+  // Analytic mean curvature (1/length, outward normal positive: a sphere of
+  // radius r has 1/r) where the scene knows it; see Scene::analytic_curvature.
+  float mean_curvature = 0.0f;
 };
 
 // A camera independent of the image aspect ratio: projection(aspect) builds
@@ -49,6 +52,7 @@ struct Scene {
   std::vector<uint32_t> triangle_ids;  // 1 per triangle, stable across reorderings
   uint32_t object_count = 0;
   bool lit = true;                     // false: colour is output unshaded (unlit materials)
+  bool analytic_curvature = false;     // every vertex's mean_curvature is exact
   Camera camera;
 
   size_t triangle_count() const { return indices.size() / 3; }

@@ -1,13 +1,39 @@
 #include "scene_library.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 
 #include "gltf_loader.h"
 #include "parametric.h"
+#include "random_scenes.h"
 #include "stacked_quads.h"
 
 namespace oit {
+namespace {
+
+// count 0: a single surface, no `count` parameter.
+ParamSchema surface_params(int count) {
+  ParamSchema schema = {ParamSpec::integer("slices", 64, 3, 4096, "segments around"),
+                        ParamSpec::integer("stacks", 32, 3, 4096, "segments along"),
+                        ParamSpec::real("alpha", 0.4, 0.0, 1.0, "opacity of every surface")};
+  if (count > 0) schema.insert(schema.begin(), ParamSpec::integer("count", count, 1, 64, "number of surfaces"));
+  return schema;
+}
+
+SurfaceParams surface(const ParamSet& p) {
+  SurfaceParams s;
+  const auto& values = p.values();
+  s.count = std::any_of(values.begin(), values.end(), [](const auto& v) { return v.first == "count"; })
+                ? int(p.integer("count"))
+                : 1;
+  s.slices = int(p.integer("slices"));
+  s.stacks = int(p.integer("stacks"));
+  s.alpha = float(p.real("alpha"));
+  return s;
+}
+
+}  // namespace
 
 const std::vector<SceneDescriptor>& scene_library() {
   static const std::vector<SceneDescriptor> library = {
@@ -39,6 +65,44 @@ const std::vector<SceneDescriptor>& scene_library() {
          s.stacks = int(p.integer("stacks"));
          s.alpha = float(p.real("alpha"));
          return make_overlapping_spheres(s);
+       }},
+      {"torus", "one torus tilted towards the viewer: up to 4 layers, positive and negative curvature (lit)",
+       surface_params(0), [](const ParamSet& p) { return make_torus(surface(p)); }},
+      {"nested_spheres", "concentric spheres of radii 1 .. 1/count: 2*count layers at the centre (lit)",
+       surface_params(3), [](const ParamSet& p) { return make_nested_spheres(surface(p)); }},
+      {"cylinders", "concentric open cylinders seen from above at an angle, carnecky2013 Fig. 2 (lit)",
+       surface_params(3), [](const ParamSet& p) { return make_concentric_cylinders(surface(p)); }},
+      {"random_quads",
+       "screen-aligned quads at random positions and distinct depths (orthographic, unlit); "
+       "depth complexity about count*size^2",
+       {ParamSpec::integer("count", 64, 1, 4096, "number of quads"),
+        ParamSpec::real("size", 0.5, 0.01, 2.0, "side of each quad as a fraction of the view width"),
+        ParamSpec::integer("seed", 1, 0, 4294967295ll, "random seed"),
+        ParamSpec::real("alpha", 0.3, 0.0, 1.0, "opacity of every quad"),
+        ParamSpec::choice("order", "random", {"random", "front_to_back", "back_to_front"}, "submission order")},
+       [](const ParamSet& p) {
+         RandomQuadsParams q;
+         q.count = int(p.integer("count"));
+         q.size = float(p.real("size"));
+         q.seed = uint32_t(p.integer("seed"));
+         q.alpha = float(p.real("alpha"));
+         q.order = p.choice("order");
+         return make_random_quads(q);
+       }},
+      {"particles", "per_axis^3 small separate spheres on a jittered grid, one object id each (lit)",
+       {ParamSpec::integer("per_axis", 6, 1, 40, "spheres along each axis"),
+        ParamSpec::integer("slices", 8, 3, 256, "segments around each sphere"),
+        ParamSpec::integer("stacks", 6, 2, 256, "segments from pole to pole"),
+        ParamSpec::real("alpha", 0.5, 0.0, 1.0, "opacity of every sphere"),
+        ParamSpec::integer("seed", 1, 0, 4294967295ll, "random seed")},
+       [](const ParamSet& p) {
+         ParticlesParams q;
+         q.per_axis = int(p.integer("per_axis"));
+         q.slices = int(p.integer("slices"));
+         q.stacks = int(p.integer("stacks"));
+         q.alpha = float(p.real("alpha"));
+         q.seed = uint32_t(p.integer("seed"));
+         return make_particles(q);
        }},
   };
   return library;

@@ -10,6 +10,7 @@
 #define OIT_ATTRIB_OBJECT_ID 3
 #define OIT_ATTRIB_SURFACE_ID 4
 #define OIT_ATTRIB_UV 5
+#define OIT_ATTRIB_MEAN_CURVATURE 6
 
 // Uniforms of the shared geometry vertex shader / shading function.
 #define OIT_UNIFORM_VIEW 0

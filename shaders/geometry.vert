@@ -8,6 +8,7 @@ layout(location = OIT_ATTRIB_COLOR) in vec4 a_color;
 layout(location = OIT_ATTRIB_OBJECT_ID) in uint a_object_id;
 layout(location = OIT_ATTRIB_SURFACE_ID) in uint a_surface_id;
 layout(location = OIT_ATTRIB_UV) in vec2 a_uv;
+layout(location = OIT_ATTRIB_MEAN_CURVATURE) in float a_mean_curvature;
 
 layout(location = OIT_UNIFORM_VIEW) uniform mat4 u_view;
 layout(location = OIT_UNIFORM_PROJECTION) uniform mat4 u_projection;
@@ -18,6 +19,7 @@ flat out vec4 v_color;
 flat out uint v_object_id;
 flat out uint v_surface_id;
 out vec2 v_uv;
+out float v_mean_curvature;
 
 void main() {
   vec4 view_position = u_view * vec4(a_position, 1.0);
@@ -27,5 +29,6 @@ void main() {
   v_object_id = a_object_id;
   v_surface_id = a_surface_id;
   v_uv = a_uv;
+  v_mean_curvature = a_mean_curvature;
   gl_Position = u_projection * view_position;
 }

@@ -9,6 +9,7 @@ flat in vec4 v_color;
 flat in uint v_object_id;
 flat in uint v_surface_id;
 in vec2 v_uv;
+in float v_mean_curvature;  // analytic, in scene units, where the scene knows it
 
 layout(location = OIT_UNIFORM_LIT) uniform bool u_lit;
 

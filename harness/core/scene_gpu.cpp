@@ -32,6 +32,7 @@ SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
   uint_attribute(OIT_ATTRIB_OBJECT_ID, offsetof(Vertex, object_id));
   uint_attribute(OIT_ATTRIB_SURFACE_ID, offsetof(Vertex, surface_id));
   float_attribute(OIT_ATTRIB_UV, 2, offsetof(Vertex, uv));
+  float_attribute(OIT_ATTRIB_MEAN_CURVATURE, 1, offsetof(Vertex, mean_curvature));
 }
 
 void SceneGpu::bind() const {
