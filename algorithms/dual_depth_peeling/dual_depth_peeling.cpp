@@ -1,0 +1,199 @@
+// dual_depth_peeling: min-max depth peeling (Bavoil & Myers 2008). A first
+// geometry pass finds every pixel's nearest and farthest depth (RG32F under
+// GL_MAX); each further pass composites the fragment at the nearest depth
+// under the front accumulation and the one at the farthest depth over the
+// back accumulation, while finding the next range among the fragments
+// strictly inside. N layers cost N/2 + 1 geometry passes (rounded up).
+#include <cfloat>
+#include <stdexcept>
+#include <string>
+
+#include "core/technique.h"
+#include "gl/check.h"
+#include "gl/shader_program.h"
+#include "../../shaders/bindings.h"
+
+namespace oit {
+namespace {
+
+constexpr GLuint kCounterBinding = OIT_FIRST_TECHNIQUE_BINDING + 0;
+constexpr GLuint kRangeUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
+constexpr GLuint kFrontUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
+constexpr GLuint kBackUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
+
+// Per pixel: two RG32F depth ranges (ping-pong, 2 x 8) + front and back
+// accumulations RGBA32F (2 x 16).
+constexpr uint64_t kBytesPerPixel = 2 * 8 + 2 * 16;
+constexpr uint64_t kCounterBytes = sizeof(GLuint);
+
+class DualDepthPeeling final : public Technique {
+ public:
+  explicit DualDepthPeeling(const ParamSet& params)
+      : max_passes_(int(params.integer("max_passes"))),
+        early_exit_(params.boolean("early_exit")),
+        // Variants with COUNT_LEFT_UNPEELED=1 serve the last pass max_passes allows.
+        init_{build_geometry_program("algorithms/dual_depth_peeling/init.frag", {{"COUNT_LEFT_UNPEELED", "0"}}),
+              build_geometry_program("algorithms/dual_depth_peeling/init.frag", {{"COUNT_LEFT_UNPEELED", "1"}})},
+        peel_{build_geometry_program("algorithms/dual_depth_peeling/peel.frag", {{"COUNT_LEFT_UNPEELED", "0"}}),
+              build_geometry_program("algorithms/dual_depth_peeling/peel.frag", {{"COUNT_LEFT_UNPEELED", "1"}})},
+        range_check_(build_fullscreen_program("algorithms/dual_depth_peeling/range_check.frag")),
+        compose_(build_fullscreen_program("algorithms/dual_depth_peeling/compose.frag")),
+        counter_(make_buffer(kCounterBytes)),
+        fragments_query_(make_query(GL_SAMPLES_PASSED)),
+        any_range_query_(make_query(GL_ANY_SAMPLES_PASSED)) {}
+
+  void resize(int width, int height) override {
+    width_ = width;
+    height_ = height;
+    front_ = make_texture_2d(GL_RGBA32F, width, height);
+    back_ = make_texture_2d(GL_RGBA32F, width, height);
+    const GLenum draw_buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    for (int i = 0; i < 2; ++i) {
+      ranges_[i] = make_texture_2d(GL_RG32F, width, height);
+      range_targets_[i] = make_framebuffer();
+      glNamedFramebufferTexture(range_targets_[i].id(), GL_COLOR_ATTACHMENT0, ranges_[i].id(), 0);
+      check_complete(range_targets_[i], "depth range");
+      peel_targets_[i] = make_framebuffer();
+      glNamedFramebufferTexture(peel_targets_[i].id(), GL_COLOR_ATTACHMENT0, ranges_[i].id(), 0);
+      glNamedFramebufferTexture(peel_targets_[i].id(), GL_COLOR_ATTACHMENT1, front_.id(), 0);
+      glNamedFramebufferTexture(peel_targets_[i].id(), GL_COLOR_ATTACHMENT2, back_.id(), 0);
+      glNamedFramebufferDrawBuffers(peel_targets_[i].id(), 3, draw_buffers);
+      check_complete(peel_targets_[i], "peel");
+    }
+    // The range check writes nothing; it only needs a framebuffer of this size.
+    no_attachments_ = make_framebuffer();
+    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
+    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+    gl_check("allocating dual depth peeling targets of " + std::to_string(width) + "x" + std::to_string(height));
+  }
+
+  void render(const Frame& frame) override {
+    passes_ = 0;
+    const GLfloat empty_range[4] = {-FLT_MAX, -FLT_MAX, 0.0f, 0.0f};
+    {
+      auto clear = frame.clock.stage("clear");
+      // Front: nothing accumulated, transmittance 1; back: the same.
+      const GLfloat nothing_accumulated[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+      glClearNamedFramebufferfv(peel_targets_[0].id(), GL_COLOR, 1, nothing_accumulated);
+      glClearNamedFramebufferfv(peel_targets_[0].id(), GL_COLOR, 2, nothing_accumulated);
+      const GLuint zero = 0;
+      glClearNamedBufferData(counter_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCounterBinding, counter_.id());
+    for (const Program* program : {&init_[0], &init_[1], &peel_[0], &peel_[1], &range_check_, &compose_})
+      frame.set_shared_uniforms(program->id());
+    glViewport(0, 0, width_, height_);
+    glEnable(GL_BLEND);
+    for (int pass = 1; pass <= max_passes_; ++pass) {
+      auto peel = frame.clock.stage("peel");
+      // Pass p writes range p % 2 and reads the one pass p - 1 wrote.
+      const int current = pass % 2, previous = 1 - current;
+      glClearNamedFramebufferfv(range_targets_[current].id(), GL_COLOR, 0, empty_range);
+      const bool last_allowed = pass == max_passes_;
+      if (pass == 1) {
+        glBindFramebuffer(GL_FRAMEBUFFER, range_targets_[current].id());
+        glBlendEquation(GL_MAX);
+        glUseProgram(init_[last_allowed ? 1 : 0].id());
+        // Nothing is discarded and there is no depth test: this counts every fragment.
+        glBeginQuery(GL_SAMPLES_PASSED, fragments_query_.id());
+        frame.scene.draw();
+        glEndQuery(GL_SAMPLES_PASSED);
+      } else {
+        glBindFramebuffer(GL_FRAMEBUFFER, peel_targets_[current].id());
+        glBlendEquationi(0, GL_MAX);
+        // Front, under: rgb += transmittance (dst alpha) * premultiplied; alpha *= 1 - a.
+        glBlendEquationi(1, GL_FUNC_ADD);
+        glBlendFuncSeparatei(1, GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+        // Back, over: rgb = a * c + (1 - a) * rgb; alpha (transmittance) *= 1 - a.
+        glBlendEquationi(2, GL_FUNC_ADD);
+        glBlendFuncSeparatei(2, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+        glUseProgram(peel_[last_allowed ? 1 : 0].id());
+        glBindTextureUnit(kRangeUnit, ranges_[previous].id());
+        frame.scene.draw();
+      }
+      ++passes_;
+      if (early_exit_ && !last_allowed && !range_left(current)) break;
+    }
+    glDisable(GL_BLEND);
+    // Back to GL's defaults, which other techniques may assume.
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ZERO);
+    {
+      auto compose = frame.clock.stage("compose");
+      frame.bind_target();
+      glUseProgram(compose_.id());
+      glBindTextureUnit(kFrontUnit, front_.id());
+      glBindTextureUnit(kBackUnit, back_.id());
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+  }
+
+  TechniqueCounters counters() const override {
+    TechniqueCounters c;
+    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * kBytesPerPixel + kCounterBytes;
+    c.passes = passes_;
+    // Read lazily, so no frame waits for them.
+    GLuint fragments = 0, left_unpeeled = 0;
+    if (passes_ > 0) glGetQueryObjectuiv(fragments_query_.id(), GL_QUERY_RESULT, &fragments);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(counter_.id(), 0, sizeof left_unpeeled, &left_unpeeled);
+    c.fragments_stored = fragments >= left_unpeeled ? fragments - left_unpeeled : 0;
+    c.fragments_dropped = left_unpeeled;
+    return c;
+  }
+
+ private:
+  // Whether any pixel's range (written by the last pass) still holds a
+  // fragment. Waits for that pass: the price of early exit.
+  bool range_left(int range) {
+    glBindFramebuffer(GL_FRAMEBUFFER, no_attachments_.id());
+    glDisable(GL_BLEND);
+    glUseProgram(range_check_.id());
+    glBindTextureUnit(kRangeUnit, ranges_[range].id());
+    glBeginQuery(GL_ANY_SAMPLES_PASSED, any_range_query_.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEndQuery(GL_ANY_SAMPLES_PASSED);
+    glEnable(GL_BLEND);
+    GLuint any = 0;
+    glGetQueryObjectuiv(any_range_query_.id(), GL_QUERY_RESULT, &any);
+    return any != 0;
+  }
+
+  static void check_complete(const Framebuffer& framebuffer, const char* what) {
+    if (glCheckNamedFramebufferStatus(framebuffer.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw GlError(std::string("dual_depth_peeling: the ") + what + " framebuffer is incomplete");
+  }
+
+  int max_passes_;
+  bool early_exit_;
+  Program init_[2], peel_[2], range_check_, compose_;  // [1]: counting variants
+  Buffer counter_;
+  Query fragments_query_, any_range_query_;
+  Texture ranges_[2], front_, back_;
+  Framebuffer range_targets_[2], peel_targets_[2], no_attachments_;
+  int width_ = 0, height_ = 0;
+  uint64_t passes_ = 0;
+};
+
+}  // namespace
+
+void register_technique_dual_depth_peeling(TechniqueRegistry& registry) {
+  TechniqueDescriptor d;
+  d.id = "dual_depth_peeling";
+  d.display_name = "Dual depth peeling";
+  d.paper = "Bavoil & Myers 2008, Order independent transparency with dual depth peeling (NVIDIA)";
+  d.params = {
+      ParamSpec::integer("max_passes", 64, 1, 4096,
+                         "most geometry passes per frame, the min-max pass included (2 layers per later "
+                         "pass); too few leave the middle layers out"),
+      ParamSpec::boolean("early_exit", true,
+                         "stop once no depth range is left (occlusion query on a full-screen check); false "
+                         "runs exactly max_passes passes"),
+  };
+  d.stages = {"clear", "peel", "compose"};
+  d.exactness = Exactness::exact;
+  d.create = [](const ParamSet& params) { return std::make_unique<DualDepthPeeling>(params); };
+  registry.add(std::move(d));
+}
+
+}  // namespace oit

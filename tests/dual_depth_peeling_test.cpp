@@ -1,0 +1,224 @@
+// Dual depth peeling: exact against the reference (quads, an odd number of
+// layers whose middle layer is both the nearest and the farthest, lit
+// spheres; in any submission order) with every fragment counted; N layers
+// cost N/2 + 1 geometry passes with early exit and exactly max_passes
+// without; a pass cap leaves the middle layers out with an error that shrinks
+// strictly as the cap grows; fragments tied in depth are all composited, in
+// submission order; out-of-range parameters are rejected by name.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <utility>
+#include <vector>
+
+#include "gl_fixture.h"
+
+namespace oit {
+namespace {
+
+constexpr int kSize = 32;
+constexpr uint64_t kPixels = uint64_t(kSize) * kSize;
+// Two RG32F depth ranges + front and back RGBA32F accumulations, + a 4-byte counter.
+constexpr uint64_t kBytes = kPixels * (2 * 8 + 2 * 16) + 4;
+const RawParams kQuads32 = {{"layers", "32"}};
+
+RunSpec spec_of(const RawParams& params, const std::string& scene, const RawParams& scene_params, int size,
+                const std::string& order = "original") {
+  RunSpec spec;
+  spec.technique = "dual_depth_peeling";
+  spec.params = params;
+  spec.scene = scene;
+  spec.scene_params = scene_params;
+  spec.submission_order = order;
+  spec.width = size;
+  spec.height = size;
+  spec.warmup = 0;
+  spec.frames = 1;
+  return spec;
+}
+
+RunResult run_ok(const RunSpec& spec) {
+  RunResult r = test::harness().run(spec);
+  EXPECT_EQ(r.status, RunStatus::ok) << r.message;
+  EXPECT_TRUE(r.error.has_value());
+  return r;
+}
+
+// Writes a glTF file of full-screen unlit quads (z in view space, the colour),
+// in this order, seen by an orthographic camera looking down -z. Quads with
+// the same z have identical vertices, so their fragments tie exactly in depth.
+std::string write_quads_gltf(const std::string& name, const std::vector<std::pair<float, glm::vec4>>& quads) {
+  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/dual_depth_peeling";
+  std::filesystem::create_directories(dir);
+  std::vector<float> positions;
+  for (const auto& quad : quads) {
+    const float corners[4][2] = {{-1.5f, -1.5f}, {1.5f, -1.5f}, {1.5f, 1.5f}, {-1.5f, 1.5f}};
+    for (const auto& c : corners) positions.insert(positions.end(), {c[0], c[1], quad.first});
+  }
+  const uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
+  std::string bin(positions.size() * 4 + sizeof(indices), '\0');
+  std::memcpy(bin.data(), positions.data(), positions.size() * 4);
+  std::memcpy(bin.data() + positions.size() * 4, indices, sizeof(indices));
+  std::ofstream(dir + "/" + name + ".bin", std::ios::binary) << bin;
+
+  using nlohmann::json;
+  json nodes = json::array(), meshes = json::array(), materials = json::array(), accessors = json::array(),
+       views = json::array();
+  for (size_t i = 0; i < quads.size(); ++i) {
+    const glm::vec4& c = quads[i].second;
+    const float z = quads[i].first;
+    nodes.push_back({{"mesh", i}});
+    meshes.push_back({{"primitives", {{{"attributes", {{"POSITION", i}}}, {"indices", quads.size()}, {"material", i}}}}});
+    materials.push_back({{"pbrMetallicRoughness", {{"baseColorFactor", {c.r, c.g, c.b, c.a}}}},
+                         {"alphaMode", "BLEND"},
+                         {"extensions", {{"KHR_materials_unlit", json::object()}}}});
+    accessors.push_back({{"bufferView", i}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"},
+                         {"min", {-1.5, -1.5, z}}, {"max", {1.5, 1.5, z}}});
+    views.push_back({{"buffer", 0}, {"byteOffset", 48 * i}, {"byteLength", 48}});
+  }
+  accessors.push_back({{"bufferView", quads.size()}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}});
+  views.push_back({{"buffer", 0}, {"byteOffset", 48 * quads.size()}, {"byteLength", 12}});
+  nodes.push_back({{"camera", 0}});
+  json scene_nodes = json::array();
+  for (size_t i = 0; i < nodes.size(); ++i) scene_nodes.push_back(i);
+  const json gltf = {
+      {"asset", {{"version", "2.0"}}},
+      {"extensionsUsed", {"KHR_materials_unlit"}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", scene_nodes}}}},
+      {"nodes", nodes},
+      {"cameras", {{{"type", "orthographic"}, {"orthographic", {{"xmag", 1.0}, {"ymag", 1.0}, {"znear", 0.1}, {"zfar", 10.0}}}}}},
+      {"meshes", meshes},
+      {"materials", materials},
+      {"accessors", accessors},
+      {"bufferViews", views},
+      {"buffers", {{{"uri", name + ".bin"}, {"byteLength", bin.size()}}}},
+  };
+  const std::string path = dir + "/" + name + ".gltf";
+  std::ofstream(path) << gltf.dump(2);
+  return path;
+}
+
+TEST(DualDepthPeeling, ExactOnThirtyTwoQuadLayersInHalfThePasses) {
+  for (const std::string order : {"original", "shuffled:7"}) {
+    SCOPED_TRACE(order);
+    const RunResult r = run_ok(spec_of({}, "quads", kQuads32, kSize, order));
+    ASSERT_TRUE(r.error.has_value());
+    // Front and back are blended in float, the reference in double.
+    EXPECT_LT(r.error->max_abs, 1e-5);
+    EXPECT_EQ(r.counters.fragments_stored, 32u * kPixels);
+    EXPECT_EQ(r.counters.fragments_dropped, 0u);
+    EXPECT_EQ(r.counters.passes, 17u);  // the min-max pass + 16 passes of 2 layers
+    EXPECT_EQ(r.counters.bytes_allocated, kBytes);
+  }
+}
+
+TEST(DualDepthPeeling, OddLayerCountCompositesTheMiddleLayerOnce) {
+  // With 7 layers the 4th pass finds nearest == farthest: one fragment that
+  // must go to the front or the back accumulation, not both.
+  const RunResult r = run_ok(spec_of({}, "quads", {{"layers", "7"}, {"alpha", "0.6"}}, kSize));
+  EXPECT_LT(r.error->max_abs, 1e-5);
+  EXPECT_EQ(r.counters.passes, 5u);  // 1 + ceil(7 / 2)
+  EXPECT_EQ(r.counters.fragments_stored, 7u * kPixels);
+  EXPECT_EQ(r.counters.fragments_dropped, 0u);
+}
+
+TEST(DualDepthPeeling, ExactOnLitSpheresInAnySubmissionOrder) {
+  for (const std::string order : {"original", "shuffled:7"}) {
+    SCOPED_TRACE(order);
+    const RunResult r = run_ok(spec_of({}, "spheres", {}, 48, order));
+    ASSERT_TRUE(r.error.has_value());
+    ASSERT_GE(r.max_depth_complexity, 4u) << "the spheres must overlap for this test to mean anything";
+    EXPECT_LT(r.error->max_abs, 1e-5);
+    EXPECT_EQ(r.counters.fragments_stored, r.scene_fragments);
+    EXPECT_EQ(r.counters.fragments_dropped, 0u);
+    EXPECT_EQ(r.counters.passes, 1u + (r.max_depth_complexity + 1u) / 2u);
+  }
+}
+
+TEST(DualDepthPeeling, WithoutEarlyExitRunsExactlyMaxPasses) {
+  const RunResult early = run_ok(spec_of({}, "quads", {{"layers", "8"}}, kSize));
+  EXPECT_EQ(early.counters.passes, 5u);
+  const RunResult all = run_ok(spec_of({{"early_exit", "false"}, {"max_passes", "9"}}, "quads", {{"layers", "8"}}, kSize));
+  EXPECT_EQ(all.counters.passes, 9u);
+  EXPECT_LT(all.error->max_abs, 1e-5);
+  EXPECT_EQ(all.counters.fragments_dropped, 0u);
+  EXPECT_EQ(all.image.rgba, early.image.rgba);
+}
+
+TEST(DualDepthPeeling, PassCapLeavesAnErrorThatShrinksWithMorePasses) {
+  double previous_error = 2.0;
+  for (int cap : {4, 8, 16}) {
+    SCOPED_TRACE("max_passes=" + std::to_string(cap));
+    const RunResult r = run_ok(spec_of({{"max_passes", std::to_string(cap)}}, "quads", kQuads32, kSize));
+    ASSERT_TRUE(r.error.has_value());
+    EXPECT_GT(r.error->max_abs, 1e-4);
+    EXPECT_LT(r.error->max_abs, previous_error);
+    previous_error = r.error->max_abs;
+    EXPECT_EQ(r.counters.passes, uint64_t(cap));
+    // After the min-max pass each pass composites 2 layers; the middle rest is counted as dropped.
+    const uint64_t peeled_layers = 2u * uint64_t(cap - 1);
+    EXPECT_EQ(r.counters.fragments_stored, peeled_layers * kPixels);
+    EXPECT_EQ(r.counters.fragments_dropped, (32u - peeled_layers) * kPixels);
+  }
+  // max_passes = 1 is the min-max pass alone: nothing composited, all counted.
+  const RunResult only_range = run_ok(spec_of({{"max_passes", "1"}}, "quads", kQuads32, kSize));
+  EXPECT_EQ(only_range.counters.fragments_stored, 0u);
+  EXPECT_EQ(only_range.counters.fragments_dropped, 32u * kPixels);
+}
+
+TEST(DualDepthPeeling, DepthTiesAreAllCompositedInSubmissionOrder) {
+  constexpr int size = 16;
+  constexpr uint64_t pixels = uint64_t(size) * size;
+  const glm::vec4 red{0.9f, 0.1f, 0.1f, 0.5f}, green{0.1f, 0.9f, 0.1f, 0.5f}, blue{0.1f, 0.1f, 0.9f, 0.5f};
+  const glm::vec4 yellow{0.9f, 0.9f, 0.1f, 0.3f};
+  // Three coplanar quads in front (their fragments tie exactly in depth), one behind.
+  const std::string front_tie =
+      write_quads_gltf("front_tie", {{-1.0f, red}, {-1.0f, green}, {-1.0f, blue}, {-2.0f, yellow}});
+  // The tied fragments all sit at the nearest depth: each is blended under
+  // the front in rasterisation order, which in id order is the reference's.
+  const RunResult in_order = run_ok(spec_of({}, front_tie, {}, size));
+  EXPECT_LT(in_order.error->max_abs, 1e-5);
+  EXPECT_EQ(in_order.counters.fragments_stored, 4u * pixels);
+  EXPECT_EQ(in_order.counters.fragments_dropped, 0u);
+  EXPECT_EQ(in_order.counters.passes, 2u);
+  // Reversed submission reverses the tie: nothing is lost, the order is wrong.
+  const RunResult reversed = run_ok(spec_of({}, front_tie, {}, size, "reversed"));
+  EXPECT_EQ(reversed.counters.fragments_stored, 4u * pixels);
+  EXPECT_EQ(reversed.counters.fragments_dropped, 0u);
+  EXPECT_GT(reversed.error->max_abs, 0.05);
+  // A tie at the farthest depth is blended over the back in rasterisation
+  // order, so there submission in id order is the reversed one: still nothing lost.
+  const std::string back_tie =
+      write_quads_gltf("back_tie", {{-1.0f, yellow}, {-2.0f, red}, {-2.0f, green}, {-2.0f, blue}});
+  for (const std::string order : {"original", "reversed"}) {
+    SCOPED_TRACE(order);
+    const RunResult r = run_ok(spec_of({}, back_tie, {}, size, order));
+    EXPECT_EQ(r.counters.fragments_stored, 4u * pixels);
+    EXPECT_EQ(r.counters.fragments_dropped, 0u);
+    if (order == "original") {
+      EXPECT_GT(r.error->max_abs, 0.05);
+    } else {
+      EXPECT_LT(r.error->max_abs, 1e-5);
+    }
+  }
+}
+
+TEST(DualDepthPeeling, RejectsOutOfRangeParametersNamingThem) {
+  for (const std::string bad : {"0", "4097", "many"}) {
+    const RunResult r = test::harness().run(spec_of({{"max_passes", bad}}, "quads", {{"layers", "2"}}, 8));
+    EXPECT_EQ(r.status, RunStatus::error);
+    EXPECT_NE(r.message.find("max_passes"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("dual_depth_peeling"), std::string::npos) << r.message;
+  }
+  const RunResult r = test::harness().run(spec_of({{"early_exit", "maybe"}}, "quads", {{"layers", "2"}}, 8));
+  EXPECT_EQ(r.status, RunStatus::error);
+  EXPECT_NE(r.message.find("early_exit"), std::string::npos) << r.message;
+}
+
+}  // namespace
+}  // namespace oit
