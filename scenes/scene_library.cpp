@@ -8,6 +8,7 @@
 #include "parametric.h"
 #include "random_scenes.h"
 #include "stacked_quads.h"
+#include "stress_layers.h"
 
 namespace oit {
 namespace {
@@ -34,6 +35,19 @@ SurfaceParams surface(const ParamSet& p) {
 }
 
 }  // namespace
+
+StressLayersParams stress_layers_params(const ParamSet& p) {
+  StressLayersParams s;
+  s.layers = int(p.integer("layers"));
+  s.gap = p.real("gap");
+  s.space = p.choice("space");
+  s.near_far_ratio = p.real("near_far_ratio");
+  s.alpha = float(p.real("alpha"));
+  s.alpha_mode = p.choice("alpha_mode");
+  s.extra = p.choice("extra");
+  s.seed = uint32_t(p.integer("seed"));
+  return s;
+}
 
 const std::vector<SceneDescriptor>& scene_library() {
   static const std::vector<SceneDescriptor> library = {
@@ -104,6 +118,20 @@ const std::vector<SceneDescriptor>& scene_library() {
          q.seed = uint32_t(p.integer("seed"));
          return make_particles(q);
        }},
+      {"stress_layers",
+       "full-screen layers for numerical stress: tiny depth gaps (ndc or relative eye depth under a perspective "
+       "camera), coplanar layers (gap 0), extreme alphas, degenerate extras; exact image known in closed form",
+       {ParamSpec::integer("layers", 8, 1, 4096, "number of layers"),
+        ParamSpec::real("gap", 1e-3, 0.0, 1.0, "depth gap between consecutive layers (0: coplanar)"),
+        ParamSpec::choice("space", "ndc", {"ndc", "eye"},
+                          "ndc: gap in NDC under an orthographic camera; eye: gap relative to eye depth, perspective"),
+        ParamSpec::real("near_far_ratio", 100.0, 1.01, 1e7, "perspective far/near (space=eye)"),
+        ParamSpec::real("alpha", 0.5, 0.0, 1.0, "opacity of every layer (alpha_mode=constant)"),
+        ParamSpec::choice("alpha_mode", "constant", {"constant", "mixed"}, "mixed cycles 1, alpha, 1e-4, 0.5"),
+        ParamSpec::choice("extra", "none", {"none", "zero_area", "nan_vertex", "inf_vertex", "empty"},
+                          "degenerate addition"),
+        ParamSpec::integer("seed", 1, 0, 4294967295ll, "shuffle of the submission order")},
+       [](const ParamSet& p) { return make_stress_layers(stress_layers_params(p)); }},
   };
   return library;
 }

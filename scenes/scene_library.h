@@ -6,6 +6,7 @@
 
 #include "core/params.h"
 #include "scene.h"
+#include "stress_layers.h"
 
 namespace oit {
 
@@ -21,5 +22,8 @@ const std::vector<SceneDescriptor>& scene_library();
 // `spec` is a library id ("quads") or a file path (.gltf/.glb). Scene
 // parameters apply to library scenes only; giving any to a file is an error.
 Scene load_scene(const std::string& spec, const RawParams& params);
+
+// The typed parameters of the `stress_layers` scene (for its closed form).
+StressLayersParams stress_layers_params(const ParamSet& values);
 
 }  // namespace oit

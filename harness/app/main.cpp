@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "app/commands.h"
+#include "app/stress.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"oitbench: order-independent transparency techniques, timed stage by stage and compared "
@@ -44,11 +45,22 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--csv", bench.csv, "CSV file to append to")->required();
   bench_cmd->add_option("--images", bench.images_dir, "directory for one PNG per run");
 
+  oit::StressOptions stress;
+  auto* stress_cmd = app.add_subcommand("stress", "numerical and robustness stress cases on every technique: "
+                                                   "pass/fail/skip table (each run in its own process)");
+  stress_cmd->add_option("--technique,-t", stress.techniques, "technique ids or 'all' (repeatable)");
+  stress_cmd->add_flag("--full", stress.full, "every case (default: the reduced set that CI runs)");
+  stress_cmd->add_option("--case", stress.case_filter, "only cases whose name contains this text");
+  stress_cmd->add_option("--timeout", stress.timeout_s, "seconds per case and technique before it counts as a hang")
+      ->check(CLI::Range(1.0, 86400.0));
+  stress_cmd->add_option("--csv", stress.csv, "CSV file to append verdicts to");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*list) return oit::run_list(common);
     if (*render_cmd) return oit::run_render(common, render);
     if (*bench_cmd) return oit::run_bench(common, bench);
+    if (*stress_cmd) return oit::run_stress(common, stress);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "oitbench: error: %s\n", e.what());
     return 1;

@@ -7,9 +7,15 @@
 namespace oit {
 
 SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
-  vertices_ = make_buffer(GLsizeiptr(scene.vertices.size() * sizeof(Vertex)), scene.vertices.data(), 0);
-  indices_ = make_buffer(GLsizeiptr(scene.indices.size() * sizeof(uint32_t)), scene.indices.data(), 0);
-  triangle_ids_ = make_buffer(GLsizeiptr(scene.triangle_ids.size() * sizeof(uint32_t)), scene.triangle_ids.data(), 0);
+  // GL rejects zero-sized buffer storage; an empty scene gets placeholders
+  // (nothing is drawn from them).
+  auto upload = [](size_t bytes, const void* data) {
+    static const uint32_t placeholder[4] = {};
+    return bytes > 0 ? make_buffer(GLsizeiptr(bytes), data, 0) : make_buffer(sizeof(placeholder), placeholder, 0);
+  };
+  vertices_ = upload(scene.vertices.size() * sizeof(Vertex), scene.vertices.data());
+  indices_ = upload(scene.indices.size() * sizeof(uint32_t), scene.indices.data());
+  triangle_ids_ = upload(scene.triangle_ids.size() * sizeof(uint32_t), scene.triangle_ids.data());
   bytes_ = scene.vertices.size() * sizeof(Vertex) + (scene.indices.size() + scene.triangle_ids.size()) * 4;
 
   vertex_array_ = make_vertex_array();

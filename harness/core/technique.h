@@ -81,6 +81,13 @@ struct TechniqueDescriptor {
   std::vector<std::string> stages;  // stage names it emits, in order
   TechniqueNeeds needs;
   Exactness exactness = Exactness::approximate;
+  // For exact techniques: the largest difference from the reference that
+  // still counts as exact (1e-5 for float compositing; a technique storing
+  // colour packed states the quantisation bound of its storage here).
+  double exact_tolerance = 1e-5;
+  // Quality knobs for run-time-versus-error sweeps (`oitbench pareto`):
+  // parameter name and the values to try, cheapest first.
+  std::vector<std::pair<std::string, std::vector<std::string>>> quality_sweep;
   bool is_reference = false;  // the exact technique the harness compares against
   // Optional extra check; returns "" when the run can happen, else the reason.
   std::function<std::string(const ParamSet&, const SceneFacts&)> extra_support_check;
