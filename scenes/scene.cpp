@@ -89,19 +89,36 @@ void reorder_triangles(Scene& scene, const std::string& order) {
   std::vector<size_t> permutation(scene.triangle_count());
   std::iota(permutation.begin(), permutation.end(), size_t(0));
   if (order == "original") return;
-  if (order == "reversed") {
-    std::reverse(permutation.begin(), permutation.end());
-  } else if (order.rfind("shuffled:", 0) == 0) {
-    uint32_t seed = 0;
+  auto seed_of = [&](size_t prefix) {
     try {
-      seed = uint32_t(std::stoul(order.substr(9)));
+      size_t used = 0;
+      const unsigned long seed = std::stoul(order.substr(prefix), &used);
+      if (used != order.size() - prefix) throw std::invalid_argument("");
+      return uint32_t(seed);
     } catch (const std::exception&) {
       throw std::invalid_argument("submission order '" + order + "': seed is not a number");
     }
-    std::mt19937 rng(seed);
+  };
+  if (order == "reversed") {
+    std::reverse(permutation.begin(), permutation.end());
+  } else if (order.rfind("shuffled:", 0) == 0) {
+    std::mt19937 rng(seed_of(9));
     for (size_t i = permutation.size(); i > 1; --i) std::swap(permutation[i - 1], permutation[rng() % i]);
+  } else if (order.rfind("objects_shuffled:", 0) == 0) {
+    // Whole objects in a shuffled order, each object's triangles in their
+    // original order: what a renderer that sorts draw calls does.
+    std::mt19937 rng(seed_of(17));
+    std::vector<uint32_t> rank(size_t(scene.object_count) + 1);
+    std::iota(rank.begin(), rank.end(), 0u);
+    for (size_t i = rank.size(); i > 1; --i) std::swap(rank[i - 1], rank[rng() % i]);
+    auto object_of = [&](size_t t) {
+      return std::min<size_t>(scene.vertices[scene.indices[3 * t + 2]].object_id, rank.size() - 1);
+    };
+    std::stable_sort(permutation.begin(), permutation.end(),
+                     [&](size_t a, size_t b) { return rank[object_of(a)] < rank[object_of(b)]; });
   } else {
-    throw std::invalid_argument("submission order '" + order + "' is not original, reversed or shuffled:SEED");
+    throw std::invalid_argument("submission order '" + order +
+                                "' is not original, reversed, shuffled:SEED or objects_shuffled:SEED");
   }
   std::vector<uint32_t> indices(scene.indices.size());
   std::vector<uint32_t> ids(scene.triangle_ids.size());

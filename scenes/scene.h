@@ -72,7 +72,8 @@ Camera frame_bounding_sphere(const BoundingSphere& sphere);
 namespace oit {
 
 // Reorders the submitted triangles without changing the scene: "original",
-// "reversed", or "shuffled:SEED". Triangle ids move with their triangles,
+// "reversed", "shuffled:SEED" (every triangle), or "objects_shuffled:SEED"
+// (whole objects in shuffled order). Triangle ids move with their triangles,
 // so exact techniques must produce the same image. Throws on other text.
 void reorder_triangles(Scene& scene, const std::string& order);
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "app/check_order.h"
 #include "app/commands.h"
 #include "app/stress.h"
 
@@ -55,12 +56,22 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 86400.0));
   stress_cmd->add_option("--csv", stress.csv, "CSV file to append verdicts to");
 
+  oit::CheckOrderOptions order;
+  auto* order_cmd = app.add_subcommand("check-order", "how far each technique's image moves when the triangles "
+                                                       "are submitted in other orders (exact ones must not)");
+  order_cmd->add_option("--technique,-t", order.techniques, "technique ids or 'all' (repeatable)");
+  order_cmd->add_option("--scene,-s", order.scene, "scene id or file");
+  order_cmd->add_option("--scene-set", order.scene_sets, "scene parameter key=value (repeatable)");
+  order_cmd->add_option("--size", order.size, "WIDTHxHEIGHT");
+  order_cmd->add_option("--seeds", order.seeds, "shuffled and objects_shuffled seeds 1..N")->check(CLI::Range(1, 100));
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*list) return oit::run_list(common);
     if (*render_cmd) return oit::run_render(common, render);
     if (*bench_cmd) return oit::run_bench(common, bench);
     if (*stress_cmd) return oit::run_stress(common, stress);
+    if (*order_cmd) return oit::run_check_order(common, order);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "oitbench: error: %s\n", e.what());
     return 1;

@@ -22,7 +22,8 @@ struct RunSpec {
   RawParams params;
   std::string scene = "quads";
   RawParams scene_params;
-  // Triangle submission order: "original", "reversed" or "shuffled:SEED".
+  // Triangle submission order: "original", "reversed", "shuffled:SEED" or
+  // "objects_shuffled:SEED" (see reorder_triangles).
   // The reference is always rendered in the original order.
   std::string submission_order = "original";
   int width = 256;

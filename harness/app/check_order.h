@@ -1,0 +1,36 @@
+#pragma once
+// `oitbench check-order`: renders each technique with the triangles
+// submitted in several orders (and the same order twice) and reports how far
+// each image moves from the original-order image. Exact techniques must not
+// move beyond their tolerance; approximate ones report how much they move.
+#include <string>
+#include <vector>
+
+#include "app/commands.h"
+
+namespace oit {
+
+struct CheckOrderOptions {
+  std::vector<std::string> techniques{"all"};
+  std::string scene = "quads";
+  std::vector<std::string> scene_sets;
+  std::string size = "64x64";
+  int seeds = 2;  // shuffled:1..N and objects_shuffled:1..N
+};
+
+struct OrderCheck {
+  std::string technique;
+  std::string status;             // ok, skipped, error
+  std::string message;
+  double repeat_difference = 0;   // same order, second frame set
+  double largest_difference = 0;  // over every other order
+  std::string worst_order;
+  bool exact = false;
+  bool passed = true;             // exact techniques: every difference within tolerance
+};
+
+std::vector<std::string> order_variants(int seeds);
+OrderCheck check_order(Harness& harness, const TechniqueDescriptor& technique, const RunSpec& base, int seeds);
+int run_check_order(const CommonOptions& common, const CheckOrderOptions& options);
+
+}  // namespace oit
