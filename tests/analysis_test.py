@@ -10,7 +10,9 @@ import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "analysis"))
+import pareto  # noqa: E402
 import plot_stages  # noqa: E402
+import pandas as pd  # noqa: E402
 
 COLUMNS = ("timestamp,git_revision,device,gl_version,platform,technique,params,scene,scene_params,width,height,"
            "clock,stage,median_ms,min_ms,p05_ms,p95_ms,mean_ms,frames,warmup,status,message,fragments,"
@@ -55,6 +57,32 @@ class PlotStagesTest(unittest.TestCase):
                                      "--scene", "spheres"], capture_output=True, text=True)
             self.assertNotEqual(result.returncode, 0)
             self.assertIn("no successful runs", result.stderr)
+
+
+class ParetoTest(unittest.TestCase):
+    def test_front_keeps_only_undominated_runs(self):
+        points = pd.DataFrame({"label": ["fast_bad", "slow_exact", "dominated", "middle", "slower_exact"],
+                               "time_ms": [1.0, 10.0, 5.0, 4.0, 20.0],
+                               "error": [0.5, 0.0, 0.3, 0.1, 0.0]})
+        front = pareto.pareto_front(points)
+        self.assertEqual(list(front["label"]), ["fast_bad", "middle", "slow_exact"])
+
+    def test_plots_one_figure_per_scene_from_bench_rows(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            csv = os.path.join(tmp, "runs.csv")
+            with open(csv, "w") as f:
+                f.write(COLUMNS + "\n")
+                for technique, params, ms, err in [("kbuffer", "k=4", 2.0, 0.1), ("kbuffer", "k=32", 8.0, 0.0),
+                                                   ("unsorted", "", 1.0, 0.3)]:
+                    fields = row(technique, params, "total", ms).split(",")
+                    fields[COLUMNS.split(",").index("error_rmse") + 1] = str(err)  # the device field holds one comma
+                    f.write(",".join(fields) + "\n")
+            totals = pareto.load_totals(csv, "error_rmse")
+            self.assertEqual(len(totals), 3)
+            result = subprocess.run([sys.executable, os.path.join(HERE, "..", "analysis", "pareto.py"), csv],
+                                    check=True, capture_output=True, text=True)
+            self.assertIn("front = unsorted, kbuffer k=4, kbuffer k=32", result.stdout)
+            self.assertTrue(os.path.exists(os.path.join(tmp, "pareto_quads_64x64.png")))
 
 
 if __name__ == "__main__":

@@ -226,6 +226,7 @@ void register_technique_depth_peeling(TechniqueRegistry& registry) {
   };
   d.stages = {"clear", "peel", "compose"};
   d.exactness = Exactness::exact;
+  d.quality_sweep = {{"max_passes", {"2", "4", "8", "16", "32", "64"}}};
   d.create = [](const ParamSet& params) { return std::make_unique<DepthPeeling>(params); };
   registry.add(std::move(d));
 }

@@ -192,6 +192,7 @@ void register_technique_dual_depth_peeling(TechniqueRegistry& registry) {
   };
   d.stages = {"clear", "peel", "compose"};
   d.exactness = Exactness::exact;
+  d.quality_sweep = {{"max_passes", {"2", "3", "5", "9", "17", "33"}}};
   d.create = [](const ParamSet& params) { return std::make_unique<DualDepthPeeling>(params); };
   registry.add(std::move(d));
 }

@@ -6,6 +6,7 @@
 
 #include "app/check_order.h"
 #include "app/commands.h"
+#include "app/pareto.h"
 #include "app/stress.h"
 
 int main(int argc, char** argv) {
@@ -46,6 +47,23 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--csv", bench.csv, "CSV file to append to")->required();
   bench_cmd->add_option("--images", bench.images_dir, "directory for one PNG per run");
 
+  // pareto: the bench options, with each technique's quality knobs swept.
+  oit::BenchOptions pareto;
+  pareto.sweep.scenes = {"quads", "spheres"};
+  pareto.sweep.sizes = {"128x128"};
+  pareto.sweep.frames = 5;
+  auto* pareto_cmd = app.add_subcommand(
+      "pareto", "run time against error: bench every technique over its quality knobs (k, max_passes, ...); "
+                "plot with analysis/pareto.py");
+  pareto_cmd->add_option("--technique,-t", pareto.sweep.techniques, "technique ids or 'all' (repeatable)");
+  pareto_cmd->add_option("--scene,-s", pareto.sweep.scenes, "scene ids or files (repeatable; default quads, spheres)");
+  pareto_cmd->add_option("--scene-set", pareto.sweep.scene_sets, "scene key=v1,v2 to sweep (repeatable)");
+  pareto_cmd->add_option("--size", pareto.sweep.sizes, "WIDTHxHEIGHT (repeatable; default 128x128)");
+  pareto_cmd->add_option("--frames", pareto.sweep.frames, "timed frames per run")->check(CLI::Range(1, 100000));
+  pareto_cmd->add_option("--warmup", pareto.sweep.warmup, "untimed frames first")->check(CLI::Range(0, 1000));
+  pareto_cmd->add_option("--csv", pareto.csv, "CSV file to append to")->required();
+  pareto_cmd->add_option("--images", pareto.images_dir, "directory for one PNG per run");
+
   oit::StressOptions stress;
   auto* stress_cmd = app.add_subcommand("stress", "numerical and robustness stress cases on every technique: "
                                                    "pass/fail/skip table (each run in its own process)");
@@ -71,6 +89,7 @@ int main(int argc, char** argv) {
     if (*render_cmd) return oit::run_render(common, render);
     if (*bench_cmd) return oit::run_bench(common, bench);
     if (*stress_cmd) return oit::run_stress(common, stress);
+    if (*pareto_cmd) return oit::run_pareto(common, pareto);
     if (*order_cmd) return oit::run_check_order(common, order);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "oitbench: error: %s\n", e.what());

@@ -1,0 +1,25 @@
+#include "app/pareto.h"
+
+#include <algorithm>
+
+namespace oit {
+
+SweepOptions pareto_sweep(SweepOptions sweep, const TechniqueRegistry& registry) {
+  const bool all = std::find(sweep.techniques.begin(), sweep.techniques.end(), "all") != sweep.techniques.end();
+  for (const auto& t : registry.all()) {
+    if (!all && std::find(sweep.techniques.begin(), sweep.techniques.end(), t.id) == sweep.techniques.end()) continue;
+    for (const auto& [knob, values] : t.quality_sweep) {
+      std::string set = t.id + "." + knob + "=";
+      for (size_t i = 0; i < values.size(); ++i) set += (i ? "," : "") + values[i];
+      sweep.technique_sets.push_back(set);
+    }
+  }
+  return sweep;
+}
+
+int run_pareto(const CommonOptions& common, BenchOptions options) {
+  options.sweep = pareto_sweep(options.sweep, builtin_techniques());
+  return run_bench(common, options);
+}
+
+}  // namespace oit
