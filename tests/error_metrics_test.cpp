@@ -65,3 +65,25 @@ TEST(ErrorMetrics, NanMakesTheErrorInfiniteAndSizesMustMatch) {
 
 }  // namespace
 }  // namespace oit
+
+#include "core/heatmap.h"
+
+namespace oit {
+namespace {
+
+TEST(Heatmap, ZeroIsBlueTheMaximumIsRedAndTheErrorMapFindsThePixel) {
+  const Image map = heatmap({0.0f, 0.5f, 1.0f}, 3, 1);
+  EXPECT_GT(map.at(0, 0, 2), 0.4f);  // blue
+  EXPECT_EQ(map.at(0, 0, 0), 0.0f);
+  EXPECT_GT(map.at(2, 0, 0), 0.4f);  // red
+  EXPECT_EQ(map.at(2, 0, 2), 0.0f);
+  EXPECT_EQ(map.at(1, 0, 1), 1.0f);  // green in the middle
+  Image a = gradient(4, 4), b = a;
+  b.rgba[4 * 5 + 2] += 0.25f;
+  const Image errors = error_heatmap(b, a);
+  EXPECT_GT(errors.at(1, 1, 0), 0.4f);  // pixel 5 = (1, 1) is the worst: red
+  EXPECT_EQ(errors.at(0, 0, 0), 0.0f);
+}
+
+}  // namespace
+}  // namespace oit

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "core/heatmap.h"
 #include "core/results_csv.h"
 #include "scene_library.h"
 
@@ -100,7 +101,16 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
         std::fprintf(stderr, "  warning: gl and wall clocks disagree by %.0f%% on total\n",
                      *result.clock_disagreement * 100.0);
       }
-      if (!options.images_dir.empty()) write_image(result.image, options.images_dir + "/" + run_label(result) + ".png");
+      if (!options.images_dir.empty()) {
+        const std::string stem = options.images_dir + "/" + run_label(result);
+        write_image(result.image, stem + ".png");
+        // Where the image is wrong, and how much (scaled to this run's largest error).
+        if (result.error->max_abs > 0.0) {
+          const Image& reference = harness.reference_image(spec.scene, spec.scene_params, spec.width, spec.height,
+                                                           spec.background);
+          write_image(error_heatmap(result.image, reference), stem + "_error.png");
+        }
+      }
     } else {
       std::fprintf(stderr, "%s: %s\n", to_string(result.status).c_str(), result.message.c_str());
     }
