@@ -75,6 +75,15 @@ TEST(Reference, PoolOverflowIsDetectedGrownAndRetried) {
   EXPECT_EQ(roomy.counters.overflow_retries, 0u);
 }
 
+TEST(Reference, ListsLongerThanTheGpuResolveAreResolvedOnTheCpuExactly) {
+  // 600 layers: beyond the GPU resolve's 512-entry array.
+  const StackedQuadsParams p = quads(600, 0.3f, 5);
+  StackedQuadsParams parsed = p;
+  parsed.alpha = float(std::stod(std::to_string(p.alpha)));
+  const RunResult r = test::render_once("reference", {}, "quads", quad_params(p), 4, 4);
+  expect_uniform_image(r.image, stacked_quads_closed_form(parsed, glm::vec3(0.0f)));
+}
+
 TEST(Reference, HarnessErrorOfTheReferenceIsZero) {
   const RunResult r = test::render_once("reference", {}, "quads", {{"layers", "8"}}, 32, 32);
   ASSERT_TRUE(r.error.has_value());
