@@ -1,0 +1,38 @@
+// Storage of the dual-pass k-buffer: per pixel, K slots of (depth key, owner,
+// colour), pixel-major (slot i of pixel p at p * K + i) so that one pixel's
+// keys are contiguous: llvmpipe shades a pixel on one CPU thread, and its
+// cache lines then hold a whole pixel's list.
+#include "shaders/bindings.h"
+
+#define KBUFFER_EMPTY 0xffffffffu
+
+// Sorted ascending per pixel by the fill pass; EMPTY slots come last.
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) coherent buffer KBufferKeys { uint kbuffer_keys[]; };
+// Stable triangle id of the fragment whose colour the slot holds, claimed by
+// the store pass with atomicCompSwap; EMPTY = no colour stored. It makes
+// tied depth keys resolvable (see store.frag) and marks valid slots.
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) coherent buffer KBufferOwners { uint kbuffer_owners[]; };
+// Straight RGBA of the slot, read and written as whole vec4s (Mesa 22.3
+// llvmpipe misreads scalar members of struct arrays inside loops).
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 2) buffer KBufferColors { vec4 kbuffer_colors[]; };
+// stored: fragments composed from the slots (added by compose, per pixel);
+// dropped: fragments beyond the K nearest whose colour was discarded.
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 3) coherent buffer KBufferCounters {
+  uint kbuffer_stored;
+  uint kbuffer_dropped;
+};
+
+layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform int u_width;
+
+uint kbuffer_first_slot() { return (uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x)) * uint(K); }
+
+// 32-bit sort key of a view depth. IEEE floats order like sign-magnitude
+// integers; flipping maps them onto unsigned order (negative depths, behind
+// the eye, sort first, as in the reference). Only the all-ones pattern
+// (a NaN) would collide with EMPTY, so it is clamped below it. Equal depths
+// give equal keys: ties are resolved by the store pass, not here.
+uint kbuffer_depth_key(float depth) {
+  uint bits = floatBitsToUint(depth);
+  bits = (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
+  return min(bits, KBUFFER_EMPTY - 1u);
+}

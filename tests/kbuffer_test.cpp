@@ -1,0 +1,212 @@
+// The dual-pass k-buffer: exact when k covers the depth complexity (in any
+// submission order, and with tied depths), truncation error that shrinks as
+// k grows with every dropped fragment counted, the unsorted tail blend, and
+// parameter checks.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "gl_fixture.h"
+
+namespace oit {
+namespace {
+
+constexpr int kSize = 32;
+const RawParams kQuads32 = {{"layers", "32"}};
+
+RunSpec spec_of(const RawParams& params, const std::string& scene, const RawParams& scene_params, int size,
+                const std::string& order = "original") {
+  RunSpec spec;
+  spec.technique = "kbuffer";
+  spec.params = params;
+  spec.scene = scene;
+  spec.scene_params = scene_params;
+  spec.submission_order = order;
+  spec.width = size;
+  spec.height = size;
+  spec.warmup = 0;
+  spec.frames = 1;
+  return spec;
+}
+
+RunResult run_ok(const RunSpec& spec) {
+  RunResult r = test::harness().run(spec);
+  EXPECT_EQ(r.status, RunStatus::ok) << r.message;
+  EXPECT_TRUE(r.error.has_value());
+  return r;
+}
+
+bool identical(const Image& a, const Image& b) { return a.width == b.width && a.height == b.height && a.rgba == b.rgba; }
+
+TEST(KBuffer, ExactOnQuadsWhenKCoversEveryLayer) {
+  const RunResult r = run_ok(spec_of({{"k", "32"}}, "quads", kQuads32, kSize));
+  ASSERT_TRUE(r.error.has_value());
+  EXPECT_EQ(r.max_depth_complexity, 32u);
+  // Slots hold float colours and are blended front to back in float; the
+  // reference blends in double: only float rounding separates them.
+  EXPECT_LT(r.error->max_abs, 1e-5);
+  const uint64_t pixels = kSize * kSize;
+  EXPECT_EQ(r.counters.fragments_stored, 32u * pixels);
+  EXPECT_EQ(r.counters.fragments_dropped, 0u);
+  EXPECT_EQ(r.counters.passes, 2u);
+  EXPECT_EQ(r.counters.bytes_allocated, pixels * 32u * (4u + 4u + 16u) + 8u);
+}
+
+TEST(KBuffer, ExactOnSpheresInAnySubmissionOrder) {
+  const RunResult original = run_ok(spec_of({{"k", "32"}}, "spheres", {}, 48));
+  ASSERT_TRUE(original.error.has_value());
+  ASSERT_LE(original.max_depth_complexity, 32u) << "k=32 must cover the scene for this test to mean anything";
+  ASSERT_GE(original.max_depth_complexity, 2u);
+  EXPECT_LT(original.error->max_abs, 1e-5);
+  EXPECT_EQ(original.counters.fragments_stored, original.scene_fragments);
+  EXPECT_EQ(original.counters.fragments_dropped, 0u);
+  for (const char* order : {"shuffled:7", "reversed"}) {
+    const RunResult reordered = run_ok(spec_of({{"k", "32"}}, "spheres", {}, 48, order));
+    ASSERT_TRUE(reordered.error.has_value());
+    EXPECT_LT(reordered.error->max_abs, 1e-5) << order;
+    // The same fragments in the same sorted order: the very same image.
+    EXPECT_TRUE(identical(reordered.image, original.image)) << order;
+  }
+}
+
+TEST(KBuffer, ExactOnShuffledQuads) {
+  const RunResult original = run_ok(spec_of({{"k", "32"}}, "quads", kQuads32, kSize));
+  const RunResult shuffled = run_ok(spec_of({{"k", "32"}}, "quads", kQuads32, kSize, "shuffled:7"));
+  ASSERT_TRUE(shuffled.error.has_value());
+  EXPECT_LT(shuffled.error->max_abs, 1e-5);
+  EXPECT_TRUE(identical(shuffled.image, original.image));
+}
+
+// A glTF scene of three full-screen unlit quads at the SAME depth (one
+// vertex accessor shared by three meshes of different colours) in front of a
+// fourth quad: every pixel has a run of three tied depth keys. Triangle ids
+// follow the file order, so the exact order of the tie is red, green, blue.
+std::string write_tied_quads_gltf() {
+  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/kbuffer";
+  std::filesystem::create_directories(dir);
+  std::vector<float> positions;
+  for (float z : {-2.0f, -3.0f})
+    for (const auto& c : {std::pair{-1.5f, -1.5f}, {1.5f, -1.5f}, {1.5f, 1.5f}, {-1.5f, 1.5f}})
+      positions.insert(positions.end(), {c.first, c.second, z});
+  const uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
+  std::string bin(positions.size() * 4 + sizeof(indices), '\0');
+  std::memcpy(bin.data(), positions.data(), positions.size() * 4);
+  std::memcpy(bin.data() + positions.size() * 4, indices, sizeof(indices));
+  std::ofstream(dir + "/tied.bin", std::ios::binary) << bin;
+
+  using nlohmann::json;
+  auto material = [](float r, float g, float b, float a) {
+    return json{{"pbrMetallicRoughness", {{"baseColorFactor", {r, g, b, a}}}},
+                {"alphaMode", "BLEND"},
+                {"extensions", {{"KHR_materials_unlit", json::object()}}}};
+  };
+  auto mesh = [](int position_accessor, int material_index) {
+    return json{{"primitives", {{{"attributes", {{"POSITION", position_accessor}}}, {"indices", 2}, {"material", material_index}}}}};
+  };
+  auto positions_accessor = [](int view, float z) {
+    return json{{"bufferView", view}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"},
+                {"min", {-1.5, -1.5, z}}, {"max", {1.5, 1.5, z}}};
+  };
+  const json gltf = {
+      {"asset", {{"version", "2.0"}}},
+      {"extensionsUsed", {"KHR_materials_unlit"}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0, 1, 2, 3, 4}}}}},
+      {"nodes", {{{"mesh", 0}}, {{"mesh", 1}}, {{"mesh", 2}}, {{"mesh", 3}}, {{"camera", 0}}}},
+      {"cameras", {{{"type", "orthographic"}, {"orthographic", {{"xmag", 1.0}, {"ymag", 1.0}, {"znear", 0.1}, {"zfar", 10.0}}}}}},
+      {"meshes", {mesh(0, 0), mesh(0, 1), mesh(0, 2), mesh(1, 3)}},
+      {"materials", {material(0.9f, 0.1f, 0.1f, 0.5f), material(0.1f, 0.9f, 0.1f, 0.6f), material(0.1f, 0.1f, 0.9f, 0.7f),
+                     material(0.8f, 0.8f, 0.2f, 0.4f)}},
+      {"accessors", {positions_accessor(0, -2.0f), positions_accessor(1, -3.0f),
+                     {{"bufferView", 2}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
+                       {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 48}},
+                       {{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 12}}}},
+      {"buffers", {{{"uri", "tied.bin"}, {"byteLength", bin.size()}}}},
+  };
+  const std::string path = dir + "/tied.gltf";
+  std::ofstream(path) << gltf.dump(2);
+  return path;
+}
+
+TEST(KBuffer, TiedDepthsAreOrderedByTriangleIdInAnySubmissionOrder) {
+  const std::string path = write_tied_quads_gltf();
+  const uint64_t pixels = 16 * 16;
+  const RunResult original = run_ok(spec_of({{"k", "4"}}, path, {}, 16));
+  ASSERT_TRUE(original.error.has_value());
+  ASSERT_EQ(original.max_depth_complexity, 4u);
+  EXPECT_LT(original.error->max_abs, 1e-6);
+  EXPECT_EQ(original.counters.fragments_stored, 4u * pixels);
+  for (const char* order : {"reversed", "shuffled:7"}) {
+    const RunResult reordered = run_ok(spec_of({{"k", "4"}}, path, {}, 16, order));
+    ASSERT_TRUE(reordered.error.has_value());
+    EXPECT_LT(reordered.error->max_abs, 1e-6) << order;
+  }
+  // The tie matters: unsorted blending of the original submission (nearest
+  // first, so blended as if it were farthest) is clearly wrong.
+  RunSpec unsorted = spec_of({}, path, {}, 16);
+  unsorted.technique = "unsorted";
+  EXPECT_GT(run_ok(unsorted).error->max_abs, 0.05);
+  // k = 2 cuts through the tied run: two of the three tied fragments and the
+  // far quad cannot stay, and each one lost is counted.
+  const RunResult cut = run_ok(spec_of({{"k", "2"}}, path, {}, 16));
+  EXPECT_EQ(cut.counters.fragments_stored, 2u * pixels);
+  EXPECT_EQ(cut.counters.fragments_dropped, 2u * pixels);
+}
+
+TEST(KBuffer, TruncationErrorShrinksAsKGrowsAndEveryDropIsCounted) {
+  const uint64_t pixels = kSize * kSize;
+  double previous_error = INFINITY;
+  for (int k : {4, 8, 16}) {
+    const RunResult r = run_ok(spec_of({{"k", std::to_string(k)}}, "quads", kQuads32, kSize));
+    ASSERT_TRUE(r.error.has_value());
+    // Dropping the far layers loses their colour: visibly wrong, but less so with more slots.
+    EXPECT_GT(r.error->max_abs, 1e-4) << "k=" << k;
+    EXPECT_LT(r.error->max_abs, previous_error) << "k=" << k;
+    previous_error = r.error->max_abs;
+    EXPECT_EQ(r.counters.fragments_stored, uint64_t(k) * pixels) << "k=" << k;
+    EXPECT_EQ(r.counters.fragments_dropped, uint64_t(32 - k) * pixels) << "k=" << k;
+  }
+}
+
+TEST(KBuffer, TailBlendBeatsDroppingTheTail) {
+  const uint64_t pixels = kSize * kSize;
+  const RunResult dropped = run_ok(spec_of({{"k", "8"}, {"tail", "drop"}}, "quads", kQuads32, kSize));
+  const RunResult blended = run_ok(spec_of({{"k", "8"}, {"tail", "blend"}}, "quads", kQuads32, kSize));
+  ASSERT_TRUE(dropped.error.has_value() && blended.error.has_value());
+  EXPECT_GT(blended.error->max_abs, 0.0);
+  EXPECT_LT(blended.error->max_abs, dropped.error->max_abs);
+  EXPECT_LT(blended.error->rmse, dropped.error->rmse);
+  // The tail is approximated, not lost: nothing is dropped.
+  EXPECT_EQ(blended.counters.fragments_stored, 8u * pixels);
+  EXPECT_EQ(blended.counters.fragments_dropped, 0u);
+  // The tail targets (RGBA16F + R16F) are counted.
+  EXPECT_EQ(blended.counters.bytes_allocated, dropped.counters.bytes_allocated + pixels * 10u);
+}
+
+TEST(KBuffer, TailBlendIsExactWhenThereIsNoTail) {
+  // With k >= layers the tail targets stay empty and must not disturb the image.
+  const RunResult r = run_ok(spec_of({{"k", "8"}, {"tail", "blend"}}, "quads", {{"layers", "8"}}, kSize));
+  ASSERT_TRUE(r.error.has_value());
+  EXPECT_LT(r.error->max_abs, 1e-5);
+}
+
+TEST(KBuffer, RejectsKOutsideOneToSixtyFour) {
+  for (const char* k : {"0", "65"}) {
+    const RunResult r = test::harness().run(spec_of({{"k", k}}, "quads", {{"layers", "2"}}, 8));
+    EXPECT_EQ(r.status, RunStatus::error) << "k=" << k;
+    EXPECT_NE(r.message.find("'k'"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("[1, 64]"), std::string::npos) << r.message;
+  }
+  const RunResult r = test::harness().run(spec_of({{"tail", "keep"}}, "quads", {{"layers", "2"}}, 8));
+  EXPECT_EQ(r.status, RunStatus::error);
+  EXPECT_NE(r.message.find("'tail'"), std::string::npos) << r.message;
+}
+
+}  // namespace
+}  // namespace oit
