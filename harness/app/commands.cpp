@@ -25,6 +25,34 @@ void print_params(const ParamSchema& schema) {
   }
 }
 
+double median_total(const RunResult& r) {
+  const StageResult* total = r.stage("total", r.clock == ClockKind::gl ? "gl" : "wall");
+  return total ? total->summary.median : 0.0;
+}
+
+// One line per run; `x baseline` is the run's median total over that of the
+// baseline technique's run on the same scene, parameters and size (same run,
+// same machine: the only speed comparison worth quoting).
+void print_summary(const std::vector<RunResult>& results, const std::string& baseline) {
+  std::printf("\n%-18s %-34s %-8s %10s %10s %7s %10s %9s  %s\n", "technique", "params", "status", "total ms",
+              ("x " + baseline).c_str(), "passes", "max error", "dropped", "scene");
+  for (const auto& r : results) {
+    double base = 0.0;
+    for (const auto& b : results)
+      if (b.spec.technique == baseline && b.status == RunStatus::ok && b.spec.scene == r.spec.scene &&
+          b.scene_params == r.scene_params && b.spec.width == r.spec.width && b.spec.height == r.spec.height)
+        base = median_total(b);
+    const bool ok = r.status == RunStatus::ok;
+    char ratio[32] = "";
+    if (ok && base > 0.0) std::snprintf(ratio, sizeof ratio, "%.1f", median_total(r) / base);
+    std::printf("%-18s %-34s %-8s %10.2f %10s %7llu %10.3g %9llu  %s %dx%d\n", r.spec.technique.c_str(),
+                r.technique_params.c_str(), to_string(r.status).c_str(), ok ? median_total(r) : 0.0, ratio,
+                static_cast<unsigned long long>(r.counters.passes), r.error ? r.error->max_abs : 0.0,
+                static_cast<unsigned long long>(r.counters.fragments_dropped), r.spec.scene.c_str(), r.spec.width,
+                r.spec.height);
+  }
+}
+
 }  // namespace
 
 int run_list(const CommonOptions& common) {
@@ -117,14 +145,7 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
     result.image = {};
     results.push_back(std::move(result));
   }
-  std::printf("\n%-20s %-28s %-10s %12s %12s %10s\n", "technique", "params", "status", "total ms", "max error",
-              "rmse");
-  for (const auto& r : results) {
-    const StageResult* total = r.stage("total", r.clock == ClockKind::gl ? "gl" : "wall");
-    std::printf("%-20s %-28s %-10s %12.3f %12.3g %10.3g\n", r.spec.technique.c_str(), r.technique_params.c_str(),
-                to_string(r.status).c_str(), total ? total->summary.median : 0.0, r.error ? r.error->max_abs : 0.0,
-                r.error ? r.error->rmse : 0.0);
-  }
+  print_summary(results, options.baseline);
   std::printf("\ndevice: %s | clock: %s | rows appended to %s\n", harness.device().renderer.c_str(),
               options.sweep.clock == "auto" ? to_string(harness.default_clock()).c_str() : options.sweep.clock.c_str(),
               options.csv.c_str());

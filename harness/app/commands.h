@@ -25,6 +25,7 @@ struct BenchOptions {
   SweepOptions sweep;
   std::string csv;
   std::string images_dir;  // one PNG per run when set
+  std::string baseline = "unsorted";  // the summary's speed ratios are against this technique
 };
 
 int run_list(const CommonOptions& common);

@@ -46,6 +46,8 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--background", bench.sweep.background, "r,g,b");
   bench_cmd->add_option("--csv", bench.csv, "CSV file to append to")->required();
   bench_cmd->add_option("--images", bench.images_dir, "directory for one PNG per run");
+  bench_cmd->add_option("--baseline", bench.baseline,
+                        "technique whose median total the summary divides by (default unsorted)");
 
   // pareto: the bench options, with each technique's quality knobs swept.
   oit::BenchOptions pareto;
