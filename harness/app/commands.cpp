@@ -34,7 +34,7 @@ double median_total(const RunResult& r) {
 // baseline technique's run on the same scene, parameters and size (same run,
 // same machine: the only speed comparison worth quoting).
 void print_summary(const std::vector<RunResult>& results, const std::string& baseline) {
-  std::printf("\n%-18s %-34s %-8s %10s %10s %7s %10s %9s  %s\n", "technique", "params", "status", "total ms",
+  std::printf("\n%-18s %-46s %-8s %10s %10s %7s %10s %9s  %s\n", "technique", "params", "status", "total ms",
               ("x " + baseline).c_str(), "passes", "max error", "dropped", "scene");
   for (const auto& r : results) {
     double base = 0.0;
@@ -45,7 +45,7 @@ void print_summary(const std::vector<RunResult>& results, const std::string& bas
     const bool ok = r.status == RunStatus::ok;
     char ratio[32] = "";
     if (ok && base > 0.0) std::snprintf(ratio, sizeof ratio, "%.1f", median_total(r) / base);
-    std::printf("%-18s %-34s %-8s %10.2f %10s %7llu %10.3g %9llu  %s %dx%d\n", r.spec.technique.c_str(),
+    std::printf("%-18s %-46s %-8s %10.2f %10s %7llu %10.3g %9llu  %s %dx%d\n", r.spec.technique.c_str(),
                 r.technique_params.c_str(), to_string(r.status).c_str(), ok ? median_total(r) : 0.0, ratio,
                 static_cast<unsigned long long>(r.counters.passes), r.error ? r.error->max_abs : 0.0,
                 static_cast<unsigned long long>(r.counters.fragments_dropped), r.spec.scene.c_str(), r.spec.width,
