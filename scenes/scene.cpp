@@ -40,7 +40,11 @@ std::string Scene::content_hash() const {
   mix(vertices.data(), vertices.size() * sizeof(Vertex));
   mix(indices.data(), indices.size() * sizeof(uint32_t));
   mix(triangle_ids.data(), triangle_ids.size() * sizeof(uint32_t));
-  mix(&camera, sizeof(Camera));
+  // Field by field: Camera has padding bytes whose contents are undefined.
+  mix(&camera.view, sizeof(camera.view));
+  mix(&camera.orthographic, sizeof(camera.orthographic));
+  for (float value : {camera.yfov_radians, camera.ymag, camera.xmag, camera.znear, camera.zfar})
+    mix(&value, sizeof(value));
   mix(&lit, sizeof(lit));
   char text[17];
   std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(hash));

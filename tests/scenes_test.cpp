@@ -87,6 +87,17 @@ TEST(Scenes, ParticlesAreSeparateObjects) {
   EXPECT_EQ(ids.size(), 27u);
 }
 
+TEST(Scenes, ContentHashIsStableAndSeesChanges) {
+  // The hash keys cached references: equal scenes must hash equal (no
+  // padding bytes), different ones differently.
+  EXPECT_EQ(load_scene("quads", {}).content_hash(), load_scene("quads", {}).content_hash());
+  EXPECT_EQ(load_scene("spheres", {}).content_hash(), load_scene("spheres", {}).content_hash());
+  EXPECT_NE(load_scene("quads", {}).content_hash(), load_scene("quads", {{"seed", "2"}}).content_hash());
+  Scene moved = load_scene("quads", {});
+  moved.camera.znear *= 2.0f;
+  EXPECT_NE(moved.content_hash(), load_scene("quads", {}).content_hash());
+}
+
 TEST(Scenes, ReorderingKeepsStableTriangleIds) {
   Scene scene = load_scene("spheres", {{"count", "1"}, {"slices", "6"}, {"stacks", "4"}});
   const Scene original = scene;

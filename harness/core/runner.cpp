@@ -70,7 +70,8 @@ void reset_gl_state() {
 
 }  // namespace
 
-Harness::Harness(GlContext& context, const TechniqueRegistry& registry) : context_(context), registry_(registry) {}
+Harness::Harness(GlContext& context, const TechniqueRegistry& registry)
+    : context_(context), registry_(registry), reference_cache_(ReferenceCache::from_environment()) {}
 Harness::~Harness() = default;
 
 Harness::LoadedScene& Harness::scene(const std::string& spec, const RawParams& params, const std::string& order) {
@@ -95,6 +96,10 @@ const Image& Harness::reference_image(const std::string& scene_spec, const RawPa
       << background.b;
   auto it = references_.find(key.str());
   if (it != references_.end()) return it->second;
+  if (auto cached = reference_cache_.load(key.str())) {
+    ++references_loaded_;
+    return references_.emplace(key.str(), std::move(*cached)).first->second;
+  }
   RunSpec spec;
   spec.technique = registry_.reference().id;
   spec.scene = scene_spec;
@@ -108,6 +113,8 @@ const Image& Harness::reference_image(const std::string& scene_spec, const RawPa
   RunResult result;
   result.spec = spec;
   execute(spec, result);
+  ++references_rendered_;
+  reference_cache_.store(key.str(), result.image);
   return references_.emplace(key.str(), std::move(result.image)).first->second;
 }
 

@@ -12,6 +12,7 @@
 #include "core/complexity.h"
 #include "core/error_metrics.h"
 #include "core/image.h"
+#include "core/reference_cache.h"
 #include "core/statistics.h"
 #include "core/technique.h"
 
@@ -76,9 +77,14 @@ class Harness {
   ClockKind default_clock() const { return device().software ? ClockKind::wall : ClockKind::gl; }
 
   RunResult run(const RunSpec& spec);
-  // The exact image of a scene/size/background, computed once and cached.
+  // The exact image of a scene/size/background, computed once and cached in
+  // memory and on disk (ReferenceCache::from_environment()).
   const Image& reference_image(const std::string& scene, const RawParams& scene_params, int width, int height,
                                const glm::vec3& background);
+  void set_reference_cache(ReferenceCache cache) { reference_cache_ = std::move(cache); }
+  // How this harness got its references so far: rendered, or read from disk.
+  int references_rendered() const { return references_rendered_; }
+  int references_loaded() const { return references_loaded_; }
 
  private:
   struct LoadedScene;
@@ -89,6 +95,8 @@ class Harness {
   const TechniqueRegistry& registry_;
   std::map<std::string, std::unique_ptr<LoadedScene>> scenes_;
   std::map<std::string, Image> references_;
+  ReferenceCache reference_cache_;
+  int references_rendered_ = 0, references_loaded_ = 0;
 };
 
 }  // namespace oit

@@ -1,0 +1,35 @@
+#pragma once
+// On-disk cache of exact reference images, so re-runs and later sweeps do not
+// pay for the reference again. The key covers the scene's content hash (its
+// geometry, colours and camera), the size, the background, the source
+// revision and the reference technique's shaders, so a changed scene or
+// reference never reads a stale image.
+#include <optional>
+#include <string>
+
+#include "core/image.h"
+
+namespace oit {
+
+class ReferenceCache {
+ public:
+  // `directory` empty: caching is off.
+  explicit ReferenceCache(std::string directory);
+  // $OIT_REFERENCE_CACHE ("off" disables), else $XDG_CACHE_HOME/oitbench/references,
+  // else ~/.cache/oitbench/references.
+  static ReferenceCache from_environment();
+
+  bool enabled() const { return !directory_.empty(); }
+  const std::string& directory() const { return directory_; }
+  std::string path_for(const std::string& key) const;
+  // A missing, unreadable or malformed file is a miss, never an error.
+  std::optional<Image> load(const std::string& key) const;
+  // Written to a temporary file and renamed, so a crash leaves no half file.
+  // Failure to write only costs the cache, so it is silent.
+  void store(const std::string& key, const Image& image) const;
+
+ private:
+  std::string directory_;
+};
+
+}  // namespace oit
