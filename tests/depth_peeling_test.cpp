@@ -1,15 +1,20 @@
-// Depth peeling: exact against the reference (quads and lit spheres, in any
-// submission order) with every fragment peeled and counted; the occlusion
-// query early exit costs depth complexity + 1 passes and without it exactly
-// max_passes run; a pass cap below the depth complexity leaves an error
-// that shrinks strictly as the cap grows, with the un-peeled rest counted;
-// fragments tied in depth are all peeled, in submission order; a camera
-// whose near plane is at the eye fails loudly; out-of-range parameters are
-// rejected naming the parameter.
+// Depth peeling, both tie breaks: exact against the reference (quads and
+// lit spheres, in any submission order) with every fragment peeled and
+// counted; the occlusion query early exit stops right after the last layer
+// (d + 1 passes by submission, d + 2 by triangle id) and without it exactly
+// max_passes run; a pass cap below the depth complexity leaves an error that
+// shrinks strictly as the cap grows, with the un-peeled rest counted.
+// Depth ties: tie_break=triangle_id peels them like the reference in every
+// submission order (coplanar stress layers, tied quads); tie_break=submission
+// peels them completely, in submission order. A camera whose near plane is
+// at the eye fails loudly by submission (depth buffer) and renders exactly by
+// triangle id (no depth buffer); out-of-range parameters are rejected naming
+// the parameter.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -23,9 +28,24 @@ namespace {
 
 constexpr int kSize = 32;
 constexpr uint64_t kPixels = uint64_t(kSize) * kSize;
-// Layer colour RGBA32F + depth + two RG32UI keys + accumulation RGBA32F, + a 4-byte counter.
-constexpr uint64_t kBytes = kPixels * (16 + 4 + 16 + 16) + 4;
 const RawParams kQuads32 = {{"layers", "32"}};
+
+// What each tie break costs: geometry passes beyond the depth complexity,
+// layers a pass cap of P leaves un-peeled beyond P, memory.
+struct TieBreak {
+  std::string name;
+  uint64_t extra_passes;
+  uint64_t capped_layers_missing;
+  uint64_t bytes;
+};
+const TieBreak kTieBreaks[] = {
+    // The nearest-depth pass + one per layer + the pass that composites the
+    // last; accumulation RGBA32F + 2 RGBA32UI states + RG32F reductions.
+    {"triangle_id", 2, 2, kPixels * (16 + 2 * 16 + 8)},
+    // One per layer + the pass that finds nothing; layer colour RGBA32F +
+    // depth + two RG32UI keys + accumulation RGBA32F, + a 4-byte counter.
+    {"submission", 1, 0, kPixels * (16 + 4 + 2 * 8 + 16) + 4},
+};
 
 RunSpec spec_of(const RawParams& params, const std::string& scene, const RawParams& scene_params, int size,
                 const std::string& order = "original") {
@@ -106,66 +126,121 @@ std::string write_quads_gltf(const std::string& name, const std::vector<std::pai
 }
 
 TEST(DepthPeeling, ExactOnThirtyTwoQuadLayers) {
-  for (const std::string order : {"original", "shuffled:7"}) {
-    SCOPED_TRACE(order);
-    const RunResult r = run_ok(spec_of({}, "quads", kQuads32, kSize, order));
-    ASSERT_TRUE(r.error.has_value());
-    // Layers are blended in float, the reference in double: only rounding separates them.
-    EXPECT_LT(r.error->max_abs, 1e-5);
-    EXPECT_EQ(r.counters.fragments_stored, 32u * kPixels);
-    EXPECT_EQ(r.counters.fragments_dropped, 0u);
-    EXPECT_EQ(r.counters.passes, 33u);  // 32 layers + the pass that finds nothing
-    EXPECT_EQ(r.counters.bytes_allocated, kBytes);
+  for (const TieBreak& tie : kTieBreaks) {
+    for (const std::string order : {"original", "shuffled:7"}) {
+      SCOPED_TRACE(tie.name + " " + order);
+      const RunResult r = run_ok(spec_of({{"tie_break", tie.name}}, "quads", kQuads32, kSize, order));
+      ASSERT_TRUE(r.error.has_value());
+      // Layers are blended in float, the reference in double: only rounding separates them.
+      EXPECT_LT(r.error->max_abs, 1e-5);
+      EXPECT_EQ(r.counters.fragments_stored, 32u * kPixels);
+      EXPECT_EQ(r.counters.fragments_dropped, 0u);
+      EXPECT_EQ(r.counters.passes, 32u + tie.extra_passes);
+      EXPECT_EQ(r.counters.bytes_allocated, tie.bytes);
+    }
   }
 }
 
 TEST(DepthPeeling, ExactOnLitSpheresInAnySubmissionOrder) {
-  for (const std::string order : {"original", "shuffled:7"}) {
-    SCOPED_TRACE(order);
-    const RunResult r = run_ok(spec_of({}, "spheres", {}, 48, order));
-    ASSERT_TRUE(r.error.has_value());
-    ASSERT_GE(r.max_depth_complexity, 4u) << "the spheres must overlap for this test to mean anything";
-    EXPECT_LT(r.error->max_abs, 1e-5);
-    EXPECT_EQ(r.counters.fragments_stored, r.scene_fragments);
-    EXPECT_EQ(r.counters.fragments_dropped, 0u);
-    EXPECT_EQ(r.counters.passes, r.max_depth_complexity + 1u);
+  for (const TieBreak& tie : kTieBreaks) {
+    for (const std::string order : {"original", "shuffled:7"}) {
+      SCOPED_TRACE(tie.name + " " + order);
+      const RunResult r = run_ok(spec_of({{"tie_break", tie.name}}, "spheres", {}, 48, order));
+      ASSERT_TRUE(r.error.has_value());
+      ASSERT_GE(r.max_depth_complexity, 4u) << "the spheres must overlap for this test to mean anything";
+      EXPECT_LT(r.error->max_abs, 1e-5);
+      EXPECT_EQ(r.counters.fragments_stored, r.scene_fragments);
+      EXPECT_EQ(r.counters.fragments_dropped, 0u);
+      EXPECT_EQ(r.counters.passes, r.max_depth_complexity + tie.extra_passes);
+    }
   }
 }
 
-TEST(DepthPeeling, EarlyExitCostsDepthComplexityPlusOnePasses) {
-  const RunResult early = run_ok(spec_of({{"early_exit", "true"}}, "quads", {{"layers", "8"}}, kSize));
-  EXPECT_EQ(early.max_depth_complexity, 8u);
-  EXPECT_EQ(early.counters.passes, 9u);
-  EXPECT_LT(early.error->max_abs, 1e-5);
-  // Without the query every allowed pass runs; the extra ones peel nothing.
-  const RunResult all = run_ok(spec_of({{"early_exit", "false"}, {"max_passes", "13"}}, "quads",
-                                       {{"layers", "8"}}, kSize));
-  EXPECT_EQ(all.counters.passes, 13u);
-  EXPECT_LT(all.error->max_abs, 1e-5);
-  EXPECT_EQ(all.counters.fragments_stored, 8u * kPixels);
-  EXPECT_EQ(all.counters.fragments_dropped, 0u);
-  EXPECT_EQ(all.image.rgba, early.image.rgba);
+TEST(DepthPeeling, EarlyExitStopsRightAfterTheLastLayer) {
+  for (const TieBreak& tie : kTieBreaks) {
+    SCOPED_TRACE(tie.name);
+    const RunResult early =
+        run_ok(spec_of({{"tie_break", tie.name}, {"early_exit", "true"}}, "quads", {{"layers", "8"}}, kSize));
+    EXPECT_EQ(early.max_depth_complexity, 8u);
+    EXPECT_EQ(early.counters.passes, 8u + tie.extra_passes);
+    EXPECT_LT(early.error->max_abs, 1e-5);
+    // Without the query every allowed pass runs; the extra ones peel nothing.
+    const RunResult all = run_ok(spec_of({{"tie_break", tie.name}, {"early_exit", "false"}, {"max_passes", "13"}},
+                                         "quads", {{"layers", "8"}}, kSize));
+    EXPECT_EQ(all.counters.passes, 13u);
+    EXPECT_LT(all.error->max_abs, 1e-5);
+    EXPECT_EQ(all.counters.fragments_stored, 8u * kPixels);
+    EXPECT_EQ(all.counters.fragments_dropped, 0u);
+    EXPECT_EQ(all.image.rgba, early.image.rgba);
+  }
 }
 
 TEST(DepthPeeling, PassCapLeavesAnErrorThatShrinksWithMorePasses) {
-  double previous_error = 2.0;
-  for (int cap : {4, 8, 16}) {
-    SCOPED_TRACE("max_passes=" + std::to_string(cap));
-    const RunResult r = run_ok(spec_of({{"max_passes", std::to_string(cap)}}, "quads", kQuads32, kSize));
-    ASSERT_TRUE(r.error.has_value());
-    EXPECT_GT(r.error->max_abs, 1e-4);
-    EXPECT_LT(r.error->max_abs, previous_error);
-    previous_error = r.error->max_abs;
-    EXPECT_EQ(r.counters.passes, uint64_t(cap));
-    // The nearest `cap` layers are peeled; the rest is counted as dropped.
-    EXPECT_EQ(r.counters.fragments_stored, uint64_t(cap) * kPixels);
-    EXPECT_EQ(r.counters.fragments_dropped, uint64_t(32 - cap) * kPixels);
+  for (const TieBreak& tie : kTieBreaks) {
+    SCOPED_TRACE(tie.name);
+    double previous_error = 2.0;
+    for (int cap : {4, 8, 16}) {
+      SCOPED_TRACE("max_passes=" + std::to_string(cap));
+      const RunResult r = run_ok(
+          spec_of({{"tie_break", tie.name}, {"max_passes", std::to_string(cap)}}, "quads", kQuads32, kSize));
+      ASSERT_TRUE(r.error.has_value());
+      EXPECT_GT(r.error->max_abs, 1e-4);
+      EXPECT_LT(r.error->max_abs, previous_error);
+      previous_error = r.error->max_abs;
+      EXPECT_EQ(r.counters.passes, uint64_t(cap));
+      // The nearest layers are peeled; the rest is counted as dropped.
+      const uint64_t peeled = uint64_t(cap) - tie.capped_layers_missing;
+      EXPECT_EQ(r.counters.fragments_stored, peeled * kPixels);
+      EXPECT_EQ(r.counters.fragments_dropped, (32u - peeled) * kPixels);
+    }
+    // The same cap without early exit gives the same image.
+    const RunResult capped = run_ok(spec_of({{"tie_break", tie.name}, {"max_passes", "8"}}, "quads", kQuads32, kSize));
+    const RunResult no_exit = run_ok(spec_of({{"tie_break", tie.name}, {"max_passes", "8"}, {"early_exit", "false"}},
+                                             "quads", kQuads32, kSize));
+    EXPECT_EQ(capped.image.rgba, no_exit.image.rgba);
+    EXPECT_EQ(no_exit.counters.fragments_dropped, (24u + tie.capped_layers_missing) * kPixels);
   }
-  // The same cap without early exit gives the same image.
-  const RunResult capped = run_ok(spec_of({{"max_passes", "8"}}, "quads", kQuads32, kSize));
-  const RunResult no_exit = run_ok(spec_of({{"max_passes", "8"}, {"early_exit", "false"}}, "quads", kQuads32, kSize));
-  EXPECT_EQ(capped.image.rgba, no_exit.image.rgba);
-  EXPECT_EQ(no_exit.counters.fragments_dropped, 24u * kPixels);
+}
+
+TEST(DepthPeeling, CoplanarStressLayersMatchTheReferenceInEverySubmissionOrder) {
+  // stress_layers with gap 0: 8 full-screen layers at one depth, so every
+  // pixel holds an 8-way tie that only the stable triangle id orders.
+  for (const std::string seed : {"1", "2"}) {
+    for (const std::string order : {"original", "reversed", "shuffled:3"}) {
+      SCOPED_TRACE("seed " + seed + " " + order);
+      const RunResult r = run_ok(spec_of({{"tie_break", "triangle_id"}}, "stress_layers",
+                                         {{"gap", "0"}, {"seed", seed}}, kSize, order));
+      EXPECT_EQ(r.max_depth_complexity, 8u);
+      EXPECT_LT(r.error->max_abs, 1e-5);
+      EXPECT_EQ(r.counters.fragments_stored, 8u * kPixels);
+      EXPECT_EQ(r.counters.fragments_dropped, 0u);
+      EXPECT_EQ(r.counters.passes, 10u);  // one per fragment of the tie, + 2
+    }
+  }
+}
+
+TEST(DepthPeeling, SubmissionTieBreakPeelsCoplanarLayersCompletelyInSubmissionOrder) {
+  std::vector<float> original_image;
+  for (const std::string order : {"original", "reversed", "shuffled:3"}) {
+    SCOPED_TRACE(order);
+    const RunResult r =
+        run_ok(spec_of({{"tie_break", "submission"}}, "stress_layers", {{"gap", "0"}}, kSize, order));
+    for (float v : r.image.rgba) ASSERT_TRUE(std::isfinite(v));
+    // Every tied fragment is peeled, one per pass; none is lost.
+    EXPECT_EQ(r.counters.fragments_stored, 8u * kPixels);
+    EXPECT_EQ(r.counters.fragments_dropped, 0u);
+    EXPECT_EQ(r.counters.passes, 9u);
+    if (order == "original") {
+      original_image = r.image.rgba;
+    } else {
+      // ... but in submission order: the image moves with it.
+      ASSERT_EQ(r.image.rgba.size(), original_image.size());
+      float largest = 0.0f;
+      for (size_t i = 0; i < original_image.size(); ++i)
+        largest = std::max(largest, std::abs(r.image.rgba[i] - original_image[i]));
+      EXPECT_GT(largest, 0.05f);
+    }
+  }
 }
 
 TEST(DepthPeeling, DepthTiesArePeeledCompletelyOnePerPass) {
@@ -176,33 +251,39 @@ TEST(DepthPeeling, DepthTiesArePeeledCompletelyOnePerPass) {
                {-2.0f, {0.1f, 0.9f, 0.1f, 0.5f}}, {-2.0f, {0.1f, 0.1f, 0.9f, 0.5f}}});
   constexpr int size = 16;
   constexpr uint64_t pixels = uint64_t(size) * size;
-  for (const std::string order : {"original", "reversed", "shuffled:3"}) {
-    SCOPED_TRACE(order);
-    const RunResult r = run_ok(spec_of({}, path, {}, size, order));
-    EXPECT_EQ(r.max_depth_complexity, 4u);
-    // Every tied fragment is peeled in a pass of its own, in submission order; none is lost.
-    EXPECT_EQ(r.counters.fragments_stored, 4u * pixels);
-    EXPECT_EQ(r.counters.fragments_dropped, 0u);
-    EXPECT_EQ(r.counters.passes, 5u);
-    if (order == "original") {
-      // Submitted in id order, the tie is peeled in the reference's order.
-      EXPECT_LT(r.error->max_abs, 1e-5);
+  for (const TieBreak& tie : kTieBreaks) {
+    for (const std::string order : {"original", "reversed", "shuffled:3"}) {
+      SCOPED_TRACE(tie.name + " " + order);
+      const RunResult r = run_ok(spec_of({{"tie_break", tie.name}}, path, {}, size, order));
+      EXPECT_EQ(r.max_depth_complexity, 4u);
+      // Every tied fragment is peeled in a pass of its own; none is lost.
+      EXPECT_EQ(r.counters.fragments_stored, 4u * pixels);
+      EXPECT_EQ(r.counters.fragments_dropped, 0u);
+      EXPECT_EQ(r.counters.passes, 4u + tie.extra_passes);
+      if (tie.name == "triangle_id" || order == "original") {
+        // By id, or submitted in id order: the reference's order.
+        EXPECT_LT(r.error->max_abs, 1e-5);
+      } else if (order == "reversed") {
+        // By submission, reversed: the tie is peeled in reverse id order.
+        EXPECT_GT(r.error->max_abs, 0.05);
+      }
     }
   }
-  // Reversed, the tie is peeled in reverse id order: the image differs from
-  // the reference, which breaks ties by id.
-  const RunResult reversed = run_ok(spec_of({}, path, {}, size, "reversed"));
-  EXPECT_GT(reversed.error->max_abs, 0.05);
 }
 
 TEST(DepthPeeling, RefusesACameraWhoseNearPlaneIsAtTheEye) {
-  // Depths <= 0 cannot be ordered by the depth test; rather than merging
-  // layers silently the run fails, naming the technique and the range.
-  const std::string path = write_quads_gltf("near_zero", {{-1.0f, {0.9f, 0.1f, 0.1f, 0.5f}}}, 0.0);
-  const RunResult r = test::harness().run(spec_of({}, path, {}, 8));
+  // By submission, depths <= 0 cannot be ordered by the depth test; rather
+  // than merging layers silently the run fails, naming the technique and the range.
+  const std::string path = write_quads_gltf("near_zero", {{-1.0f, {0.9f, 0.1f, 0.1f, 0.5f}},
+                                                          {-2.0f, {0.1f, 0.1f, 0.9f, 0.5f}}}, 0.0);
+  const RunResult r = test::harness().run(spec_of({{"tie_break", "submission"}}, path, {}, 8));
   EXPECT_EQ(r.status, RunStatus::error);
   EXPECT_NE(r.message.find("depth_peeling"), std::string::npos) << r.message;
   EXPECT_NE(r.message.find("near plane"), std::string::npos) << r.message;
+  // By triangle id no depth buffer is involved: any view depth is compared exactly.
+  const RunResult by_id = run_ok(spec_of({{"tie_break", "triangle_id"}}, path, {}, 8));
+  EXPECT_LT(by_id.error->max_abs, 1e-5);
+  EXPECT_EQ(by_id.counters.fragments_stored, 2u * 64u);
 }
 
 TEST(DepthPeeling, RejectsOutOfRangeParametersNamingThem) {
@@ -212,9 +293,11 @@ TEST(DepthPeeling, RejectsOutOfRangeParametersNamingThem) {
     EXPECT_NE(r.message.find("max_passes"), std::string::npos) << r.message;
     EXPECT_NE(r.message.find("depth_peeling"), std::string::npos) << r.message;
   }
-  const RunResult r = test::harness().run(spec_of({{"early_exit", "maybe"}}, "quads", {{"layers", "2"}}, 8));
-  EXPECT_EQ(r.status, RunStatus::error);
-  EXPECT_NE(r.message.find("early_exit"), std::string::npos) << r.message;
+  for (const auto& [name, bad] : {std::pair{"early_exit", "maybe"}, std::pair{"tie_break", "depth"}}) {
+    const RunResult r = test::harness().run(spec_of({{name, bad}}, "quads", {{"layers", "2"}}, 8));
+    EXPECT_EQ(r.status, RunStatus::error);
+    EXPECT_NE(r.message.find(name), std::string::npos) << r.message;
+  }
 }
 
 }  // namespace

@@ -1,14 +1,19 @@
-// Dual depth peeling: exact against the reference (quads, an odd number of
-// layers whose middle layer is both the nearest and the farthest, lit
-// spheres; in any submission order) with every fragment counted; N layers
-// cost N/2 + 1 geometry passes with early exit and exactly max_passes
+// Dual depth peeling, both tie breaks: exact against the reference (quads,
+// an odd number of layers whose middle layer is both the nearest and the
+// farthest, lit spheres; in any submission order) with every fragment
+// counted; N layers cost ceil(N/2) + 1 geometry passes by submission,
+// ceil(N/2) + 2 by triangle id, with early exit and exactly max_passes
 // without; a pass cap leaves the middle layers out with an error that shrinks
-// strictly as the cap grows; fragments tied in depth are all composited, in
-// submission order; out-of-range parameters are rejected by name.
+// strictly as the cap grows. Depth ties: tie_break=triangle_id composites
+// them like the reference in every submission order (coplanar stress layers;
+// ties at the front, the back and in the middle); tie_break=submission
+// composites them all, in submission order. Out-of-range parameters are
+// rejected by name.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -22,9 +27,30 @@ namespace {
 
 constexpr int kSize = 32;
 constexpr uint64_t kPixels = uint64_t(kSize) * kSize;
-// Two RG32F depth ranges + front and back RGBA32F accumulations, + a 4-byte counter.
-constexpr uint64_t kBytes = kPixels * (2 * 8 + 2 * 16) + 4;
 const RawParams kQuads32 = {{"layers", "32"}};
+
+// What each tie break costs: geometry passes beyond ceil(d / 2), passes a
+// cap spends without compositing (layers composited = 2 * (cap - it)), memory.
+struct TieBreak {
+  std::string name;
+  uint64_t extra_passes;
+  uint64_t passes_not_compositing;
+  uint64_t bytes;
+};
+const TieBreak kTieBreaks[] = {
+    // The min-max pass + the pass that composites the last selection; front
+    // and back RGBA32F + 2 RGBA32UI keys + 2 RG32F next depths + RGBA32F reductions.
+    {"triangle_id", 2, 2, kPixels * (2 * 16 + 2 * 16 + 2 * 8 + 16)},
+    // The min-max pass; two RG32F depth ranges + front and back RGBA32F, + a 4-byte counter.
+    {"submission", 1, 1, kPixels * (2 * 8 + 2 * 16) + 4},
+};
+
+float largest_difference(const std::vector<float>& a, const std::vector<float>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  float largest = 0.0f;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i) largest = std::max(largest, std::abs(a[i] - b[i]));
+  return largest;
+}
 
 RunSpec spec_of(const RawParams& params, const std::string& scene, const RawParams& scene_params, int size,
                 const std::string& order = "original") {
@@ -104,76 +130,152 @@ std::string write_quads_gltf(const std::string& name, const std::vector<std::pai
 }
 
 TEST(DualDepthPeeling, ExactOnThirtyTwoQuadLayersInHalfThePasses) {
-  for (const std::string order : {"original", "shuffled:7"}) {
-    SCOPED_TRACE(order);
-    const RunResult r = run_ok(spec_of({}, "quads", kQuads32, kSize, order));
-    ASSERT_TRUE(r.error.has_value());
-    // Front and back are blended in float, the reference in double.
-    EXPECT_LT(r.error->max_abs, 1e-5);
-    EXPECT_EQ(r.counters.fragments_stored, 32u * kPixels);
-    EXPECT_EQ(r.counters.fragments_dropped, 0u);
-    EXPECT_EQ(r.counters.passes, 17u);  // the min-max pass + 16 passes of 2 layers
-    EXPECT_EQ(r.counters.bytes_allocated, kBytes);
+  for (const TieBreak& tie : kTieBreaks) {
+    for (const std::string order : {"original", "shuffled:7"}) {
+      SCOPED_TRACE(tie.name + " " + order);
+      const RunResult r = run_ok(spec_of({{"tie_break", tie.name}}, "quads", kQuads32, kSize, order));
+      ASSERT_TRUE(r.error.has_value());
+      // Front and back are blended in float, the reference in double.
+      EXPECT_LT(r.error->max_abs, 1e-5);
+      EXPECT_EQ(r.counters.fragments_stored, 32u * kPixels);
+      EXPECT_EQ(r.counters.fragments_dropped, 0u);
+      EXPECT_EQ(r.counters.passes, 16u + tie.extra_passes);  // 16 passes of 2 layers
+      EXPECT_EQ(r.counters.bytes_allocated, tie.bytes);
+    }
   }
 }
 
 TEST(DualDepthPeeling, OddLayerCountCompositesTheMiddleLayerOnce) {
-  // With 7 layers the 4th pass finds nearest == farthest: one fragment that
-  // must go to the front or the back accumulation, not both.
-  const RunResult r = run_ok(spec_of({}, "quads", {{"layers", "7"}, {"alpha", "0.6"}}, kSize));
-  EXPECT_LT(r.error->max_abs, 1e-5);
-  EXPECT_EQ(r.counters.passes, 5u);  // 1 + ceil(7 / 2)
-  EXPECT_EQ(r.counters.fragments_stored, 7u * kPixels);
-  EXPECT_EQ(r.counters.fragments_dropped, 0u);
+  // With 7 layers the 4th selection finds one fragment, nearest and farthest
+  // at once: it must go to the front or the back accumulation, not both.
+  for (const TieBreak& tie : kTieBreaks) {
+    SCOPED_TRACE(tie.name);
+    const RunResult r = run_ok(spec_of({{"tie_break", tie.name}}, "quads", {{"layers", "7"}, {"alpha", "0.6"}}, kSize));
+    EXPECT_LT(r.error->max_abs, 1e-5);
+    EXPECT_EQ(r.counters.passes, 4u + tie.extra_passes);  // ceil(7 / 2) + ...
+    EXPECT_EQ(r.counters.fragments_stored, 7u * kPixels);
+    EXPECT_EQ(r.counters.fragments_dropped, 0u);
+  }
 }
 
 TEST(DualDepthPeeling, ExactOnLitSpheresInAnySubmissionOrder) {
-  for (const std::string order : {"original", "shuffled:7"}) {
-    SCOPED_TRACE(order);
-    const RunResult r = run_ok(spec_of({}, "spheres", {}, 48, order));
-    ASSERT_TRUE(r.error.has_value());
-    ASSERT_GE(r.max_depth_complexity, 4u) << "the spheres must overlap for this test to mean anything";
-    EXPECT_LT(r.error->max_abs, 1e-5);
-    EXPECT_EQ(r.counters.fragments_stored, r.scene_fragments);
-    EXPECT_EQ(r.counters.fragments_dropped, 0u);
-    EXPECT_EQ(r.counters.passes, 1u + (r.max_depth_complexity + 1u) / 2u);
+  for (const TieBreak& tie : kTieBreaks) {
+    for (const std::string order : {"original", "shuffled:7"}) {
+      SCOPED_TRACE(tie.name + " " + order);
+      const RunResult r = run_ok(spec_of({{"tie_break", tie.name}}, "spheres", {}, 48, order));
+      ASSERT_TRUE(r.error.has_value());
+      ASSERT_GE(r.max_depth_complexity, 4u) << "the spheres must overlap for this test to mean anything";
+      EXPECT_LT(r.error->max_abs, 1e-5);
+      EXPECT_EQ(r.counters.fragments_stored, r.scene_fragments);
+      EXPECT_EQ(r.counters.fragments_dropped, 0u);
+      EXPECT_EQ(r.counters.passes, (r.max_depth_complexity + 1u) / 2u + tie.extra_passes);
+    }
   }
 }
 
 TEST(DualDepthPeeling, WithoutEarlyExitRunsExactlyMaxPasses) {
-  const RunResult early = run_ok(spec_of({}, "quads", {{"layers", "8"}}, kSize));
-  EXPECT_EQ(early.counters.passes, 5u);
-  const RunResult all = run_ok(spec_of({{"early_exit", "false"}, {"max_passes", "9"}}, "quads", {{"layers", "8"}}, kSize));
-  EXPECT_EQ(all.counters.passes, 9u);
-  EXPECT_LT(all.error->max_abs, 1e-5);
-  EXPECT_EQ(all.counters.fragments_dropped, 0u);
-  EXPECT_EQ(all.image.rgba, early.image.rgba);
+  for (const TieBreak& tie : kTieBreaks) {
+    SCOPED_TRACE(tie.name);
+    const RunResult early = run_ok(spec_of({{"tie_break", tie.name}}, "quads", {{"layers", "8"}}, kSize));
+    EXPECT_EQ(early.counters.passes, 4u + tie.extra_passes);
+    const RunResult all = run_ok(spec_of({{"tie_break", tie.name}, {"early_exit", "false"}, {"max_passes", "9"}},
+                                         "quads", {{"layers", "8"}}, kSize));
+    EXPECT_EQ(all.counters.passes, 9u);
+    EXPECT_LT(all.error->max_abs, 1e-5);
+    EXPECT_EQ(all.counters.fragments_stored, 8u * kPixels);
+    EXPECT_EQ(all.counters.fragments_dropped, 0u);
+    EXPECT_EQ(all.image.rgba, early.image.rgba);
+  }
 }
 
 TEST(DualDepthPeeling, PassCapLeavesAnErrorThatShrinksWithMorePasses) {
-  double previous_error = 2.0;
-  for (int cap : {4, 8, 16}) {
-    SCOPED_TRACE("max_passes=" + std::to_string(cap));
-    const RunResult r = run_ok(spec_of({{"max_passes", std::to_string(cap)}}, "quads", kQuads32, kSize));
-    ASSERT_TRUE(r.error.has_value());
-    EXPECT_GT(r.error->max_abs, 1e-4);
-    EXPECT_LT(r.error->max_abs, previous_error);
-    previous_error = r.error->max_abs;
-    EXPECT_EQ(r.counters.passes, uint64_t(cap));
-    // After the min-max pass each pass composites 2 layers; the middle rest is counted as dropped.
-    const uint64_t peeled_layers = 2u * uint64_t(cap - 1);
-    EXPECT_EQ(r.counters.fragments_stored, peeled_layers * kPixels);
-    EXPECT_EQ(r.counters.fragments_dropped, (32u - peeled_layers) * kPixels);
+  for (const TieBreak& tie : kTieBreaks) {
+    SCOPED_TRACE(tie.name);
+    double previous_error = 2.0;
+    for (int cap : {4, 8, 16}) {
+      SCOPED_TRACE("max_passes=" + std::to_string(cap));
+      const RunResult r = run_ok(
+          spec_of({{"tie_break", tie.name}, {"max_passes", std::to_string(cap)}}, "quads", kQuads32, kSize));
+      ASSERT_TRUE(r.error.has_value());
+      EXPECT_GT(r.error->max_abs, 1e-4);
+      EXPECT_LT(r.error->max_abs, previous_error);
+      previous_error = r.error->max_abs;
+      EXPECT_EQ(r.counters.passes, uint64_t(cap));
+      // Each compositing pass takes 2 layers; the middle rest is counted as dropped.
+      const uint64_t peeled_layers = 2u * (uint64_t(cap) - tie.passes_not_compositing);
+      EXPECT_EQ(r.counters.fragments_stored, peeled_layers * kPixels);
+      EXPECT_EQ(r.counters.fragments_dropped, (32u - peeled_layers) * kPixels);
+    }
+    // Passes that composite nothing: nothing stored, all counted.
+    const RunResult nothing = run_ok(spec_of(
+        {{"tie_break", tie.name}, {"max_passes", std::to_string(tie.passes_not_compositing)}}, "quads", kQuads32, kSize));
+    EXPECT_EQ(nothing.counters.fragments_stored, 0u);
+    EXPECT_EQ(nothing.counters.fragments_dropped, 32u * kPixels);
   }
-  // max_passes = 1 is the min-max pass alone: nothing composited, all counted.
-  const RunResult only_range = run_ok(spec_of({{"max_passes", "1"}}, "quads", kQuads32, kSize));
-  EXPECT_EQ(only_range.counters.fragments_stored, 0u);
-  EXPECT_EQ(only_range.counters.fragments_dropped, 32u * kPixels);
+}
+
+TEST(DualDepthPeeling, CoplanarStressLayersMatchTheReferenceInEverySubmissionOrder) {
+  // stress_layers with gap 0: 8 full-screen layers at one depth, so the
+  // nearest and the farthest depth coincide and every pixel holds an 8-way
+  // tie that only the stable triangle id orders, from both ends.
+  for (const std::string seed : {"1", "2"}) {
+    for (const std::string order : {"original", "reversed", "shuffled:3"}) {
+      SCOPED_TRACE("seed " + seed + " " + order);
+      const RunResult r = run_ok(spec_of({{"tie_break", "triangle_id"}}, "stress_layers",
+                                         {{"gap", "0"}, {"seed", seed}}, kSize, order));
+      EXPECT_EQ(r.max_depth_complexity, 8u);
+      EXPECT_LT(r.error->max_abs, 1e-5);
+      EXPECT_EQ(r.counters.fragments_stored, 8u * kPixels);
+      EXPECT_EQ(r.counters.fragments_dropped, 0u);
+      EXPECT_EQ(r.counters.passes, 6u);  // 2 of the tie per pass, + 2
+    }
+  }
+}
+
+TEST(DualDepthPeeling, SubmissionTieBreakCompositesCoplanarLayersCompletelyInSubmissionOrder) {
+  std::vector<float> original_image;
+  for (const std::string order : {"original", "reversed", "shuffled:3"}) {
+    SCOPED_TRACE(order);
+    const RunResult r =
+        run_ok(spec_of({{"tie_break", "submission"}}, "stress_layers", {{"gap", "0"}}, kSize, order));
+    for (float v : r.image.rgba) ASSERT_TRUE(std::isfinite(v));
+    // The whole tie is at the nearest depth: all composited in one pass, none lost ...
+    EXPECT_EQ(r.counters.fragments_stored, 8u * kPixels);
+    EXPECT_EQ(r.counters.fragments_dropped, 0u);
+    EXPECT_EQ(r.counters.passes, 2u);
+    if (order == "original") {
+      original_image = r.image.rgba;
+    } else {
+      // ... but in submission order: the image moves with it.
+      EXPECT_GT(largest_difference(r.image.rgba, original_image), 0.05f);
+    }
+  }
+}
+
+TEST(DualDepthPeeling, TriangleIdTieBreakOrdersTiesAtTheFrontTheBackAndInTheMiddle) {
+  constexpr int size = 16;
+  constexpr uint64_t pixels = uint64_t(size) * size;
+  const glm::vec4 red{0.9f, 0.1f, 0.1f, 0.5f}, green{0.1f, 0.9f, 0.1f, 0.5f}, blue{0.1f, 0.1f, 0.9f, 0.5f};
+  const glm::vec4 yellow{0.9f, 0.9f, 0.1f, 0.3f}, cyan{0.1f, 0.8f, 0.8f, 0.6f}, white{0.8f, 0.8f, 0.8f, 0.4f};
+  // Ties of 3 at the front and 2 at the back, one layer alone and a tie of 2
+  // in the middle: selections meet inside a tie and cross tie boundaries.
+  const std::string mixed = write_quads_gltf(
+      "mixed_ties", {{-1.0f, red}, {-1.0f, green}, {-1.0f, blue}, {-1.5f, yellow}, {-2.0f, cyan},
+                     {-2.0f, white}, {-3.0f, green}, {-3.0f, red}});
+  for (const std::string order : {"original", "reversed", "shuffled:3", "shuffled:5"}) {
+    SCOPED_TRACE(order);
+    const RunResult r = run_ok(spec_of({{"tie_break", "triangle_id"}}, mixed, {}, size, order));
+    EXPECT_LT(r.error->max_abs, 1e-5);
+    EXPECT_EQ(r.counters.fragments_stored, 8u * pixels);
+    EXPECT_EQ(r.counters.fragments_dropped, 0u);
+    EXPECT_EQ(r.counters.passes, 6u);
+  }
 }
 
 TEST(DualDepthPeeling, DepthTiesAreAllCompositedInSubmissionOrder) {
   constexpr int size = 16;
   constexpr uint64_t pixels = uint64_t(size) * size;
+  const RawParams by_submission = {{"tie_break", "submission"}};
   const glm::vec4 red{0.9f, 0.1f, 0.1f, 0.5f}, green{0.1f, 0.9f, 0.1f, 0.5f}, blue{0.1f, 0.1f, 0.9f, 0.5f};
   const glm::vec4 yellow{0.9f, 0.9f, 0.1f, 0.3f};
   // Three coplanar quads in front (their fragments tie exactly in depth), one behind.
@@ -181,13 +283,13 @@ TEST(DualDepthPeeling, DepthTiesAreAllCompositedInSubmissionOrder) {
       write_quads_gltf("front_tie", {{-1.0f, red}, {-1.0f, green}, {-1.0f, blue}, {-2.0f, yellow}});
   // The tied fragments all sit at the nearest depth: each is blended under
   // the front in rasterisation order, which in id order is the reference's.
-  const RunResult in_order = run_ok(spec_of({}, front_tie, {}, size));
+  const RunResult in_order = run_ok(spec_of(by_submission, front_tie, {}, size));
   EXPECT_LT(in_order.error->max_abs, 1e-5);
   EXPECT_EQ(in_order.counters.fragments_stored, 4u * pixels);
   EXPECT_EQ(in_order.counters.fragments_dropped, 0u);
   EXPECT_EQ(in_order.counters.passes, 2u);
   // Reversed submission reverses the tie: nothing is lost, the order is wrong.
-  const RunResult reversed = run_ok(spec_of({}, front_tie, {}, size, "reversed"));
+  const RunResult reversed = run_ok(spec_of(by_submission, front_tie, {}, size, "reversed"));
   EXPECT_EQ(reversed.counters.fragments_stored, 4u * pixels);
   EXPECT_EQ(reversed.counters.fragments_dropped, 0u);
   EXPECT_GT(reversed.error->max_abs, 0.05);
@@ -197,13 +299,24 @@ TEST(DualDepthPeeling, DepthTiesAreAllCompositedInSubmissionOrder) {
       write_quads_gltf("back_tie", {{-1.0f, yellow}, {-2.0f, red}, {-2.0f, green}, {-2.0f, blue}});
   for (const std::string order : {"original", "reversed"}) {
     SCOPED_TRACE(order);
-    const RunResult r = run_ok(spec_of({}, back_tie, {}, size, order));
+    const RunResult r = run_ok(spec_of(by_submission, back_tie, {}, size, order));
     EXPECT_EQ(r.counters.fragments_stored, 4u * pixels);
     EXPECT_EQ(r.counters.fragments_dropped, 0u);
     if (order == "original") {
       EXPECT_GT(r.error->max_abs, 0.05);
     } else {
       EXPECT_LT(r.error->max_abs, 1e-5);
+    }
+  }
+  // By triangle id both ties come out as the reference's in either order,
+  // one tied fragment per side and pass.
+  for (const std::string& scene : {front_tie, back_tie}) {
+    for (const std::string order : {"original", "reversed"}) {
+      SCOPED_TRACE(scene + " " + order);
+      const RunResult r = run_ok(spec_of({{"tie_break", "triangle_id"}}, scene, {}, size, order));
+      EXPECT_LT(r.error->max_abs, 1e-5);
+      EXPECT_EQ(r.counters.fragments_stored, 4u * pixels);
+      EXPECT_EQ(r.counters.passes, 4u);
     }
   }
 }
@@ -215,9 +328,11 @@ TEST(DualDepthPeeling, RejectsOutOfRangeParametersNamingThem) {
     EXPECT_NE(r.message.find("max_passes"), std::string::npos) << r.message;
     EXPECT_NE(r.message.find("dual_depth_peeling"), std::string::npos) << r.message;
   }
-  const RunResult r = test::harness().run(spec_of({{"early_exit", "maybe"}}, "quads", {{"layers", "2"}}, 8));
-  EXPECT_EQ(r.status, RunStatus::error);
-  EXPECT_NE(r.message.find("early_exit"), std::string::npos) << r.message;
+  for (const auto& [name, bad] : {std::pair{"early_exit", "maybe"}, std::pair{"tie_break", "depth"}}) {
+    const RunResult r = test::harness().run(spec_of({{name, bad}}, "quads", {{"layers", "2"}}, 8));
+    EXPECT_EQ(r.status, RunStatus::error);
+    EXPECT_NE(r.message.find(name), std::string::npos) << r.message;
+  }
 }
 
 }  // namespace

@@ -5,12 +5,17 @@
 // that layer under the accumulation. With early_exit an occlusion query stops
 // at the first pass that peels nothing, so depth complexity d costs d + 1
 // geometry passes. Exact when max_passes > the depth complexity.
+//
+// This file is tie_break=submission: depth ties are peeled in submission
+// order. tie_break=triangle_id (the default, by_triangle_id.cpp) peels them
+// by stable triangle id, as the reference does.
 #include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "by_triangle_id.h"
 #include "core/technique.h"
 #include "gl/check.h"
 #include "gl/shader_program.h"
@@ -55,11 +60,11 @@ GLuint float_bits(float value) {
   return bits;
 }
 
-class DepthPeeling final : public Technique {
+class DepthPeelingBySubmission final : public Technique {
  public:
-  explicit DepthPeeling(const ParamSet& params)
-      : max_passes_(int(params.integer("max_passes"))),
-        early_exit_(params.boolean("early_exit")),
+  DepthPeelingBySubmission(int max_passes, bool early_exit)
+      : max_passes_(max_passes),
+        early_exit_(early_exit),
         peel_(build_geometry_program("algorithms/depth_peeling/peel.frag", {{"COUNT_SURVIVORS", "0"}})),
         // The atomic counter slows a pass down even where it never runs (Mesa
         // llvmpipe), so only the capped last pass uses the counting variant.
@@ -223,11 +228,22 @@ void register_technique_depth_peeling(TechniqueRegistry& registry) {
       ParamSpec::boolean("early_exit", true,
                          "stop at the first pass that peels nothing (occlusion query); false runs exactly "
                          "max_passes passes"),
+      ParamSpec::choice("tie_break", "triangle_id", {"triangle_id", "submission"},
+                        "order of fragments at bit-identical depth: triangle_id peels them by stable id like "
+                        "the reference (any submission order gives the same image; d + 2 passes); "
+                        "submission peels them in submission order (faster, d + 1 passes, but the image of "
+                        "coplanar geometry depends on the submission order)"),
   };
   d.stages = {"clear", "peel", "compose"};
   d.exactness = Exactness::exact;
   d.quality_sweep = {{"max_passes", {"2", "4", "8", "16", "32", "64"}}};
-  d.create = [](const ParamSet& params) { return std::make_unique<DepthPeeling>(params); };
+  d.create = [](const ParamSet& params) -> std::unique_ptr<Technique> {
+    const int max_passes = int(params.integer("max_passes"));
+    const bool early_exit = params.boolean("early_exit");
+    if (params.choice("tie_break") == "submission")
+      return std::make_unique<DepthPeelingBySubmission>(max_passes, early_exit);
+    return make_depth_peeling_by_triangle_id(max_passes, early_exit);
+  };
   registry.add(std::move(d));
 }
 

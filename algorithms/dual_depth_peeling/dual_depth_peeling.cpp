@@ -4,10 +4,16 @@
 // under the front accumulation and the one at the farthest depth over the
 // back accumulation, while finding the next range among the fragments
 // strictly inside. N layers cost N/2 + 1 geometry passes (rounded up).
+//
+// This file is tie_break=submission: fragments tied in depth are composited
+// in the same pass, in submission order. tie_break=triangle_id (the default,
+// by_triangle_id.cpp) composites them by stable triangle id, as the
+// reference does.
 #include <cfloat>
 #include <stdexcept>
 #include <string>
 
+#include "by_triangle_id.h"
 #include "core/technique.h"
 #include "gl/check.h"
 #include "gl/shader_program.h"
@@ -26,11 +32,11 @@ constexpr GLuint kBackUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
 constexpr uint64_t kBytesPerPixel = 2 * 8 + 2 * 16;
 constexpr uint64_t kCounterBytes = sizeof(GLuint);
 
-class DualDepthPeeling final : public Technique {
+class DualDepthPeelingBySubmission final : public Technique {
  public:
-  explicit DualDepthPeeling(const ParamSet& params)
-      : max_passes_(int(params.integer("max_passes"))),
-        early_exit_(params.boolean("early_exit")),
+  DualDepthPeelingBySubmission(int max_passes, bool early_exit)
+      : max_passes_(max_passes),
+        early_exit_(early_exit),
         // Variants with COUNT_LEFT_UNPEELED=1 serve the last pass max_passes allows.
         init_{build_geometry_program("algorithms/dual_depth_peeling/init.frag", {{"COUNT_LEFT_UNPEELED", "0"}}),
               build_geometry_program("algorithms/dual_depth_peeling/init.frag", {{"COUNT_LEFT_UNPEELED", "1"}})},
@@ -189,11 +195,23 @@ void register_technique_dual_depth_peeling(TechniqueRegistry& registry) {
       ParamSpec::boolean("early_exit", true,
                          "stop once no depth range is left (occlusion query on a full-screen check); false "
                          "runs exactly max_passes passes"),
+      ParamSpec::choice("tie_break", "triangle_id", {"triangle_id", "submission"},
+                        "order of fragments at bit-identical depth: triangle_id composites them by stable id "
+                        "like the reference (any submission order gives the same image; ceil(d/2) + 2 "
+                        "passes); submission composites a tie in one pass in submission order (faster, "
+                        "ceil(d/2) + 1 passes, but the image of coplanar geometry depends on the submission "
+                        "order)"),
   };
   d.stages = {"clear", "peel", "compose"};
   d.exactness = Exactness::exact;
   d.quality_sweep = {{"max_passes", {"2", "3", "5", "9", "17", "33"}}};
-  d.create = [](const ParamSet& params) { return std::make_unique<DualDepthPeeling>(params); };
+  d.create = [](const ParamSet& params) -> std::unique_ptr<Technique> {
+    const int max_passes = int(params.integer("max_passes"));
+    const bool early_exit = params.boolean("early_exit");
+    if (params.choice("tie_break") == "submission")
+      return std::make_unique<DualDepthPeelingBySubmission>(max_passes, early_exit);
+    return make_dual_depth_peeling_by_triangle_id(max_passes, early_exit);
+  };
   registry.add(std::move(d));
 }
 
