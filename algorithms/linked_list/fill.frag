@@ -1,0 +1,18 @@
+#version 450 core
+// Fill pass: every fragment is appended to its pixel's list. The pixel's
+// length is counted even when the pool is full, so the host learns both how
+// many nodes it needs and how long the longest list is.
+#include "shaders/shading.glsl"
+#include "algorithms/linked_list/nodes.glsl"
+
+void main() {
+  const uint pixel = ll_pixel();
+  const uint position = atomicAdd(ll_lengths[pixel], 1u);
+  atomicMax(ll_max_length, position + 1u);
+  // Counted here, composited nowhere: the resolve keeps the nearest max_per_pixel.
+  if (position >= u_max_per_pixel) atomicAdd(ll_dropped, 1u);
+  const uint index = atomicAdd(ll_node_count, 1u);
+  if (index >= u_capacity) return;  // pool overflow: the host grows the pool and re-renders
+  const uint next = atomicExchange(ll_heads[pixel], index);
+  ll_nodes[index] = LinkedListNode(oit_shade(), uvec4(floatBitsToUint(oit_view_depth()), oit_triangle_id(), next, 0u));
+}

@@ -1,0 +1,31 @@
+// Storage of the per-pixel linked lists (Yang et al. 2010): a head pointer
+// and a list length per pixel, one pool of nodes, and global counters.
+#include "shaders/bindings.h"
+
+#define LL_NIL 0xffffffffu
+
+// Read and written as whole vectors: on Mesa 22.3 llvmpipe, reading single
+// scalar members of a struct array in a loop returned wrong values.
+struct LinkedListNode {
+  vec4 color;  // straight RGBA from oit_shade(), unpacked float
+  uvec4 link;  // x: view depth (float bits), y: stable triangle id, z: next node, w: unused (std430 padding)
+};
+
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) coherent buffer LinkedListHeads { uint ll_heads[]; };
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) buffer LinkedListNodes { LinkedListNode ll_nodes[]; };
+// node_count: fragments the fill produced (may exceed the pool: that is how
+// the host sees an overflow). max_length: the longest list, which sizes the
+// resolve. dropped: fragments beyond max_per_pixel in their pixel, which the
+// resolve will not composite.
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 2) coherent buffer LinkedListCounters {
+  uint ll_node_count;
+  uint ll_max_length;
+  uint ll_dropped;
+};
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 3) coherent buffer LinkedListLengths { uint ll_lengths[]; };
+
+layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform uint u_capacity;
+layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_width;
+layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 2) uniform uint u_max_per_pixel;
+
+uint ll_pixel() { return uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x); }

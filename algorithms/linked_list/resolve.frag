@@ -1,0 +1,94 @@
+#version 450 core
+// Resolve pass (one full-screen draw): gather the pixel's list into a local
+// array of LL_CAPACITY elements, sort it by (view depth, stable triangle id),
+// composite front to back in float. Pixels whose list is longer than the
+// array are left to resolve_truncated.frag (a second draw, only when the
+// fill counted dropped fragments).
+//
+// The list is walked by exactly ONE loop, and nothing else here walks it.
+// On Mesa 22.3 llvmpipe (seen with SSBO reads), nested loops following
+// `next` pointers visited only the head, and a second loop walking the list
+// that merely read the local array made the blend loop after it stop after
+// one iteration. For the network a loop would also cost its speed: a loop
+// around the compare-exchanges made llvmpipe keep the registers in memory
+// (30x slower), so the network resolve is straight-line code.
+#include "algorithms/linked_list/resolve_common.glsl"
+
+#if defined(LL_SORT_NETWORK)
+// Indexed only by constants (every macro below expands to literal indices),
+// so the compiler keeps the elements in registers; a runtime-indexed array
+// would live in memory and be accessed lane by lane on llvmpipe.
+uvec3 e[LL_CAPACITY];
+
+// Padding sorts after every real fragment: x = 0xffffffff would need NaN depth bits.
+#define LL_PAD uvec3(0xffffffffu, 0xffffffffu, LL_NIL)
+#define LL_CE(i, j) { \
+    const bool swap_ij = precedes(e[j], e[i]); \
+    const uvec3 first_ij = swap_ij ? e[j] : e[i]; \
+    e[j] = swap_ij ? e[i] : e[j]; \
+    e[i] = first_ij; }
+#define LL_LOAD(i) \
+  if (cursor != LL_NIL) { \
+    const uvec4 link_i = link_of(cursor); \
+    e[i] = sort_element(cursor, link_i); \
+    cursor = link_i.z; \
+  } else { \
+    e[i] = LL_PAD; \
+  }
+#define LL_BLEND(i) if (e[i].z != LL_NIL) blend(e[i].z);
+
+void main() {
+  const uint pixel = ll_pixel();
+  // Longer lists are resolved by resolve_truncated.frag.
+  if (length_of(pixel) > uint(LL_CAPACITY)) discard;
+  uint cursor = head_of(pixel);
+  LL_LOAD_ALL
+  LL_NETWORK
+  LL_BLEND_ALL
+  out_color = oit_finish(accumulated, transmittance);
+}
+
+#else
+uvec3 items[LL_CAPACITY];
+
+void main() {
+  const uint pixel = ll_pixel();
+  // Longer lists are resolved by resolve_truncated.frag.
+  if (length_of(pixel) > uint(LL_CAPACITY)) discard;
+  uint count = 0u;
+  uint cursor = head_of(pixel);
+  while (cursor != LL_NIL && count < uint(LL_CAPACITY)) {
+    const uvec4 link = link_of(cursor);
+    items[count] = sort_element(cursor, link);
+    ++count;
+    cursor = link.z;
+  }
+#if defined(LL_SORT_INSERTION)
+  // Yang et al.: insertion sort of the local array.
+  for (uint i = 1u; i < count; ++i) {
+    const uvec3 item = items[i];
+    int j = int(i) - 1;
+    while (j >= 0 && precedes(item, items[j])) {
+      items[j + 1] = items[j];
+      --j;
+    }
+    items[j + 1] = item;
+  }
+#elif defined(LL_SORT_SELECTION)
+  // Carnecky et al.: selection sort, one write (swap) per output position.
+  for (uint i = 0u; i + 1u < count; ++i) {
+    uint nearest = i;
+    for (uint j = i + 1u; j < count; ++j) {
+      if (precedes(items[j], items[nearest])) nearest = j;
+    }
+    const uvec3 item = items[i];
+    items[i] = items[nearest];
+    items[nearest] = item;
+  }
+#else
+#error "resolve.frag: define LL_SORT_INSERTION, LL_SORT_SELECTION or LL_SORT_NETWORK"
+#endif
+  for (uint i = 0u; i < count; ++i) blend(items[i].z);
+  out_color = oit_finish(accumulated, transmittance);
+}
+#endif

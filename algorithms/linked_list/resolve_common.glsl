@@ -1,0 +1,39 @@
+// Shared by the resolve programs: sort keys and the float front-to-back blend.
+#include "shaders/compose.glsl"
+#include "algorithms/linked_list/nodes.glsl"
+
+layout(location = 0) out vec4 out_color;
+
+// Read-only views of the lists (see linked_list.cpp: a buffer texture fetch
+// is a vector gather on llvmpipe, an SSBO load is a loop over the lanes).
+// A node is two RGBA32UI texels: colour bits, then the link.
+layout(binding = 0) uniform usamplerBuffer u_nodes;
+layout(binding = 1) uniform usamplerBuffer u_heads;
+layout(binding = 2) uniform usamplerBuffer u_lengths;
+
+uint head_of(uint pixel) { return texelFetch(u_heads, int(pixel)).x; }
+uint length_of(uint pixel) { return texelFetch(u_lengths, int(pixel)).x; }
+uvec4 link_of(uint node) { return texelFetch(u_nodes, int(2u * node + 1u)); }
+vec4 color_of(uint node) { return uintBitsToFloat(texelFetch(u_nodes, int(2u * node))); }
+
+// A sort element: x = view depth bits mapped to unsigned order, y = stable
+// triangle id (unique per pixel: the deterministic tie-break), z = node index.
+uvec3 sort_element(uint node, uvec4 link) {
+  uint bits = link.x;
+  // IEEE floats compare like sign-magnitude integers; map them to unsigned order.
+  bits = (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
+  return uvec3(bits, link.y, node);
+}
+
+bool precedes(uvec3 a, uvec3 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
+
+vec3 accumulated = vec3(0.0);
+float transmittance = 1.0;
+
+// Front-to-back "under" in the reference's operation order, in float.
+void blend(uint node) {
+  const vec4 c = color_of(node);
+  const float weight = transmittance * c.a;
+  accumulated += weight * c.rgb;
+  transmittance *= 1.0 - c.a;
+}
