@@ -17,6 +17,7 @@ packages=(
   libtinygltf-dev libopenmesh-dev libstb-dev nlohmann-json3-dev libcli11-dev libgsl-dev
   libegl-mesa0 libgl1-mesa-dri mesa-utils xvfb xauth
   python3-matplotlib python3-pandas
+  glmark2-data assimp-testmodels
 )
 
 install_missing_packages() {
@@ -37,8 +38,33 @@ build() {
   ninja -C "$build_dir"
 }
 
+# CGAL's sample meshes come inside libcgal-demo, whose dependencies are heavy:
+# download the package alone and unpack just the meshes the `model` scene
+# names into <build>/models/cgal (never committed).
+unpack_cgal_meshes() {
+  local target="$build_dir/models/cgal"
+  local meshes=(elephant armadillo ChineseDragon-10kv blobby_3cc bones)
+  local missing=0
+  for m in "${meshes[@]}"; do [ -s "$target/$m.off" ] || missing=1; done
+  [ $missing -eq 0 ] && return 0
+  local work
+  work="$(mktemp -d)"
+  (cd "$work" && apt-get download libcgal-demo >/dev/null 2>&1) || {
+    [ "$(id -u)" -ne 0 ] || apt-get update -q
+    (cd "$work" && apt-get download libcgal-demo)
+  }
+  dpkg -x "$work"/libcgal-demo_*.deb "$work/unpacked"
+  mkdir -p "$target"
+  local names=()
+  for m in "${meshes[@]}"; do names+=("data/meshes/$m.off"); done
+  tar -xzf "$work/unpacked/usr/share/doc/libcgal-dev/data.tar.gz" -C "$work" "${names[@]}"
+  for m in "${meshes[@]}"; do mv "$work/data/meshes/$m.off" "$target/"; done
+  rm -rf "$work"
+}
+
 install_missing_packages
 build
+unpack_cgal_meshes
 # Mesa's shader cache lives in the build directory: the first draw of a shader
 # compiles it (up to seconds on software GL); later runs reuse it.
 export MESA_SHADER_CACHE_DIR="$PWD/$build_dir/mesa_shader_cache"

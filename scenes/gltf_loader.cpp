@@ -6,12 +6,27 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <stdexcept>
 
 namespace oit {
 namespace {
+
+// An accessor without a buffer view is all zeros of any declared length;
+// beyond this it is a corrupt file, not a mesh.
+constexpr size_t kMaxUnbackedElements = size_t(1) << 24;
+// Instancing multiplies geometry: refuse scenes that would not fit in memory.
+constexpr size_t kMaxVertices = size_t(1) << 25;
+constexpr size_t kMaxTriangles = size_t(1) << 26;
+
+// The scene needs no textures: images are neither decoded nor required.
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+  return true;
+}
 
 class GltfReader {
  public:
@@ -32,20 +47,29 @@ class GltfReader {
            std::to_string(components));
     const int component_size = tinygltf::GetComponentSizeInBytes(uint32_t(accessor.componentType));
     if (component_size <= 0) fail("accessor " + std::to_string(accessor_index) + " has an invalid component type");
-    std::vector<double> values(accessor.count * size_t(components), 0.0);
-    if (accessor.bufferView < 0) return values;  // all zeros by the spec
-    if (size_t(accessor.bufferView) >= model_.bufferViews.size()) fail("buffer view out of range");
+    const std::string name = "accessor " + std::to_string(accessor_index);
+    if (accessor.bufferView < 0) {
+      // All zeros by the spec, so no buffer bounds the count: cap it.
+      if (accessor.count > kMaxUnbackedElements)
+        fail(name + " declares " + std::to_string(accessor.count) + " elements without a buffer view");
+      return std::vector<double>(accessor.count * size_t(components), 0.0);
+    }
+    if (size_t(accessor.bufferView) >= model_.bufferViews.size()) fail(name + ": buffer view out of range");
     const auto& view = model_.bufferViews[size_t(accessor.bufferView)];
-    if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size()) fail("buffer out of range");
+    if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size()) fail(name + ": buffer out of range");
     const auto& buffer = model_.buffers[size_t(view.buffer)].data;
+    // Every bound below is checked without overflow, BEFORE anything is
+    // allocated from the declared count.
+    if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
+      fail("buffer view " + std::to_string(accessor.bufferView) + " runs past the end of its buffer");
+    if (accessor.byteOffset > view.byteLength) fail(name + " starts past the end of its buffer view");
     const size_t element_size = size_t(component_size) * size_t(components);
     const size_t stride = view.byteStride ? view.byteStride : element_size;
     const size_t start = view.byteOffset + accessor.byteOffset;
-    if (accessor.count > 0) {
-      const size_t end = start + (accessor.count - 1) * stride + element_size;
-      if (end > view.byteOffset + view.byteLength || end > buffer.size() || end < start)
-        fail("accessor " + std::to_string(accessor_index) + " reads past the end of its buffer");
-    }
+    const size_t available = view.byteLength - accessor.byteOffset;
+    if (accessor.count > 0 && (element_size > available || (accessor.count - 1) > (available - element_size) / stride))
+      fail(name + " (" + std::to_string(accessor.count) + " elements) reads past the end of its buffer view");
+    std::vector<double> values(accessor.count * size_t(components), 0.0);
     for (size_t i = 0; i < accessor.count; ++i) {
       const unsigned char* element = buffer.data() + start + i * stride;
       for (int c = 0; c < components; ++c) {
@@ -89,9 +113,12 @@ glm::mat4 local_transform(const tinygltf::Node& node) {
 
 Scene load_gltf_scene(const std::string& path) {
   tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(skip_image, nullptr);
   tinygltf::Model model;
   std::string error, warning;
-  const bool binary = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;
+  std::string extension = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const bool binary = extension == ".glb";
   const bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
                          : loader.LoadASCIIFromFile(&model, &error, &warning, path);
   if (!ok) throw std::invalid_argument(path + ": cannot load glTF: " + (error.empty() ? "unknown error" : error));
@@ -114,7 +141,15 @@ Scene load_gltf_scene(const std::string& path) {
     const auto& f = material.pbrMetallicRoughness.baseColorFactor;
     glm::vec4 color(1.0f);
     if (f.size() == 4) color = glm::vec4(float(f[0]), float(f[1]), float(f[2]), float(f[3]));
-    if (material.alphaMode == "OPAQUE") color.a = 1.0f;
+    for (int c = 0; c < 4; ++c) {
+      if (!std::isfinite(color[c]))
+        reader.fail("material " + std::to_string(material_index) + " has a non-finite baseColorFactor");
+      color[c] = std::clamp(color[c], 0.0f, 1.0f);  // the spec's range; blending assumes it
+    }
+    // MASK: the colour has no texture, so the whole triangle is either
+    // kept opaque or fully transparent by the cutoff. BLEND keeps alpha.
+    if (material.alphaMode == "OPAQUE" || material.alphaMode.empty()) color.a = 1.0f;
+    else if (material.alphaMode == "MASK") color.a = color.a >= float(material.alphaCutoff) ? 1.0f : 0.0f;
     return color;
   };
 
@@ -136,6 +171,12 @@ Scene load_gltf_scene(const std::string& path) {
       }
       std::vector<uint32_t> local_indices;
       if (primitive.indices >= 0) {
+        if (size_t(primitive.indices) < model.accessors.size()) {
+          const int type = model.accessors[size_t(primitive.indices)].componentType;
+          if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+              type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+            reader.fail("mesh '" + mesh.name + "' indices are not unsigned byte, short or int");
+        }
         for (double i : reader.read(primitive.indices, 1)) {
           if (i >= double(vertex_count))
             reader.fail("mesh '" + mesh.name + "' index " + std::to_string(uint64_t(i)) + " is past its " +
@@ -146,16 +187,25 @@ Scene load_gltf_scene(const std::string& path) {
         for (uint32_t i = 0; i < vertex_count; ++i) local_indices.push_back(i);
       }
       if (local_indices.size() % 3 != 0) reader.fail("mesh '" + mesh.name + "' index count is not a multiple of 3");
+      if (scene.vertices.size() + vertex_count > kMaxVertices ||
+          scene.indices.size() / 3 + local_indices.size() / 3 > kMaxTriangles)
+        reader.fail("the instanced scene has more than " + std::to_string(kMaxVertices) + " vertices or " +
+                    std::to_string(kMaxTriangles) + " triangles");
       const glm::vec4 color = material_color(primitive.material);
       const auto base = uint32_t(scene.vertices.size());
       for (size_t i = 0; i < vertex_count; ++i) {
         Vertex v;
         v.position = glm::vec3(world * glm::vec4(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2], 1.0));
-        v.normal = normals.empty() ? glm::vec3(0.0f)
-                                   : glm::normalize(normal_matrix * glm::vec3(normals[3 * i], normals[3 * i + 1],
-                                                                              normals[3 * i + 2]));
+        v.normal = glm::vec3(0.0f);
+        if (!normals.empty()) {
+          // A zero or non-finite file normal must not become NaN shading.
+          const glm::vec3 n = normal_matrix * glm::vec3(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
+          const float length = glm::length(n);
+          v.normal = std::isfinite(length) && length > 0.0f ? n / length : glm::vec3(0.0f, 0.0f, 1.0f);
+        }
         v.color = color;
         v.object_id = object;
+        v.surface_id = object;
         scene.vertices.push_back(v);
       }
       for (size_t t = 0; t + 2 < local_indices.size(); t += 3) {
@@ -178,9 +228,15 @@ Scene load_gltf_scene(const std::string& path) {
     }
   };
 
+  // glTF nodes form trees: a node reached twice (a cycle, or a node shared
+  // by two parents, which could multiply into exponentially many visits) is
+  // an error.
+  std::vector<uint8_t> visited(model.nodes.size(), 0);
   std::function<void(int, const glm::mat4&, int)> visit = [&](int node_index, const glm::mat4& parent, int depth) {
     if (node_index < 0 || size_t(node_index) >= model.nodes.size()) reader.fail("node index out of range");
-    if (depth > 256) reader.fail("node hierarchy deeper than 256 (cycle?)");
+    if (depth > 256) reader.fail("node hierarchy deeper than 256");
+    if (visited[size_t(node_index)]++)
+      reader.fail("node " + std::to_string(node_index) + " is reached twice (the node hierarchy must be a tree)");
     const auto& node = model.nodes[size_t(node_index)];
     const glm::mat4 world = parent * local_transform(node);
     if (node.mesh >= 0) {
@@ -194,12 +250,15 @@ Scene load_gltf_scene(const std::string& path) {
       c.view = glm::inverse(world);
       if (source.type == "orthographic") {
         c.orthographic = true;
-        c.xmag = float(source.orthographic.xmag);
-        c.ymag = float(source.orthographic.ymag);
+        c.xmag = std::abs(float(source.orthographic.xmag));
+        c.ymag = std::abs(float(source.orthographic.ymag));
+        if (!(c.xmag > 0.0f && c.ymag > 0.0f && std::isfinite(c.xmag) && std::isfinite(c.ymag)))
+          reader.fail("orthographic camera has a zero or non-finite xmag/ymag");
         c.znear = float(source.orthographic.znear);
         c.zfar = float(source.orthographic.zfar);
       } else {
         c.yfov_radians = float(source.perspective.yfov);
+        if (!(c.yfov_radians > 0.0f && c.yfov_radians < 3.1f)) reader.fail("perspective camera yfov is not in (0, pi)");
         c.znear = float(source.perspective.znear);
         c.zfar = source.perspective.zfar > 0 ? float(source.perspective.zfar) : c.znear * 1e4f;
       }
@@ -211,7 +270,13 @@ Scene load_gltf_scene(const std::string& path) {
 
   const int scene_index = model.defaultScene >= 0 ? model.defaultScene : 0;
   if (model.scenes.empty()) {
-    for (size_t i = 0; i < model.nodes.size(); ++i) visit(int(i), glm::mat4(1.0f), 0);
+    // No scene: every node that is no other node's child is a root.
+    std::vector<uint8_t> is_child(model.nodes.size(), 0);
+    for (const auto& node : model.nodes)
+      for (int child : node.children)
+        if (child >= 0 && size_t(child) < is_child.size()) is_child[size_t(child)] = 1;
+    for (size_t i = 0; i < model.nodes.size(); ++i)
+      if (!is_child[i]) visit(int(i), glm::mat4(1.0f), 0);
   } else {
     if (size_t(scene_index) >= model.scenes.size()) reader.fail("default scene index out of range");
     for (int root : model.scenes[size_t(scene_index)].nodes) visit(root, glm::mat4(1.0f), 0);

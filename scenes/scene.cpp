@@ -70,13 +70,20 @@ void Scene::validate() const {
 }
 
 Camera frame_bounding_sphere(const BoundingSphere& sphere) {
+  return frame_bounding_sphere(sphere, glm::vec3(0.0f, 0.0f, 1.0f));
+}
+
+Camera frame_bounding_sphere(const BoundingSphere& sphere, const glm::vec3& direction) {
   Camera camera;
   const float radius = sphere.radius > 0.0f ? sphere.radius : 1.0f;
   camera.yfov_radians = glm::radians(45.0f);
   // Distance at which the sphere touches the top and bottom of the view.
   const float distance = radius / std::sin(camera.yfov_radians * 0.5f);
-  const glm::vec3 eye = sphere.center + glm::vec3(0.0f, 0.0f, distance);
-  camera.view = glm::lookAt(eye, sphere.center, glm::vec3(0.0f, 1.0f, 0.0f));
+  const glm::vec3 toward_eye = glm::normalize(direction);
+  const glm::vec3 eye = sphere.center + toward_eye * distance;
+  // World +y is up unless the view looks (almost) along it.
+  const glm::vec3 up = std::abs(toward_eye.y) > 0.99f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+  camera.view = glm::lookAt(eye, sphere.center, up);
   camera.znear = std::max(distance - radius * 1.01f, distance * 1e-3f);
   camera.zfar = distance + radius * 1.01f;
   return camera;

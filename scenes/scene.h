@@ -66,6 +66,9 @@ struct Scene {
 
 // A camera looking at the bounding sphere from +z so that it fills the view.
 Camera frame_bounding_sphere(const BoundingSphere& sphere);
+// The same from the side `direction` points to (from the centre towards the
+// eye; need not be normalised, must not be zero).
+Camera frame_bounding_sphere(const BoundingSphere& sphere, const glm::vec3& direction);
 
 }  // namespace oit
 

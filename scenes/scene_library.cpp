@@ -1,10 +1,13 @@
 #include "scene_library.h"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <stdexcept>
 
 #include "gltf_loader.h"
+#include "mesh_loader.h"
+#include "model_files.h"
 #include "parametric.h"
 #include "random_scenes.h"
 #include "stacked_quads.h"
@@ -32,6 +35,29 @@ SurfaceParams surface(const ParamSet& p) {
   s.stacks = int(p.integer("stacks"));
   s.alpha = float(p.real("alpha"));
   return s;
+}
+
+bool is_gltf_file(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".gltf" || extension == ".glb";
+}
+
+Scene load_scene_file(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw std::invalid_argument("scene file '" + path + "' does not exist");
+  return is_gltf_file(path) ? load_gltf_scene(path) : load_mesh_scene(path);
+}
+
+std::vector<std::string> model_names() {
+  std::vector<std::string> names;
+  for (const auto& model : model_files()) names.push_back(model.name);
+  return names;
+}
+
+std::string model_descriptions() {
+  std::string text;
+  for (const auto& model : model_files()) text += "; " + model.name + ": " + model.description + " [" + model.package + "]";
+  return text;
 }
 
 }  // namespace
@@ -132,6 +158,17 @@ const std::vector<SceneDescriptor>& scene_library() {
                           "degenerate addition"),
         ParamSpec::integer("seed", 1, 0, 4294967295ll, "shuffle of the submission order")},
        [](const ParamSet& p) { return make_stress_layers(stress_layers_params(p)); }},
+      {"model",
+       "a real model from a Debian package (see setup.sh), every triangle given the opacity `alpha`" +
+           model_descriptions(),
+       {ParamSpec::choice("name", "bunny", model_names(), "which model"),
+        ParamSpec::real("alpha", 0.4, 0.0, 1.0, "opacity of every triangle (replaces the file's own)")},
+       [](const ParamSet& p) {
+         Scene scene = load_scene_file(model_path(p.choice("name")));
+         scene.name = "model";
+         for (Vertex& v : scene.vertices) v.color.a = float(p.real("alpha"));
+         return scene;
+       }},
   };
   return library;
 }
@@ -145,16 +182,14 @@ Scene load_scene(const std::string& spec, const RawParams& params) {
     scene.validate();
     return scene;
   }
-  const std::filesystem::path path(spec);
-  const std::string extension = path.extension().string();
-  if (extension == ".gltf" || extension == ".glb") {
+  if (is_gltf_file(spec) || is_mesh_file(spec)) {
     if (!params.empty()) throw std::invalid_argument("scene file '" + spec + "' takes no scene parameters");
-    if (!std::filesystem::exists(path)) throw std::invalid_argument("scene file '" + spec + "' does not exist");
-    return load_gltf_scene(spec);
+    return load_scene_file(spec);
   }
   std::string names;
   for (const auto& descriptor : scene_library()) names += (names.empty() ? "" : ", ") + descriptor.id;
-  throw std::invalid_argument("unknown scene '" + spec + "': expected one of " + names + " or a .gltf/.glb file");
+  throw std::invalid_argument("unknown scene '" + spec + "': expected one of " + names +
+                              " or a .gltf/.glb/.obj/.off/.ply/.stl file");
 }
 
 }  // namespace oit

@@ -19,8 +19,10 @@ struct SceneDescriptor {
 
 const std::vector<SceneDescriptor>& scene_library();
 
-// `spec` is a library id ("quads") or a file path (.gltf/.glb). Scene
-// parameters apply to library scenes only; giving any to a file is an error.
+// `spec` is a library id ("quads", "model") or a file path: .gltf/.glb
+// (tinygltf) or .obj/.off/.ply/.stl (OpenMesh), extensions in any letter
+// case. Scene parameters apply to library scenes only; giving any to a file
+// is an error.
 Scene load_scene(const std::string& spec, const RawParams& params);
 
 // The typed parameters of the `stress_layers` scene (for its closed form).

@@ -14,16 +14,16 @@ import pareto  # noqa: E402
 import plot_stages  # noqa: E402
 import pandas as pd  # noqa: E402
 
-COLUMNS = ("timestamp,git_revision,device,gl_version,platform,technique,params,scene,scene_params,width,height,"
+COLUMNS = ("timestamp,git_revision,device,gl_version,platform,technique,params,scene,scene_params,camera,width,height,"
            "clock,stage,median_ms,min_ms,p05_ms,p95_ms,mean_ms,frames,warmup,status,message,fragments,"
-           "max_depth_complexity,mean_depth_complexity,bytes_allocated,fragments_stored,fragments_dropped,passes,"
+           "max_depth_complexity,mean_depth_complexity,psi,bytes_allocated,fragments_stored,fragments_dropped,passes,"
            "overflow_retries,error_max,error_rmse,psnr,ssim,pixels_over_1_255,other_cpu_load,noisy,clock_disagreement,extra")
 
 
 def row(technique, params, stage, median, status="ok", message=""):
     fields = ["2026-11-22T09:00:00Z", "abc", "\"llvmpipe (LLVM 15.0.6, 256 bits)\"", "4.5", "egl-surfaceless",
-              technique, params, "quads", "layers=32", "64", "64", "wall", stage, str(median), "", "", "", "", "3",
-              "2", status, message] + [""] * 17
+              technique, params, "quads", "layers=32", "default", "64", "64", "wall", stage, str(median), "", "", "",
+              "", "3", "2", status, message] + [""] * 18
     return ",".join(fields)
 
 

@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "gl_fixture.h"
+#include "scene_library.h"
 
 namespace oit {
 namespace {
@@ -106,6 +107,78 @@ TEST(Gltf, UnlitQuadsUnderAnOrthographicCameraRenderExactly) {
   // Unsorted blending submits near before far, so it is wrong where they overlap.
   const RunResult unsorted = test::render_once("unsorted", {}, path, {}, size, size);
   EXPECT_GT(unsorted.error->max_abs, 0.05);
+}
+
+// One quad mesh used by three nodes (instancing), unsigned-byte indices, no
+// normals, an alphaMode MASK material, and an orthographic camera placed by
+// its node: three object ids, computed normals, alpha 1 (0.7 >= cutoff 0.5).
+std::string write_instanced_gltf() {
+  std::filesystem::create_directories(kDir);
+  const float positions[12] = {-0.5f, -0.5f, 0.0f, 0.5f, -0.5f, 0.0f, 0.5f, 0.5f, 0.0f, -0.5f, 0.5f, 0.0f};
+  const uint8_t indices[6] = {0, 1, 2, 0, 2, 3};
+  std::string bin(sizeof positions + sizeof indices, '\0');
+  std::memcpy(bin.data(), positions, sizeof positions);
+  std::memcpy(bin.data() + sizeof positions, indices, sizeof indices);
+  std::ofstream(kDir + "/instanced.bin", std::ios::binary) << bin;
+  using nlohmann::json;
+  const json gltf = {
+      {"asset", {{"version", "2.0"}}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0, 4}}}}},
+      // A parent moves all instances by z = -2; the children place them side by side.
+      {"nodes", {{{"children", {1, 2, 3}}, {"translation", {0.0, 0.0, -2.0}}},
+                 {{"mesh", 0}, {"translation", {-0.6, 0.0, 0.0}}},
+                 {{"mesh", 0}, {"translation", {0.6, 0.0, -0.5}}},
+                 {{"mesh", 0}, {"translation", {0.0, 0.3, -1.0}}, {"scale", {2.0, 2.0, 2.0}}},
+                 {{"camera", 0}, {"translation", {0.0, 0.0, 1.0}}}}},
+      {"cameras", {{{"type", "orthographic"}, {"orthographic", {{"xmag", 1.5}, {"ymag", 1.2}, {"znear", 0.5}, {"zfar", 20.0}}}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}, {"material", 0}}}}}}},
+      {"materials", {{{"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.7, 0.3, 0.7}}}},
+                      {"alphaMode", "MASK"},
+                      {"alphaCutoff", 0.5}}}},
+      {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"},
+                      {"min", {-0.5, -0.5, 0.0}}, {"max", {0.5, 0.5, 0.0}}},
+                     {{"bufferView", 1}, {"componentType", 5121}, {"count", 6}, {"type", "SCALAR"}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
+                       {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 6}}}},
+      {"buffers", {{{"uri", "instanced.bin"}, {"byteLength", bin.size()}}}},
+  };
+  const std::string path = kDir + "/instanced.gltf";
+  std::ofstream(path) << gltf.dump(2);
+  return path;
+}
+
+TEST(Gltf, InstancesAreObjectsAndTheOrthographicCameraIsPlacedByItsNode) {
+  const std::string path = write_instanced_gltf();
+  const Scene scene = load_scene(path, {});
+  EXPECT_EQ(scene.object_count, 3u);
+  EXPECT_EQ(scene.vertices.size(), 12u);
+  ASSERT_EQ(scene.triangle_count(), 6u);
+  EXPECT_TRUE(scene.lit);
+  for (size_t v = 0; v < scene.vertices.size(); ++v) {
+    const Vertex& vertex = scene.vertices[v];
+    EXPECT_EQ(vertex.object_id, uint32_t(v / 4)) << v;
+    EXPECT_EQ(vertex.surface_id, uint32_t(v / 4)) << v;
+    EXPECT_EQ(vertex.color, glm::vec4(0.2f, 0.7f, 0.3f, 1.0f)) << v;  // MASK above the cutoff: opaque
+    EXPECT_NEAR(glm::distance(vertex.normal, glm::vec3(0.0f, 0.0f, 1.0f)), 0.0f, 1e-6f) << v;
+  }
+  // World transforms: parent then child (the third instance also scaled by 2).
+  EXPECT_LT(glm::distance(scene.vertices[0].position, glm::vec3(-1.1f, -0.5f, -2.0f)), 1e-6f);
+  EXPECT_LT(glm::distance(scene.vertices[4].position, glm::vec3(0.1f, -0.5f, -2.5f)), 1e-6f);
+  EXPECT_LT(glm::distance(scene.vertices[8].position, glm::vec3(-1.0f, -0.7f, -3.0f)), 1e-6f);
+  ASSERT_TRUE(scene.camera.orthographic);
+  EXPECT_FLOAT_EQ(scene.camera.xmag, 1.5f);
+  EXPECT_FLOAT_EQ(scene.camera.ymag, 1.2f);
+  EXPECT_FLOAT_EQ(scene.camera.znear, 0.5f);
+  EXPECT_FLOAT_EQ(scene.camera.zfar, 20.0f);
+  const glm::vec4 eye_space = scene.camera.view * glm::vec4(0.0f, 0.0f, -2.0f, 1.0f);
+  EXPECT_NEAR(eye_space.z, -3.0f, 1e-6f);  // the camera node sits at z = +1
+  // The big third instance lies behind the other two where they overlap it:
+  // up to 2 layers, and opaque layers hide what is behind them exactly.
+  const RunResult r = test::render_once("reference", {}, path, {}, 48, 48);
+  EXPECT_EQ(r.max_depth_complexity, 2u);
+  const RunResult unsorted = test::render_once("unsorted", {}, path, {}, 48, 48);
+  EXPECT_GT(unsorted.error->max_abs, 0.0);  // back-to-front is required even when opaque
 }
 
 TEST(Gltf, MalformedFilesGiveErrorsNamingTheFile) {

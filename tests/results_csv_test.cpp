@@ -35,6 +35,8 @@ RunResult finished_run() {
   r.error = ImageError{0.5, 0.25, 12.0};
   r.scene_fragments = 65536;
   r.max_depth_complexity = 32;
+  r.psi = 0.25;
+  r.spec.camera = "random:4:7@2";
   return r;
 }
 
@@ -57,6 +59,8 @@ TEST(ResultsCsv, OneRowPerStageAndClockWithPerRunColumnsRepeated) {
     EXPECT_EQ(row[column("frames")], "3");
     EXPECT_EQ(row[column("device")], "llvmpipe (LLVM 15.0.6, 256 bits)");
     EXPECT_EQ(row[column("extra")], "links_left=12 neighbor_precision=0.5");
+    EXPECT_EQ(row[column("camera")], "random:4:7@2");
+    EXPECT_EQ(row[column("psi")], "0.25");
   }
   EXPECT_EQ(rows[0][column("clock")], "gl");
   EXPECT_EQ(rows[5][column("clock")], "wall");
@@ -74,6 +78,8 @@ TEST(ResultsCsv, SkippedAndFailedRunsAreOneRowWithTheReason) {
   EXPECT_EQ(rows[0][column("message")], skipped.message);
   EXPECT_EQ(rows[0][column("median_ms")], "");
   EXPECT_EQ(rows[0][column("error_max")], "");
+  EXPECT_EQ(rows[0][column("camera")], "default");
+  EXPECT_EQ(rows[0][column("psi")], "");
 
   RunResult failed = skipped;
   failed.status = RunStatus::error;

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "core/heatmap.h"
+#include "cameras.h"
 #include "core/results_csv.h"
 #include "scene_library.h"
 
@@ -40,16 +41,18 @@ void print_summary(const std::vector<RunResult>& results, const std::string& bas
     double base = 0.0;
     for (const auto& b : results)
       if (b.spec.technique == baseline && b.status == RunStatus::ok && b.spec.scene == r.spec.scene &&
-          b.scene_params == r.scene_params && b.spec.width == r.spec.width && b.spec.height == r.spec.height)
+          b.scene_params == r.scene_params && b.spec.camera == r.spec.camera && b.spec.width == r.spec.width &&
+          b.spec.height == r.spec.height)
         base = median_total(b);
     const bool ok = r.status == RunStatus::ok;
     char ratio[32] = "";
     if (ok && base > 0.0) std::snprintf(ratio, sizeof ratio, "%.1f", median_total(r) / base);
-    std::printf("%-18s %-46s %-8s %10.2f %10s %7llu %10.3g %9llu  %s %dx%d\n", r.spec.technique.c_str(),
+    const std::string camera = r.spec.camera == "default" ? "" : " camera " + r.spec.camera;
+    std::printf("%-18s %-46s %-8s %10.2f %10s %7llu %10.3g %9llu  %s %dx%d%s\n", r.spec.technique.c_str(),
                 r.technique_params.c_str(), to_string(r.status).c_str(), ok ? median_total(r) : 0.0, ratio,
                 static_cast<unsigned long long>(r.counters.passes), r.error ? r.error->max_abs : 0.0,
                 static_cast<unsigned long long>(r.counters.fragments_dropped), r.spec.scene.c_str(), r.spec.width,
-                r.spec.height);
+                r.spec.height, camera.c_str());
   }
 }
 
@@ -69,7 +72,7 @@ int run_list(const CommonOptions& common) {
                 t.paper.c_str(), stages.c_str());
     print_params(t.params);
   }
-  std::printf("\nScenes (or a .gltf/.glb file path):\n");
+  std::printf("\nScenes (or a .gltf/.glb/.obj/.off/.ply/.stl file path):\n");
   for (const auto& s : scene_library()) {
     std::printf("  %-20s %s\n", s.id.c_str(), s.description.c_str());
     print_params(s.params);
@@ -77,28 +80,42 @@ int run_list(const CommonOptions& common) {
   return 0;
 }
 
+std::string per_view_path(const std::string& out, size_t index) {
+  const auto dot = out.find_last_of('.');
+  const auto slash = out.find_last_of('/');
+  const bool has_extension = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  const std::string suffix = "_cam" + std::to_string(index);
+  return has_extension ? out.substr(0, dot) + suffix + out.substr(dot) : out + suffix;
+}
+
 int run_render(const CommonOptions& common, const RenderOptions& options) {
+  const std::vector<std::string> cameras = expand_camera_spec(options.camera);
   auto context = open_context(common);
   Harness harness(*context, builtin_techniques());
-  RunSpec spec;
-  spec.technique = options.technique;
-  for (const auto& s : options.sets) parse_assignment(s, spec.params);
-  spec.scene = options.scene;
-  for (const auto& s : options.scene_sets) parse_assignment(s, spec.scene_params);
-  parse_size(options.size, spec.width, spec.height);
-  spec.background = parse_background(options.background);
-  spec.warmup = 0;
-  spec.frames = 1;
-  RunResult result = harness.run(spec);
-  if (result.status != RunStatus::ok) {
-    std::fprintf(stderr, "oitbench render: %s %s: %s\n", options.technique.c_str(), to_string(result.status).c_str(),
-                 result.message.c_str());
-    return 1;
+  for (size_t view = 0; view < cameras.size(); ++view) {
+    RunSpec spec;
+    spec.technique = options.technique;
+    for (const auto& s : options.sets) parse_assignment(s, spec.params);
+    spec.scene = options.scene;
+    for (const auto& s : options.scene_sets) parse_assignment(s, spec.scene_params);
+    spec.camera = cameras[view];
+    parse_size(options.size, spec.width, spec.height);
+    spec.background = parse_background(options.background);
+    spec.warmup = 0;
+    spec.frames = 1;
+    RunResult result = harness.run(spec);
+    if (result.status != RunStatus::ok) {
+      std::fprintf(stderr, "oitbench render: %s %s: %s\n", options.technique.c_str(), to_string(result.status).c_str(),
+                   result.message.c_str());
+      return 1;
+    }
+    const std::string out = cameras.size() > 1 ? per_view_path(options.out, view) : options.out;
+    write_image(result.image, out);
+    std::printf("%s on %s %dx%d%s -> %s (max error %.3g, rmse %.3g vs reference)\n", options.technique.c_str(),
+                options.scene.c_str(), spec.width, spec.height,
+                spec.camera == "default" ? "" : (" camera " + spec.camera).c_str(), out.c_str(),
+                result.error->max_abs, result.error->rmse);
   }
-  write_image(result.image, options.out);
-  std::printf("%s on %s %dx%d -> %s (max error %.3g, rmse %.3g vs reference)\n", options.technique.c_str(),
-              options.scene.c_str(), spec.width, spec.height, options.out.c_str(), result.error->max_abs,
-              result.error->rmse);
   return 0;
 }
 
@@ -117,8 +134,9 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
     const RunSpec& spec = runs[i];
     std::string params;
     for (const auto& [key, value] : spec.params) params += " " + key + "=" + value;
-    std::fprintf(stderr, "[%zu/%zu] %s%s on %s %dx%d ... ", i + 1, runs.size(), spec.technique.c_str(),
-                 params.c_str(), spec.scene.c_str(), spec.width, spec.height);
+    std::fprintf(stderr, "[%zu/%zu] %s%s on %s %dx%d%s ... ", i + 1, runs.size(), spec.technique.c_str(),
+                 params.c_str(), spec.scene.c_str(), spec.width, spec.height,
+                 spec.camera == "default" ? "" : (" camera " + spec.camera).c_str());
     RunResult result = harness.run(spec);
     csv.write(result, ctx);
     if (result.status == RunStatus::ok) {
@@ -135,7 +153,7 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
         // Where the image is wrong, and how much (scaled to this run's largest error).
         if (result.error->max_abs > 0.0) {
           const Image& reference = harness.reference_image(spec.scene, spec.scene_params, spec.width, spec.height,
-                                                           spec.background);
+                                                           spec.background, spec.camera);
           write_image(error_heatmap(result.image, reference), stem + "_error.png");
         }
       }

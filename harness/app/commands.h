@@ -19,6 +19,18 @@ struct RenderOptions {
   std::string size = "256x256";
   std::string out;
   std::string background = "0,0,0";
+  // One camera spec; a random:N:SEED set writes one image per viewpoint
+  // (OUT with _camI before the extension).
+  std::string camera = "default";
+};
+
+// `oitbench stats`: the fragment statistics of one scene view (stats_command.cpp).
+struct StatsOptions {
+  std::string scene = "quads";
+  std::vector<std::string> scene_sets;
+  std::string camera = "default";  // a random set prints every viewpoint
+  std::string size = "512x512";
+  std::string heatmap;             // list-length heatmap PNG (one per viewpoint, _camI, for a set)
 };
 
 struct BenchOptions {
@@ -31,5 +43,9 @@ struct BenchOptions {
 int run_list(const CommonOptions& common);
 int run_render(const CommonOptions& common, const RenderOptions& options);
 int run_bench(const CommonOptions& common, const BenchOptions& options);
+int run_stats(const CommonOptions& common, const StatsOptions& options);
+
+// OUT with "_cam<index>" before its extension: one file per viewpoint of a set.
+std::string per_view_path(const std::string& out, size_t index);
 
 }  // namespace oit

@@ -24,11 +24,13 @@ int main(int argc, char** argv) {
   auto* render_cmd = app.add_subcommand("render", "render one image (.png: 8-bit linear RGBA, .pfm: float RGB)");
   render_cmd->add_option("--technique,-t", render.technique, "technique id (see `list`)");
   render_cmd->add_option("--set", render.sets, "technique parameter key=value (repeatable)");
-  render_cmd->add_option("--scene,-s", render.scene, "scene id or .gltf/.glb file");
+  render_cmd->add_option("--scene,-s", render.scene, "scene id or .gltf/.glb/.obj/.off/.ply/.stl file");
   render_cmd->add_option("--scene-set", render.scene_sets, "scene parameter key=value (repeatable)");
   render_cmd->add_option("--size", render.size, "WIDTHxHEIGHT");
   render_cmd->add_option("--background", render.background, "r,g,b (linear, default 0,0,0)");
   render_cmd->add_option("--out,-o", render.out, "output .png or .pfm")->required();
+  render_cmd->add_option("--camera", render.camera,
+                         "default, random:N:SEED (one image per view, _camI), random:N:SEED@I or max_list[:N:SEED]");
 
   oit::BenchOptions bench;
   auto* bench_cmd = app.add_subcommand("bench", "time every combination and append long-form CSV rows");
@@ -38,6 +40,8 @@ int main(int argc, char** argv) {
                         "key=v1,v2 or technique.key=v1,v2: parameter values to sweep (repeatable)");
   bench_cmd->add_option("--scene-set", bench.sweep.scene_sets, "scene key=v1,v2 to sweep (repeatable)");
   bench_cmd->add_option("--size", bench.sweep.sizes, "WIDTHxHEIGHT (repeatable)");
+  bench_cmd->add_option("--camera", bench.sweep.cameras,
+                        "default, random:N:SEED (one run per view), random:N:SEED@I or max_list[:N:SEED] (repeatable)");
   bench_cmd->add_option("--frames", bench.sweep.frames, "timed frames per run")->check(CLI::Range(1, 100000));
   bench_cmd->add_option("--warmup", bench.sweep.warmup, "untimed frames first (shader compilation)")
       ->check(CLI::Range(0, 1000));
@@ -85,6 +89,15 @@ int main(int argc, char** argv) {
   order_cmd->add_option("--size", order.size, "WIDTHxHEIGHT");
   order_cmd->add_option("--seeds", order.seeds, "shuffled and objects_shuffled seeds 1..N")->check(CLI::Range(1, 100));
 
+  oit::StatsOptions stats;
+  auto* stats_cmd = app.add_subcommand("stats", "fragments per pixel of one scene view: triangles, objects, depth "
+                                                 "complexity, list-length histogram, Psi, heatmap");
+  stats_cmd->add_option("--scene,-s", stats.scene, "scene id or file");
+  stats_cmd->add_option("--scene-set", stats.scene_sets, "scene parameter key=value (repeatable)");
+  stats_cmd->add_option("--camera", stats.camera, "default, random:N:SEED, random:N:SEED@I or max_list[:N:SEED]");
+  stats_cmd->add_option("--size", stats.size, "WIDTHxHEIGHT (default 512x512)");
+  stats_cmd->add_option("--heatmap", stats.heatmap, "list-length heatmap .png (blue 0 .. red longest)");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*list) return oit::run_list(common);
@@ -93,6 +106,7 @@ int main(int argc, char** argv) {
     if (*stress_cmd) return oit::run_stress(common, stress);
     if (*pareto_cmd) return oit::run_pareto(common, pareto);
     if (*order_cmd) return oit::run_check_order(common, order);
+    if (*stats_cmd) return oit::run_stats(common, stats);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "oitbench: error: %s\n", e.what());
     return 1;

@@ -4,6 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cameras.h"
+
 namespace oit {
 namespace {
 
@@ -115,29 +117,36 @@ std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRe
   if (options.clock != "auto") clock = parse_clock_kind(options.clock);
   const glm::vec3 background = parse_background(options.background);
 
+  std::vector<std::string> cameras;
+  for (const auto& text : options.cameras)
+    for (const auto& view : expand_camera_spec(text)) cameras.push_back(view);
+
   std::vector<RunSpec> runs;
   for (const auto& scene : options.scenes) {
     for (const auto& scene_params : combinations(scene_assignments)) {
-      for (const auto& size : options.sizes) {
-        int width = 0, height = 0;
-        parse_size(size, width, height);
-        for (const TechniqueDescriptor* t : techniques) {
-          std::vector<Assignment> own;
-          for (const auto& a : technique_assignments)
-            if ((a.scope.empty() || a.scope == t->id) && has_param(*t, a.key)) own.push_back(a);
-          for (const auto& params : combinations(own)) {
-            RunSpec spec;
-            spec.technique = t->id;
-            spec.params = params;
-            spec.scene = scene;
-            spec.scene_params = scene_params;
-            spec.width = width;
-            spec.height = height;
-            spec.frames = options.frames;
-            spec.warmup = options.warmup;
-            spec.clock = clock;
-            spec.background = background;
-            runs.push_back(spec);
+      for (const auto& camera : cameras) {
+        for (const auto& size : options.sizes) {
+          int width = 0, height = 0;
+          parse_size(size, width, height);
+          for (const TechniqueDescriptor* t : techniques) {
+            std::vector<Assignment> own;
+            for (const auto& a : technique_assignments)
+              if ((a.scope.empty() || a.scope == t->id) && has_param(*t, a.key)) own.push_back(a);
+            for (const auto& params : combinations(own)) {
+              RunSpec spec;
+              spec.technique = t->id;
+              spec.params = params;
+              spec.scene = scene;
+              spec.scene_params = scene_params;
+              spec.camera = camera;
+              spec.width = width;
+              spec.height = height;
+              spec.frames = options.frames;
+              spec.warmup = options.warmup;
+              spec.clock = clock;
+              spec.background = background;
+              runs.push_back(spec);
+            }
           }
         }
       }
@@ -149,6 +158,7 @@ std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRe
 std::string run_label(const RunResult& result) {
   std::string label = result.spec.technique;
   for (const auto& [key, value] : result.spec.params) label += "_" + key + "-" + value;
+  if (result.spec.camera != "default") label += "_camera-" + result.spec.camera;
   for (char& c : label)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-' && c != '.') c = '-';
   return label;

@@ -16,6 +16,8 @@ struct SweepOptions {
   std::vector<std::string> technique_sets;
   std::vector<std::string> scene_sets;  // "key=v1,v2"
   std::vector<std::string> sizes{"256x256"};
+  // Camera specs (scenes/cameras.h); a random:N:SEED set becomes N runs.
+  std::vector<std::string> cameras{"default"};
   int frames = 10;
   int warmup = 2;
   std::string clock = "auto";
@@ -26,7 +28,8 @@ std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRe
 
 void parse_size(const std::string& text, int& width, int& height);
 glm::vec3 parse_background(const std::string& text);
-// Short label for file names: "kbuffer_k-16_tail-drop".
+// Short label for file names: "kbuffer_k-16_tail-drop" (plus "_camera-..."
+// when the run's camera is not the default).
 std::string run_label(const RunResult& result);
 
 }  // namespace oit

@@ -1,7 +1,9 @@
 #include "core/complexity.h"
 
 #include <algorithm>
+#include <stdexcept>
 
+#include "core/heatmap.h"
 #include "gl/check.h"
 #include "gl/shader_program.h"
 #include "../../shaders/bindings.h"
@@ -38,12 +40,75 @@ DepthComplexity measure_depth_complexity(const SceneGpu& scene, const glm::mat4&
                     result.per_pixel.data());
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   gl_check("depth complexity pass");
-  for (uint32_t count : result.per_pixel) {
-    result.fragments += count;
-    result.max = std::max(result.max, count);
-  }
-  result.mean = result.per_pixel.empty() ? 0.0 : double(result.fragments) / double(result.per_pixel.size());
+  summarize_depth_complexity(result);
   return result;
+}
+
+void summarize_depth_complexity(DepthComplexity& c) {
+  c.fragments = 0;
+  c.max = 0;
+  c.covered_pixels = 0;
+  for (uint32_t count : c.per_pixel) {
+    c.fragments += count;
+    c.max = std::max(c.max, count);
+    c.covered_pixels += count > 0;
+  }
+  c.mean = c.per_pixel.empty() ? 0.0 : double(c.fragments) / double(c.per_pixel.size());
+  uint64_t long_lists = 0;
+  if (c.max > 0)
+    for (uint32_t count : c.per_pixel) long_lists += 3ull * count > 2ull * c.max;
+  c.psi = c.per_pixel.empty() ? 0.0 : double(long_lists) / double(c.per_pixel.size());
+}
+
+std::vector<uint64_t> list_length_histogram(const DepthComplexity& c) {
+  std::vector<uint64_t> histogram(size_t(c.max) + 1, 0);
+  for (uint32_t count : c.per_pixel) {
+    if (count >= histogram.size()) histogram.resize(size_t(count) + 1, 0);  // per_pixel changed after summarizing
+    ++histogram[count];
+  }
+  return histogram;
+}
+
+std::vector<HistogramBin> binned_histogram(const std::vector<uint64_t>& histogram, size_t max_bins) {
+  std::vector<HistogramBin> bins;
+  if (histogram.empty() || max_bins == 0) return bins;
+  const size_t width = (histogram.size() + max_bins - 1) / max_bins;
+  for (size_t first = 0; first < histogram.size(); first += width) {
+    HistogramBin bin{uint32_t(first), uint32_t(std::min(first + width, histogram.size()) - 1), 0};
+    for (size_t n = bin.first; n <= bin.last; ++n) bin.pixels += histogram[n];
+    bins.push_back(bin);
+  }
+  return bins;
+}
+
+Image list_length_heatmap(const DepthComplexity& c) {
+  std::vector<float> values(c.per_pixel.begin(), c.per_pixel.end());
+  // Scaled to the longest list; an empty view is all blue.
+  return heatmap(values, c.width, c.height, c.max > 0 ? float(c.max) : 1.0f);
+}
+
+ChosenViewpoint choose_max_list_camera(const SceneGpu& scene, const CameraSpec& spec, int probe_size) {
+  if (spec.kind != CameraSpec::Kind::max_list && spec.kind != CameraSpec::Kind::random_set)
+    throw std::invalid_argument("camera '" + spec.text() + "' is not a set of viewpoints to choose from");
+  const BoundingSphere sphere = scene.scene().bounds();
+  ChosenViewpoint best;
+  double best_mean = -1.0;
+  for (uint32_t i = 0; i < spec.count; ++i) {
+    const Camera camera = random_viewpoint(sphere, spec.seed, i);
+    const DepthComplexity c =
+        measure_depth_complexity(scene, camera.view, camera.projection(1.0f), probe_size, probe_size);
+    if (i == 0 || c.max > best.max_list || (c.max == best.max_list && c.mean > best_mean)) {
+      best = {i, camera, c.max};
+      best_mean = c.mean;
+    }
+  }
+  return best;
+}
+
+Camera resolve_camera(const SceneGpu& scene, const std::string& camera_spec) {
+  const CameraSpec spec = parse_camera_spec(camera_spec);
+  if (spec.kind == CameraSpec::Kind::max_list) return choose_max_list_camera(scene, spec).camera;
+  return camera_for_spec(scene.scene(), spec);
 }
 
 }  // namespace oit

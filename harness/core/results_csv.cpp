@@ -12,10 +12,10 @@ namespace oit {
 const std::vector<std::string>& csv_columns() {
   static const std::vector<std::string> columns = {
       "timestamp", "git_revision", "device", "gl_version", "platform",
-      "technique", "params", "scene", "scene_params", "width", "height",
+      "technique", "params", "scene", "scene_params", "camera", "width", "height",
       "clock", "stage", "median_ms", "min_ms", "p05_ms", "p95_ms", "mean_ms", "frames", "warmup",
       "status", "message",
-      "fragments", "max_depth_complexity", "mean_depth_complexity",
+      "fragments", "max_depth_complexity", "mean_depth_complexity", "psi",
       "bytes_allocated", "fragments_stored", "fragments_dropped", "passes", "overflow_retries",
       "error_max", "error_rmse", "psnr", "ssim", "pixels_over_1_255",
       "other_cpu_load", "noisy", "clock_disagreement", "extra"};
@@ -65,13 +65,13 @@ std::vector<std::vector<std::string>> csv_rows(const RunResult& r, const RunCont
   auto per_run = [&](const std::string& clock, const std::string& stage, const Summary* s) {
     std::vector<std::string> row = {
         context.timestamp, context.git_revision, context.device, context.gl_version, context.platform,
-        r.spec.technique, r.technique_params, r.spec.scene, r.scene_params,
+        r.spec.technique, r.technique_params, r.spec.scene, r.scene_params, r.spec.camera,
         std::to_string(r.spec.width), std::to_string(r.spec.height), clock, stage,
         s ? number(s->median) : "", s ? number(s->min) : "", s ? number(s->p05) : "", s ? number(s->p95) : "",
         s ? number(s->mean) : "", s ? std::to_string(s->count) : "", std::to_string(r.spec.warmup),
         to_string(r.status), r.message,
         ran ? std::to_string(r.scene_fragments) : "", ran ? std::to_string(r.max_depth_complexity) : "",
-        ran ? number(r.mean_depth_complexity) : "",
+        ran ? number(r.mean_depth_complexity) : "", ran ? number(r.psi) : "",
         ran ? std::to_string(r.counters.bytes_allocated) : "", ran ? std::to_string(r.counters.fragments_stored) : "",
         ran ? std::to_string(r.counters.fragments_dropped) : "", ran ? std::to_string(r.counters.passes) : "",
         ran ? std::to_string(r.counters.overflow_retries) : "",

@@ -74,14 +74,18 @@ Harness::Harness(GlContext& context, const TechniqueRegistry& registry)
     : context_(context), registry_(registry), reference_cache_(ReferenceCache::from_environment()) {}
 Harness::~Harness() = default;
 
-Harness::LoadedScene& Harness::scene(const std::string& spec, const RawParams& params, const std::string& order) {
-  const std::string key = key_of(spec, params) + "|order=" + order;
+Harness::LoadedScene& Harness::scene(const std::string& spec, const RawParams& params, const std::string& order,
+                                     const std::string& camera) {
+  const std::string key = key_of(spec, params) + "|order=" + order + "|camera=" + camera;
   auto it = scenes_.find(key);
   if (it == scenes_.end()) {
     auto loaded = std::make_unique<LoadedScene>();
     loaded->scene = load_scene(spec, params);
     reorder_triangles(loaded->scene, order);
     loaded->gpu = std::make_unique<SceneGpu>(loaded->scene);
+    // The camera is part of the scene's content hash, so cached references
+    // of different viewpoints never mix.
+    loaded->scene.camera = resolve_camera(*loaded->gpu, camera);
     loaded->hash = loaded->scene.content_hash();
     it = scenes_.emplace(key, std::move(loaded)).first;
   }
@@ -89,8 +93,8 @@ Harness::LoadedScene& Harness::scene(const std::string& spec, const RawParams& p
 }
 
 const Image& Harness::reference_image(const std::string& scene_spec, const RawParams& scene_params, int width,
-                                      int height, const glm::vec3& background) {
-  LoadedScene& loaded = scene(scene_spec, scene_params);
+                                      int height, const glm::vec3& background, const std::string& camera) {
+  LoadedScene& loaded = scene(scene_spec, scene_params, "original", camera);
   std::ostringstream key;
   key << loaded.hash << "|" << width << "x" << height << "|" << background.r << "," << background.g << ","
       << background.b;
@@ -104,6 +108,7 @@ const Image& Harness::reference_image(const std::string& scene_spec, const RawPa
   spec.technique = registry_.reference().id;
   spec.scene = scene_spec;
   spec.scene_params = scene_params;
+  spec.camera = camera;
   spec.width = width;
   spec.height = height;
   spec.warmup = 0;
@@ -131,7 +136,7 @@ RunResult Harness::run(const RunSpec& spec) {
                                   " is outside 1x1 .. 16384x16384");
     }
     if (spec.frames < 1 || spec.warmup < 0) throw std::invalid_argument("frames must be >= 1 and warmup >= 0");
-    LoadedScene& loaded = scene(spec.scene, spec.scene_params, spec.submission_order);
+    LoadedScene& loaded = scene(spec.scene, spec.scene_params, spec.submission_order, spec.camera);
     result.scene_params = loaded.scene.params;
     const SceneFacts facts{loaded.scene.triangle_count(), loaded.scene.object_count, true};
     if (std::string reason = supports(technique, params, device(), facts); !reason.empty()) {
@@ -157,8 +162,9 @@ RunResult Harness::run(const RunSpec& spec) {
     result.scene_fragments = complexity->second.fragments;
     result.max_depth_complexity = complexity->second.max;
     result.mean_depth_complexity = complexity->second.mean;
-    result.error = compare_images(
-        result.image, reference_image(spec.scene, spec.scene_params, spec.width, spec.height, spec.background));
+    result.psi = complexity->second.psi;
+    result.error = compare_images(result.image, reference_image(spec.scene, spec.scene_params, spec.width, spec.height,
+                                                                spec.background, spec.camera));
   } catch (const std::exception& e) {
     result.status = RunStatus::error;
     result.message = e.what();
@@ -172,7 +178,7 @@ RunResult Harness::run(const RunSpec& spec) {
 void Harness::execute(const RunSpec& spec, RunResult& result) {
   const TechniqueDescriptor& descriptor = registry_.get(spec.technique);
   const ParamSet params(descriptor.params, spec.params, "technique '" + spec.technique + "'");
-  LoadedScene& loaded = scene(spec.scene, spec.scene_params, spec.submission_order);
+  LoadedScene& loaded = scene(spec.scene, spec.scene_params, spec.submission_order, spec.camera);
   const ClockKind clock_kind = spec.clock.value_or(default_clock());
   result.clock = clock_kind;
 

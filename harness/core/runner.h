@@ -27,6 +27,10 @@ struct RunSpec {
   // "objects_shuffled:SEED" (see reorder_triangles).
   // The reference is always rendered in the original order.
   std::string submission_order = "original";
+  // One viewpoint (scenes/cameras.h): "default" (the scene's camera),
+  // "random:N:SEED@I" or "max_list[:N:SEED]". Reference and depth
+  // complexity use the same camera.
+  std::string camera = "default";
   int width = 256;
   int height = 256;
   int warmup = 2;
@@ -58,6 +62,7 @@ struct RunResult {
   uint64_t scene_fragments = 0;
   uint32_t max_depth_complexity = 0;
   double mean_depth_complexity = 0.0;
+  double psi = 0.0;  // complexity coverage (DepthComplexity::psi)
   double other_process_load = -1.0;  // share of all cores; -1 unknown
   bool noisy = false;
   // |gl - wall| / wall of the median total, when both clocks ran.
@@ -80,7 +85,7 @@ class Harness {
   // The exact image of a scene/size/background, computed once and cached in
   // memory and on disk (ReferenceCache::from_environment()).
   const Image& reference_image(const std::string& scene, const RawParams& scene_params, int width, int height,
-                               const glm::vec3& background);
+                               const glm::vec3& background, const std::string& camera = "default");
   void set_reference_cache(ReferenceCache cache) { reference_cache_ = std::move(cache); }
   // How this harness got its references so far: rendered, or read from disk.
   int references_rendered() const { return references_rendered_; }
@@ -88,7 +93,8 @@ class Harness {
 
  private:
   struct LoadedScene;
-  LoadedScene& scene(const std::string& spec, const RawParams& params, const std::string& order = "original");
+  LoadedScene& scene(const std::string& spec, const RawParams& params, const std::string& order = "original",
+                     const std::string& camera = "default");
   void execute(const RunSpec& spec, RunResult& result);
 
   GlContext& context_;
