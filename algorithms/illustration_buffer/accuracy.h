@@ -1,0 +1,51 @@
+#pragma once
+// Neighbour statistics of one frame, computed on the CPU from read-back
+// buffers (in counters(), outside the timed frames): links per direction,
+// silhouette fragments, and precision/recall of the links against the
+// parametric ground truth (surface id and (u, v) of every fragment).
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace oit::illustration_buffer {
+
+constexpr uint32_t kNoNeighbor = 0xffffffffu;  // IB_NONE in ib_storage.glsl
+constexpr uint32_t kOffImage = 0xfffffffeu;    // IB_OFF_IMAGE
+
+// IbSorted of ib_storage.glsl (64 B).
+struct SortedRecord {
+  float color[4];
+  uint32_t key[4];       // depth bits, stable triangle id, object id, pixel
+  uint32_t geometry[4];  // packed normal, dz/dx bits, dz/dy bits, fill record index
+  uint32_t links[4];     // left, right, down, up
+};
+static_assert(sizeof(SortedRecord) == 64);
+
+// The fill's ground-truth record (16 B): surface id, u, v bits, fwidth(uv) as half2.
+struct TruthRecord {
+  uint32_t surface;
+  float u, v;
+  uint32_t footprint;
+};
+static_assert(sizeof(TruthRecord) == 16);
+
+struct NeighborStatistics {
+  std::array<uint64_t, 4> links{};  // left, right, down, up
+  uint64_t silhouette_fragments = 0;  // a missing neighbour inside the image
+  bool measured = false;              // precision/recall computed
+  uint64_t correct_links = 0;         // links joining true surface neighbours
+  uint64_t true_neighbors = 0;        // (fragment, direction) pairs that have one
+  double precision = 0.0;
+  double recall = 0.0;
+};
+
+// `first`/`count`: each pixel's range in `sorted`. `truth` may be empty
+// (then only links and silhouettes are counted). A link i -> j is correct
+// when both lie on the same surface and |du|, |dv| (wrapped: parameters
+// are periodic on [0, 1) for spheres, tori, cylinders) are at most
+// `footprints` times the larger of the two fragments' fwidth(uv).
+NeighborStatistics neighbor_statistics(int width, int height, const std::vector<uint32_t>& first,
+                                       const std::vector<uint32_t>& count, const std::vector<SortedRecord>& sorted,
+                                       const std::vector<TruthRecord>& truth, double footprints);
+
+}  // namespace oit::illustration_buffer

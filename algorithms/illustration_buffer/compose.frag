@@ -1,0 +1,50 @@
+#version 450 core
+// Compose (carnecky2013 section 4.6 / Algorithm 3): each pixel blends its
+// contiguous sorted range front to back in float. Without modulation the
+// opacity is the fragment's own alpha (plain alpha blending, the reference's
+// operation order). With modulation (IB_MODULATE):
+//   alpha_hat = (1 - gamma) * (alpha + (1 - alpha) * beta)
+//   c += T * alpha_hat * c_i;  T *= 1 - alpha_hat
+// after the optional profile (eq. 10 / 11) is applied to beta and gamma.
+#include "shaders/compose.glsl"
+#include "algorithms/illustration_buffer/ib_storage.glsl"
+
+layout(location = 0) out vec4 out_color;
+
+#ifdef IB_MODULATE
+#include "algorithms/illustration_buffer/fields.glsl"
+// 0: none, 1: exponential (eq. 10), 2: power (eq. 11).
+layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 14) uniform int u_profile;
+layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 15) uniform float u_profile_p;
+
+float profile(float u) {
+  u = clamp(u, 0.0, 1.0);
+  if (u_profile == 1) {
+    const float floor_value = exp(-u_profile_p);
+    return (exp(-u_profile_p * (1.0 - u) * (1.0 - u)) - floor_value) / (1.0 - floor_value);
+  }
+  if (u_profile == 2) return pow(u, u_profile_p);
+  return u;
+}
+#endif
+
+void main() {
+  const uint pixel = uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);
+  const uint first = ib_head[pixel], end = first + ib_count[pixel];
+  vec3 accumulated = vec3(0.0);
+  float transmittance = 1.0;
+  for (uint i = first; i < end; ++i) {
+    const vec4 c = ib_sorted[i].color;
+#ifdef IB_MODULATE
+    const vec4 field = ib_fields_in[i];
+    const float alpha = clamp(field.x, 0.0, 1.0);
+    const float opacity = (1.0 - profile(field.z)) * (alpha + (1.0 - alpha) * profile(field.y));
+#else
+    const float opacity = c.a;
+#endif
+    const float weight = transmittance * opacity;
+    accumulated += weight * c.rgb;
+    transmittance *= 1.0 - opacity;
+  }
+  out_color = oit_finish(accumulated, transmittance);
+}

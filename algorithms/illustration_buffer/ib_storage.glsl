@@ -1,0 +1,68 @@
+// The illustration buffer (carnecky2013 section 4.1, pastyrik2016 section 3):
+// per-pixel head/count, per-fragment next pointers and records, the sorted
+// contiguous copy fragData2, global counters and the triangle table.
+// Records are read and written as whole vec4/uvec4 members: on Mesa 22.3
+// llvmpipe, reading single scalar members of a struct array in a loop
+// returned wrong values.
+#include "shaders/bindings.h"
+
+#define IB_NIL 0xffffffffu        // end of a list
+#define IB_NONE 0xffffffffu       // no geodesic neighbour in that direction
+#define IB_OFF_IMAGE 0xfffffffeu  // the adjacent pixel lies outside the image
+#define IB_INFINITY 3.0e38
+
+// fragData: one record per fragment in fill order (48 B).
+struct IbFragment {
+  vec4 color;   // straight RGBA from oit_shade()
+  uvec4 key;    // x: view depth bits, y: stable triangle id, z: object id, w: view normal (octahedral snorm16x2)
+  vec4 slopes;  // x: d(depth)/dx, y: d(depth)/dy per pixel, zw: unused
+};
+
+// fragData2: the sorted lists, each pixel's fragments contiguous, nearest first (64 B).
+struct IbSorted {
+  vec4 color;      // straight RGBA
+  uvec4 key;       // x: view depth bits, y: stable triangle id, z: object id, w: pixel index
+  uvec4 geometry;  // x: packed view normal, y: dz/dx bits, z: dz/dy bits, w: index of the fill record (fragData)
+  uvec4 links;     // sorted indices of the left, right, down, up neighbours (or IB_NONE / IB_OFF_IMAGE)
+};
+
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) coherent buffer IbPixelHead { uint ib_head[]; };
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) coherent buffer IbPixelCount { uint ib_count[]; };
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 2) buffer IbFragNext { uint ib_next[]; };
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 3) buffer IbFragData { IbFragment ib_fragments[]; };
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 4) buffer IbFragData2 { IbSorted ib_sorted[]; };
+// produced: fragments the fill generated (may exceed the pool: overflow).
+// longest: the longest list. dropped / truncated: fragments beyond
+// max_per_pixel and the lists that had any. allocated: the sort's range allocator.
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 5) coherent buffer IbCounters {
+  uint ib_produced;
+  uint ib_longest;
+  uint ib_dropped;
+  uint ib_truncated;
+  uint ib_allocated;
+};
+
+layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform int u_width;
+layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_height;
+
+// The sort key's first word: IEEE floats compare like sign-magnitude
+// integers; this maps them to unsigned order.
+uint ib_depth_order(uint bits) { return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u; }
+
+// Octahedral normal encoding in two snorm16: 4 bytes, error ~1e-4 rad.
+uint ib_pack_normal(vec3 n) {
+  if (any(isnan(n))) n = vec3(0.0, 0.0, 1.0);
+  n /= max(abs(n.x) + abs(n.y) + abs(n.z), 1e-30);
+  vec2 e = n.xy;
+  if (n.z < 0.0) e = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+  return packSnorm2x16(e);
+}
+
+vec3 ib_unpack_normal(uint bits) {
+  vec2 e = unpackSnorm2x16(bits);
+  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+  float t = max(-n.z, 0.0);
+  n.x += n.x >= 0.0 ? -t : t;
+  n.y += n.y >= 0.0 ? -t : t;
+  return normalize(n);
+}

@@ -1,0 +1,53 @@
+#version 450 core
+// Initial and boundary conditions (carnecky2013 sections 5.2-5.3), one
+// invocation per sorted fragment:
+//  alpha = s (eq. 4) or 1 - (1 - s)^(1/n) (eq. 5, u_adaptive), s = the
+//          fragment's own alpha, n = its pixel's fragment count;
+//  fewer than 4 neighbours (adjacent pixels outside the image do not count
+//          as missing) -> silhouette: beta = 1, fixed;
+//  otherwise, a layer index greater than a neighbour's -> beta = 0, fixed;
+//  a layer index smaller than a neighbour's -> gamma = 1, fixed (halo).
+// Fields the chosen modulation does not use stay 0 and unfixed.
+#include "algorithms/illustration_buffer/ib_storage.glsl"
+#include "algorithms/illustration_buffer/per_fragment.glsl"
+#include "algorithms/illustration_buffer/fields.glsl"
+#include "algorithms/illustration_buffer/views.glsl"
+
+layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 8) uniform bool u_adaptive;
+layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 9) uniform bool u_use_beta;
+layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 10) uniform bool u_use_gamma;
+
+// -1: the neighbour is nearer in its list, +1: deeper, 0: same layer or no neighbour.
+int compare_layer(uint layer, uint link) {
+  if (link >= IB_OFF_IMAGE) return 0;
+  const uint other = ib_layer_of(link, ib_sorted_key(link).w);
+  return other < layer ? -1 : (other > layer ? 1 : 0);
+}
+
+void main() {
+  const uint s = ib_fragment_index();
+  if (s >= u_fragments) return;
+  const uint pixel = ib_sorted_key(s).w;
+  const uint layer = ib_layer_of(s, pixel);
+  const uvec4 links = ib_sorted_links(s);
+  const float own_alpha = uintBitsToFloat(texelFetch(ib_sorted_view, int(s * 4u)).a);
+  const float alpha = u_adaptive ? 1.0 - pow(1.0 - own_alpha, 1.0 / float(ib_count[pixel])) : own_alpha;
+
+  const bool silhouette = any(equal(links, uvec4(IB_NONE)));
+  const ivec4 order = ivec4(compare_layer(layer, links.x), compare_layer(layer, links.y),
+                            compare_layer(layer, links.z), compare_layer(layer, links.w));
+  const bool under_a_neighbor = any(equal(order, ivec4(-1)));  // my layer index is greater
+  const bool over_a_neighbor = any(equal(order, ivec4(1)));    // my layer index is smaller
+
+  float beta = 0.0, gamma = 0.0;
+  uint flags = 0u;
+  if (u_use_beta && (silhouette || under_a_neighbor)) {
+    beta = silhouette ? 1.0 : 0.0;  // the silhouette rule wins over the "underneath" rule
+    flags |= IB_FIXED_BETA;
+  }
+  if (u_use_gamma && over_a_neighbor) {
+    gamma = 1.0;
+    flags |= IB_FIXED_GAMMA;
+  }
+  ib_fields_out[s] = vec4(alpha, beta, gamma, float(flags));
+}

@@ -1,0 +1,353 @@
+// illustration_buffer: per-pixel linked lists of rich fragment records
+// (fill), sorted into contiguous per-pixel ranges (sort), linked to their
+// geodesic neighbours in the 4 adjacent pixels (neighbors), transparency
+// fields set and diffused along those links (stylize), then blended front
+// to back (compose). See README.md for the mapping to the papers.
+#include <algorithm>
+#include <bit>
+#include <map>
+#include <stdexcept>
+
+#include "accuracy.h"
+#include "gl/check.h"
+#include "gl/shader_program.h"
+#include "settings.h"
+#include "triangle_table.h"
+#include "../../shaders/bindings.h"
+
+namespace oit::illustration_buffer {
+namespace {
+
+constexpr GLsizeiptr kFragmentBytes = 48, kSortedBytes = 64, kNextBytes = 4, kTruthBytes = 16, kFieldBytes = 16;
+constexpr GLsizeiptr kCounterBytes = 20;  // produced, longest, dropped, truncated, allocated
+constexpr GLuint kBinding = OIT_FIRST_TECHNIQUE_BINDING;
+enum : GLuint { kHead = kBinding, kCount, kNext, kData, kData2, kCounters, kTruth, kTriangles, kFieldsIn, kFieldsOut };
+// Texture units of views.glsl.
+constexpr GLuint kSortedUnit = 0, kTrianglesUnit = 1, kFieldsUnit = 2;
+constexpr GLuint kFragmentUnit = 0, kNextUnit = 1;  // the sort's views (sort.comp)
+constexpr uint32_t kSmallestArray = 8;
+constexpr double kPoolSlack = 1.25;
+// Keeps both field ranges inside fragData for any storage-offset alignment up to 4 KiB.
+constexpr uint64_t kSmallestPool = 256;
+
+void set(GLuint program, const char* name, float value) {
+  if (GLint at = glGetUniformLocation(program, name); at >= 0) glProgramUniform1f(program, at, value);
+}
+void set(GLuint program, const char* name, int value) {
+  if (GLint at = glGetUniformLocation(program, name); at >= 0) glProgramUniform1i(program, at, value);
+}
+void set(GLuint program, const char* name, uint32_t value) {
+  if (GLint at = glGetUniformLocation(program, name); at >= 0) glProgramUniform1ui(program, at, value);
+}
+
+class IllustrationBuffer final : public Technique {
+ public:
+  explicit IllustrationBuffer(const Settings& settings) : s_(settings), counters_(make_buffer(kCounterBytes)) {
+    const ShaderDefines measure = s_.measure_accuracy ? ShaderDefines{{"IB_MEASURE", "1"}} : ShaderDefines{};
+    fill_ = build_geometry_program("algorithms/illustration_buffer/fill.frag", measure);
+    set(fill_.id(), "u_max_per_pixel", s_.max_per_pixel);
+    compose_ = build_fullscreen_program("algorithms/illustration_buffer/compose.frag",
+                                        modulated() ? ShaderDefines{{"IB_MODULATE", "1"}} : ShaderDefines{});
+    if (!modulated()) return;
+    const bool heuristic = s_.neighbors == NeighborSearch::heuristic;
+    neighbors_ = build_compute_program("algorithms/illustration_buffer/neighbors.comp",
+                                       {{heuristic ? "IB_HEURISTIC" : "IB_TRIANGLE_INDEX", "1"}});
+    set(neighbors_.id(), "u_weight_z", s_.weight_z);
+    set(neighbors_.id(), "u_weight_n", s_.weight_n);
+    stylize_init_ = build_compute_program("algorithms/illustration_buffer/stylize_init.comp");
+    set(stylize_init_.id(), "u_adaptive", int(s_.adaptive_alpha));
+    set(stylize_init_.id(), "u_use_beta", int(s_.uses_beta()));
+    set(stylize_init_.id(), "u_use_gamma", int(s_.uses_gamma()));
+    stylize_diffuse_ = build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp");
+    set(stylize_diffuse_.id(), "u_lambda_alpha", s_.lambda_alpha);
+    set(stylize_diffuse_.id(), "u_lambda_beta", s_.lambda_beta);
+    set(stylize_diffuse_.id(), "u_lambda_gamma", s_.lambda_gamma);
+    set(compose_.id(), "u_profile", int(s_.profile));
+    set(compose_.id(), "u_profile_p", s_.profile == Profile::power ? s_.power_p : s_.exponential_p);
+  }
+
+  void resize(int width, int height) override {
+    width_ = width;
+    height_ = height;
+    head_ = make_buffer(GLsizeiptr(width) * height * 4);
+    count_ = make_buffer(GLsizeiptr(width) * height * 4);
+    allocate_pool(uint64_t(width) * uint64_t(height) * s_.initial_nodes_per_pixel);
+    empty_framebuffer_ = make_framebuffer();
+    glNamedFramebufferParameteri(empty_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
+    glNamedFramebufferParameteri(empty_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+    for (GLuint program : programs()) {
+      set(program, "u_width", width);
+      set(program, "u_height", height);
+    }
+  }
+
+  void render(const Frame& frame) override {
+    passes_ = 0;
+    GLuint counts[5] = {};  // produced, longest, dropped, truncated, allocated
+    for (;;) {
+      {
+        auto stage = frame.clock.stage("clear");
+        // A pool over twice the last frame's need shrinks (factor 2: no reallocation every frame).
+        const uint64_t wanted = pool_size_for(last_produced_);
+        if (last_produced_ > 0 && capacity_ > 2 * wanted) allocate_pool(wanted);
+        const GLuint nil = 0xffffffffu, zero = 0;
+        glClearNamedBufferData(head_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &nil);
+        glClearNamedBufferData(count_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      }
+      {
+        auto stage = frame.clock.stage("fill");
+        glBindFramebuffer(GL_FRAMEBUFFER, empty_framebuffer_.id());
+        glViewport(0, 0, width_, height_);
+        glUseProgram(fill_.id());
+        frame.set_shared_uniforms(fill_.id());
+        bind_storage();
+        frame.scene.draw();
+        ++passes_;
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
+      }
+      last_produced_ = counts[0];
+      if (counts[0] <= capacity_) break;
+      // Overflow: nothing is dropped silently; grow to this view's need and render again.
+      ++overflow_retries_;
+      allocate_pool(pool_size_for(counts[0]));
+    }
+    produced_ = counts[0];
+    dropped_ = counts[2];
+    truncated_lists_ = counts[3];
+    stored_ = produced_ - dropped_;
+    {
+      auto stage = frame.clock.stage("sort");
+      const GLuint sort = sort_program(counts[1]);
+      glUseProgram(sort);
+      glBindTextureUnit(kFragmentUnit, fragment_view_.id());
+      glBindTextureUnit(kNextUnit, next_view_.id());
+      glDispatchCompute(GLuint(width_ + 7) / 8, GLuint(height_ + 7) / 8, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    }
+    const GLintptr second_range = second_field_range();
+    if (modulated()) {
+      glBindTextureUnit(kSortedUnit, sorted_view_.id());
+      {
+        auto stage = frame.clock.stage("neighbors");
+        prepare_scene_data(frame.scene.scene());
+        glBindTextureUnit(kTrianglesUnit, triangles_view_ ? triangles_view_.id() : 0);
+        run_per_fragment(neighbors_.id());
+      }
+      auto stage = frame.clock.stage("stylize");
+      // Ranges of fragData (dead after the sort) hold the two field buffers.
+      bind_fields(0, second_range);
+      run_per_fragment(stylize_init_.id());
+      for (int i = 0; i < s_.iterations; ++i) {
+        i % 2 == 0 ? bind_fields(second_range, 0) : bind_fields(0, second_range);
+        run_per_fragment(stylize_diffuse_.id());
+      }
+    }
+    auto stage = frame.clock.stage("compose");
+    if (modulated()) {
+      // The last range written: the init writes the second range, iteration i
+      // reads the range i wrote before; so even counts end in the second range.
+      const GLintptr last = s_.iterations % 2 == 0 ? second_range : 0;
+      bind_fields(last, last == 0 ? second_range : 0);
+    }
+    frame.bind_target();
+    glUseProgram(compose_.id());
+    frame.set_shared_uniforms(compose_.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    for (GLuint unit : {kSortedUnit, kTrianglesUnit, kFieldsUnit}) glBindTextureUnit(unit, 0);
+  }
+
+  TechniqueCounters counters() const override {
+    TechniqueCounters c;
+    const uint64_t per_fragment =
+        uint64_t(kNextBytes + kFragmentBytes + kSortedBytes + (s_.measure_accuracy ? kTruthBytes : 0));
+    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * 8 + capacity_ * per_fragment + kCounterBytes +
+                        triangle_rows_ * 16;
+    c.fragments_stored = stored_;
+    c.fragments_dropped = dropped_;
+    c.passes = passes_;
+    c.overflow_retries = overflow_retries_;
+    c.extra = {{"lists_truncated", double(truncated_lists_)},
+               {"neighbor_passes", modulated() ? 1.0 : 0.0},
+               {"stylize_passes", modulated() ? double(1 + s_.iterations) : 0.0}};
+    if (modulated() && s_.neighbors == NeighborSearch::triangle_index)
+      c.extra.push_back({"isolated_triangles", double(isolated_triangles_)});
+    if (modulated()) append_neighbor_statistics(c);
+    return c;
+  }
+
+ private:
+  bool modulated() const { return s_.modulation != Modulation::none; }
+  static uint64_t pool_size_for(uint64_t fragments) { return uint64_t(double(fragments) * kPoolSlack) + 1; }
+
+  std::vector<GLuint> programs() const {
+    std::vector<GLuint> all = {fill_.id(), compose_.id()};
+    for (const Program* p : {&neighbors_, &stylize_init_, &stylize_diffuse_})
+      if (*p) all.push_back(p->id());
+    for (const auto& [size, program] : sorts_) all.push_back(program.id());
+    return all;
+  }
+
+  // The sort's local array: the frame's longest list rounded up to a power
+  // of two (a few programs serve every frame), at most max_per_pixel.
+  GLuint sort_program(uint32_t longest) {
+    const uint32_t size =
+        std::min(s_.max_per_pixel, std::max(kSmallestArray, std::bit_ceil(std::max<uint32_t>(longest, 1))));
+    auto it = sorts_.find(size);
+    if (it == sorts_.end()) {
+      it = sorts_.emplace(size, build_compute_program("algorithms/illustration_buffer/sort.comp",
+                                                      {{"IB_ARRAY", std::to_string(size)}}))
+               .first;
+      set(it->second.id(), "u_width", width_);
+      set(it->second.id(), "u_height", height_);
+    }
+    return it->second.id();
+  }
+
+  void run_per_fragment(GLuint program) const {
+    glUseProgram(program);
+    set(program, "u_fragments", uint32_t(stored_));
+    const uint64_t groups = (stored_ + 63) / 64;
+    if (groups > 0) {
+      const uint64_t x = std::min<uint64_t>(groups, 65535);
+      glDispatchCompute(GLuint(x), GLuint((groups + x - 1) / x), 1);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  }
+
+  void bind_fields(GLintptr in, GLintptr out) const {
+    const GLsizeiptr bytes = std::max<GLsizeiptr>(kFieldBytes * GLsizeiptr(stored_), kFieldBytes);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kFieldsIn, data_.id(), in, bytes);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kFieldsOut, data_.id(), out, bytes);
+    glBindTextureUnit(kFieldsUnit, in == 0 ? fields_view_[0].id() : fields_view_[1].id());
+  }
+
+  // Start of the second field range in fragData: aligned for both the SSBO
+  // range binding and the buffer-texture view.
+  GLintptr second_field_range() const {
+    GLint storage = 1, texture = 1;
+    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &storage);
+    glGetIntegerv(GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT, &texture);
+    const GLintptr alignment = std::max({storage, texture, 1});
+    const GLintptr offset = kFieldBytes * GLintptr(capacity_);
+    return (offset + alignment - 1) / alignment * alignment;
+  }
+
+  static Texture buffer_view(const Buffer& buffer, GLenum format, GLintptr offset, GLsizeiptr bytes) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &id);
+    Texture view(id);
+    glTextureBufferRange(view.id(), format, buffer.id(), offset, bytes);
+    gl_check("creating an illustration_buffer buffer texture");
+    return view;
+  }
+
+  // Once per scene: the bounding-sphere radius (heuristic, eq. 1) or the
+  // triangle table (triangle_index), keyed by the scene's content hash.
+  void prepare_scene_data(const Scene& scene) {
+    if (&scene == scene_seen_) return;
+    scene_seen_ = &scene;
+    const std::string hash = scene.content_hash();
+    if (hash == scene_hash_) return;
+    scene_hash_ = hash;
+    if (s_.neighbors == NeighborSearch::heuristic) {
+      const float radius = scene.bounds().radius;
+      set(neighbors_.id(), "u_inverse_radius", radius > 0.0f ? 1.0f / radius : 1.0f);
+      return;
+    }
+    const TriangleTable table = build_triangle_table(scene, s_.weld_vertices);
+    const GLsizeiptr bytes = GLsizeiptr(table.vertices_by_stable_id.size() * sizeof(glm::uvec4));
+    triangles_ = make_buffer(bytes, table.vertices_by_stable_id.data(), 0);
+    triangles_view_ = bytes > 0 ? buffer_view(triangles_, GL_RGBA32UI, 0, bytes) : Texture();
+    triangle_rows_ = table.vertices_by_stable_id.size();
+    isolated_triangles_ = table.isolated_triangles;
+  }
+
+  void allocate_pool(uint64_t capacity) {
+    capacity = std::max<uint64_t>(capacity, kSmallestPool);
+    GLint64 max_block = 0, max_texels = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    glGetInteger64v(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+    const GLint64 sorted_texels = kSortedBytes / 16;  // the largest view in texels per record
+    if (capacity > 0x1ffffff0ull || (max_block > 0 && GLint64(capacity) * kSortedBytes > max_block) ||
+        (max_texels > 0 && GLint64(capacity) * sorted_texels > max_texels)) {
+      throw std::runtime_error("illustration_buffer: " + std::to_string(capacity) + " fragments (" +
+                               std::to_string(capacity * kSortedBytes >> 20) +
+                               " MiB of sorted records) exceed the device's largest storage buffer (" +
+                               std::to_string(max_block >> 20) + " MiB) or buffer texture (" +
+                               std::to_string(max_texels) + " texels); render at a smaller size");
+    }
+    next_ = make_buffer(GLsizeiptr(capacity) * kNextBytes);
+    data_ = make_buffer(GLsizeiptr(capacity) * kFragmentBytes);
+    data2_ = make_buffer(GLsizeiptr(capacity) * kSortedBytes);
+    if (s_.measure_accuracy) truth_ = make_buffer(GLsizeiptr(capacity) * kTruthBytes);
+    gl_check("allocating the illustration buffer's fragment pool");
+    capacity_ = capacity;
+    fragment_view_ = buffer_view(data_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kFragmentBytes);
+    next_view_ = buffer_view(next_, GL_R32UI, 0, GLsizeiptr(capacity) * kNextBytes);
+    sorted_view_ = buffer_view(data2_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kSortedBytes);
+    const GLsizeiptr field_bytes = kFieldBytes * GLsizeiptr(capacity);
+    fields_view_[0] = buffer_view(data_, GL_RGBA32F, 0, field_bytes);
+    fields_view_[1] = buffer_view(data_, GL_RGBA32F, second_field_range(), field_bytes);
+    set(fill_.id(), "u_capacity", uint32_t(capacity_));
+  }
+
+  void bind_storage() const {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kHead, head_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCount, count_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNext, next_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kData, data_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kData2, data2_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCounters, counters_.id());
+    if (truth_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTruth, truth_.id());
+  }
+
+  void append_neighbor_statistics(TechniqueCounters& c) const;
+
+  Settings s_;
+  Program fill_, compose_, neighbors_, stylize_init_, stylize_diffuse_;
+  std::map<uint32_t, Program> sorts_;  // by local array size
+  Buffer counters_, head_, count_, next_, data_, data2_, truth_, triangles_;
+  Texture fragment_view_, next_view_, sorted_view_, triangles_view_, fields_view_[2];  // read-only views (views.glsl)
+  Framebuffer empty_framebuffer_;
+  const Scene* scene_seen_ = nullptr;
+  std::string scene_hash_;
+  int width_ = 0, height_ = 0;
+  uint64_t capacity_ = 0, last_produced_ = 0, produced_ = 0, stored_ = 0, dropped_ = 0, truncated_lists_ = 0;
+  uint64_t passes_ = 0, overflow_retries_ = 0, triangle_rows_ = 0, isolated_triangles_ = 0;
+};
+
+// Reads the last frame's lists back (outside the timed frames) and counts
+// links per direction, silhouettes and, with measure_accuracy, precision/recall.
+void IllustrationBuffer::append_neighbor_statistics(TechniqueCounters& c) const {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  const size_t pixels = size_t(width_) * size_t(height_);
+  std::vector<uint32_t> first(pixels), count(pixels);
+  std::vector<SortedRecord> sorted(stored_);
+  std::vector<TruthRecord> truth(s_.measure_accuracy ? produced_ : 0);
+  glGetNamedBufferSubData(head_.id(), 0, GLsizeiptr(pixels * 4), first.data());
+  glGetNamedBufferSubData(count_.id(), 0, GLsizeiptr(pixels * 4), count.data());
+  if (!sorted.empty())
+    glGetNamedBufferSubData(data2_.id(), 0, GLsizeiptr(sorted.size() * sizeof(SortedRecord)), sorted.data());
+  if (!truth.empty())
+    glGetNamedBufferSubData(truth_.id(), 0, GLsizeiptr(truth.size() * sizeof(TruthRecord)), truth.data());
+  gl_check("illustration_buffer: reading back the lists for the neighbour statistics");
+  const NeighborStatistics stats =
+      neighbor_statistics(width_, height_, first, count, sorted, truth, s_.accuracy_footprints);
+  const char* names[4] = {"links_left", "links_right", "links_down", "links_up"};
+  for (int d = 0; d < 4; ++d) c.extra.push_back({names[d], double(stats.links[size_t(d)])});
+  c.extra.push_back({"silhouette_fragments", double(stats.silhouette_fragments)});
+  if (stats.measured) {
+    c.extra.push_back({"neighbor_precision", stats.precision});
+    c.extra.push_back({"neighbor_recall", stats.recall});
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<Technique> make_illustration_buffer(const Settings& settings) {
+  return std::make_unique<IllustrationBuffer>(settings);
+}
+
+}  // namespace oit::illustration_buffer

@@ -1,0 +1,270 @@
+// illustration_buffer: plain compositing against the reference, neighbour
+// precision/recall against the parametric ground truth, the boundary
+// conditions and eq. 9 against a closed-form image, pool regrowth, the
+// truncation counter and parameter errors.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <stdexcept>
+
+#include "gl_fixture.h"
+#include "stacked_quads.h"
+
+namespace oit {
+namespace {
+
+const std::vector<std::string> kSearches = {"triangle_index", "heuristic"};
+constexpr double kFloatTolerance = 1e-5;
+
+double extra(const RunResult& r, const std::string& name) {
+  for (const auto& [key, value] : r.counters.extra)
+    if (key == name) return value;
+  ADD_FAILURE() << "no extra counter '" << name << "'";
+  return -1.0;
+}
+
+double largest_difference(const Image& a, const Image& b) {
+  EXPECT_EQ(a.rgba.size(), b.rgba.size());
+  double worst = 0.0;
+  for (size_t i = 0; i < std::min(a.rgba.size(), b.rgba.size()); ++i)
+    worst = std::max(worst, std::abs(double(a.rgba[i]) - double(b.rgba[i])));
+  return worst;
+}
+
+TEST(IllustrationBuffer, WithoutModulationEveryNeighbourModeMatchesTheReference) {
+  for (const std::string& search : kSearches) {
+    const RawParams params = {{"modulation", "none"}, {"neighbors", search}};
+    const RunResult quads = test::render_once("illustration_buffer", params, "quads", {{"layers", "32"}}, 64, 64);
+    ASSERT_TRUE(quads.error.has_value());
+    EXPECT_LT(quads.error->max_abs, kFloatTolerance) << search;
+    EXPECT_EQ(quads.counters.fragments_stored, 32u * 64u * 64u) << search;
+    EXPECT_EQ(quads.counters.fragments_dropped, 0u) << search;
+    for (const char* scene : {"spheres", "nested_spheres"}) {
+      const RunResult mesh = test::render_once("illustration_buffer", params, scene, {}, 64, 64);
+      ASSERT_TRUE(mesh.error.has_value());
+      EXPECT_LT(mesh.error->max_abs, kFloatTolerance) << search << " on " << scene;
+      EXPECT_EQ(mesh.counters.fragments_stored, mesh.scene_fragments) << search << " on " << scene;
+    }
+  }
+}
+
+TEST(IllustrationBuffer, FullScreenQuadsLinkEveryInteriorPairInBothModes) {
+  // Every layer covers the image: each fragment has a neighbour in every
+  // in-image direction, so the link counts are exact and nothing is a silhouette.
+  const int w = 24, h = 20, layers = 8;
+  for (const std::string& search : kSearches) {
+    const RunResult r = test::render_once("illustration_buffer", {{"neighbors", search}}, "quads",
+                                          {{"layers", std::to_string(layers)}}, w, h);
+    EXPECT_EQ(extra(r, "links_left"), double(layers * (w - 1) * h)) << search;
+    EXPECT_EQ(extra(r, "links_right"), double(layers * (w - 1) * h)) << search;
+    EXPECT_EQ(extra(r, "links_down"), double(layers * w * (h - 1))) << search;
+    EXPECT_EQ(extra(r, "links_up"), double(layers * w * (h - 1))) << search;
+    EXPECT_EQ(extra(r, "silhouette_fragments"), 0.0) << search;
+    // No silhouettes, no halos, a constant alpha field: the image is plain blending.
+    EXPECT_LT(r.error->max_abs, kFloatTolerance) << search;
+  }
+}
+
+// Precision and recall of the links against the (surface id, u, v) ground
+// truth; thresholds sit below the measured values at 96x96 (see README.md).
+void expect_accurate_neighbours(const std::string& scene, const RawParams& scene_params, double precision,
+                                double recall) {
+  for (const std::string& search : kSearches) {
+    const RunResult r = test::render_once("illustration_buffer", {{"neighbors", search}, {"modulation", "silhouette"}},
+                                          scene, scene_params, 96, 96);
+    const double p = extra(r, "neighbor_precision"), q = extra(r, "neighbor_recall");
+    std::printf("[ measured ] %s on %s: precision %.4f recall %.4f\n", search.c_str(), scene.c_str(), p, q);
+    EXPECT_GT(p, precision) << search << " on " << scene;
+    EXPECT_GT(q, recall) << search << " on " << scene;
+    EXPECT_LE(p, 1.0);
+    EXPECT_LE(q, 1.0);
+  }
+}
+
+TEST(IllustrationBuffer, NeighbourLinksAreAccurateOnASphere) {
+  expect_accurate_neighbours("nested_spheres", {{"count", "1"}}, 0.97, 0.95);
+}
+
+TEST(IllustrationBuffer, NeighbourLinksAreAccurateOnATorus) {
+  expect_accurate_neighbours("torus", {}, 0.95, 0.9);
+}
+
+TEST(IllustrationBuffer, PrecisionExposesADegenerateContinuityMeasure) {
+  // w_z = w_n = 0 makes every candidate of the same object equally good, so
+  // Algorithm 2 takes the nearest fragment of the adjacent list: the back
+  // layers of the torus link to its front layers, and precision must say so.
+  const RunResult r =
+      test::render_once("illustration_buffer",
+                        {{"neighbors", "heuristic"}, {"modulation", "silhouette"}, {"weight_z", "0"}, {"weight_n", "0"}},
+                        "torus", {}, 96, 96);
+  const double p = extra(r, "neighbor_precision");
+  std::printf("[ measured ] heuristic with w_z = w_n = 0 on torus: precision %.4f\n", p);
+  EXPECT_LT(p, 0.9);
+}
+
+// One screen-aligned quad (alpha s over black): pixels of the quad with an
+// in-image neighbour pixel outside it are silhouettes (beta = 1, fixed);
+// eq. 9 then gives beta = max(0, 1 - d * lambda_beta) within `iterations`
+// steps, d the 4-connected distance to the silhouette. The composite is
+// (s + (1 - s) beta) * colour; the colour comes from the reference (s * colour).
+Image single_quad_closed_form(const Image& reference, float s, int iterations, float lambda) {
+  const int w = reference.width, h = reference.height;
+  auto covered = [&](int x, int y) { return reference.at(x, y, 3) > 0.5f * s; };
+  std::vector<int> distance(size_t(w * h), -1);
+  std::deque<std::pair<int, int>> queue;
+  const int dx[4] = {-1, 1, 0, 0}, dy[4] = {0, 0, -1, 1};
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (!covered(x, y)) continue;
+      bool silhouette = false;
+      for (int d = 0; d < 4; ++d) {
+        const int nx = x + dx[d], ny = y + dy[d];
+        silhouette = silhouette || (nx >= 0 && ny >= 0 && nx < w && ny < h && !covered(nx, ny));
+      }
+      if (silhouette) {
+        distance[size_t(y * w + x)] = 0;
+        queue.emplace_back(x, y);
+      }
+    }
+  while (!queue.empty()) {
+    const auto [x, y] = queue.front();
+    queue.pop_front();
+    for (int d = 0; d < 4; ++d) {
+      const int nx = x + dx[d], ny = y + dy[d];
+      if (nx < 0 || ny < 0 || nx >= w || ny >= h || !covered(nx, ny) || distance[size_t(ny * w + nx)] >= 0) continue;
+      distance[size_t(ny * w + nx)] = distance[size_t(y * w + x)] + 1;
+      queue.emplace_back(nx, ny);
+    }
+  }
+  Image expected = reference;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int d = distance[size_t(y * w + x)];
+      if (!covered(x, y) || d < 0 || d > iterations) continue;
+      const float beta = std::max(0.0f, 1.0f - float(d) * lambda);
+      const float opacity = s + (1.0f - s) * beta;
+      for (int c = 0; c < 3; ++c) expected.rgba[size_t((y * w + x) * 4 + c)] = reference.at(x, y, c) / s * opacity;
+      expected.rgba[size_t((y * w + x) * 4 + 3)] = opacity;
+    }
+  return expected;
+}
+
+TEST(IllustrationBuffer, SilhouettesGetBetaOneAndEquationNinePropagatesIt) {
+  const int w = 64, h = 64;
+  const RawParams quad = {{"count", "1"}, {"size", "0.4"}, {"seed", "3"}};
+  const Image& reference = test::harness().reference_image("random_quads", quad, w, h, glm::vec3(0.0f));
+  for (const std::string& search : kSearches) {
+    for (int iterations : {0, 3}) {
+      const RunResult r = test::render_once("illustration_buffer",
+                                            {{"neighbors", search},
+                                             {"modulation", "silhouette"},
+                                             {"iterations", std::to_string(iterations)},
+                                             {"lambda_beta", "0.25"}},
+                                            "random_quads", quad, w, h);
+      const Image expected = single_quad_closed_form(reference, 0.3f, iterations, 0.25f);
+      EXPECT_LT(largest_difference(r.image, expected), kFloatTolerance) << search << " iterations " << iterations;
+      EXPECT_GT(extra(r, "silhouette_fragments"), 20.0) << search;
+      EXPECT_GT(r.error->max_abs, 0.5) << "silhouettes must be opaque";
+    }
+  }
+}
+
+TEST(IllustrationBuffer, ZeroIterationsKeepTheInitialAlpha) {
+  // 16 full-screen layers: no silhouettes or halos. Adaptive alpha (eq. 5)
+  // gives every fragment 1 - (1 - s)^(1/16); without iterations the image is
+  // that alpha composited, and the diffusion of a constant field keeps it.
+  const int layers = 16, w = 32, h = 32;
+  StackedQuadsParams p;
+  p.layers = layers;
+  auto stack = stacked_quad_layers(p);
+  std::sort(stack.begin(), stack.end(),
+            [](const QuadLayer& a, const QuadLayer& b) { return a.eye_distance < b.eye_distance; });
+  glm::dvec3 accumulated(0.0);
+  double transmittance = 1.0;
+  for (const QuadLayer& layer : stack) {
+    const double alpha = 1.0 - std::pow(1.0 - double(layer.color.a), 1.0 / layers);
+    accumulated += transmittance * alpha * glm::dvec3(layer.color);
+    transmittance *= 1.0 - alpha;
+  }
+  const glm::dvec4 expected(accumulated, 1.0 - transmittance);
+  for (const char* iterations : {"0", "20"}) {
+    const RunResult r = test::render_once(
+        "illustration_buffer", {{"modulation", "silhouette_halo"}, {"adaptive_alpha", "true"}, {"iterations", iterations}},
+        "quads", {{"layers", std::to_string(layers)}}, w, h);
+    double worst = 0.0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(double(r.image.at(x, y, c)) - expected[c]));
+    EXPECT_LT(worst, kFloatTolerance) << iterations << " iterations";
+    // The coverage of adaptive alpha is s whatever the layer count (eq. 6).
+    EXPECT_NEAR(expected.a, 0.3, 1e-6);
+  }
+}
+
+TEST(IllustrationBuffer, DiffusionChangesTheImageOnlyWithIterations) {
+  // Adaptive alpha varies with the list length on spheres: diffusion smooths it.
+  const RawParams base = {{"modulation", "halo"}, {"adaptive_alpha", "true"}, {"lambda_gamma", "1"}};
+  RawParams none = base, some = base, still = base;
+  none["iterations"] = "0";
+  some["iterations"] = "10";
+  still["iterations"] = "10";
+  still["lambda_alpha"] = "0";
+  const RunResult a = test::render_once("illustration_buffer", none, "spheres", {}, 48, 48);
+  const RunResult b = test::render_once("illustration_buffer", some, "spheres", {}, 48, 48);
+  const RunResult c = test::render_once("illustration_buffer", still, "spheres", {}, 48, 48);
+  EXPECT_GT(largest_difference(a.image, b.image), 1e-3);
+  // lambda_alpha = 0 and lambda_gamma = 1 make every iteration the identity.
+  EXPECT_LT(largest_difference(a.image, c.image), 1e-6);
+}
+
+TEST(IllustrationBuffer, TooSmallPoolGrowsAndGivesTheSameImage) {
+  const int w = 32, h = 32;
+  for (const char* modulation : {"none", "silhouette_halo"}) {
+    const RunResult small = test::render_once(
+        "illustration_buffer", {{"modulation", modulation}, {"initial_nodes_per_pixel", "1"}}, "spheres", {}, w, h);
+    const RunResult roomy = test::render_once(
+        "illustration_buffer", {{"modulation", modulation}, {"initial_nodes_per_pixel", "64"}}, "spheres", {}, w, h);
+    EXPECT_GE(small.counters.overflow_retries, 1u) << modulation;
+    EXPECT_EQ(small.counters.passes, 2u) << modulation;
+    EXPECT_EQ(roomy.counters.overflow_retries, 0u) << modulation;
+    EXPECT_EQ(small.counters.fragments_stored, small.scene_fragments) << modulation;
+    EXPECT_EQ(largest_difference(small.image, roomy.image), 0.0) << modulation;
+  }
+}
+
+TEST(IllustrationBuffer, ListsLongerThanTheSortArrayAreCounted) {
+  const int w = 16, h = 16;
+  const RunResult r = test::render_once("illustration_buffer", {{"modulation", "none"}, {"max_per_pixel", "5"}}, "quads",
+                                        {{"layers", "12"}}, w, h);
+  EXPECT_EQ(extra(r, "lists_truncated"), double(w * h));
+  EXPECT_EQ(r.counters.fragments_dropped, 7u * w * h);
+  EXPECT_EQ(r.counters.fragments_stored, 5u * w * h);
+  EXPECT_GT(r.error->max_abs, 0.0);
+}
+
+TEST(IllustrationBuffer, InvalidParametersAreErrorsNamingTheParameter) {
+  const TechniqueDescriptor& d = builtin_techniques().get("illustration_buffer");
+  for (const auto& [name, value] : std::vector<std::pair<std::string, std::string>>{
+           {"neighbors", "nearest"}, {"modulation", "glow"}, {"iterations", "-1"}, {"lambda_beta", "2"}}) {
+    try {
+      d.create(ParamSet(d.params, {{name, value}}, "technique 'illustration_buffer'"));
+      ADD_FAILURE() << name << "=" << value << " was accepted";
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+    RunSpec spec;
+    spec.technique = "illustration_buffer";
+    spec.params = {{name, value}};
+    spec.width = spec.height = 8;
+    spec.warmup = 0;
+    spec.frames = 1;
+    const RunResult r = test::harness().run(spec);
+    EXPECT_EQ(r.status, RunStatus::error) << name;
+    EXPECT_NE(r.message.find(name), std::string::npos) << r.message;
+  }
+}
+
+}  // namespace
+}  // namespace oit
