@@ -35,11 +35,11 @@ std::string model_path(const std::string& name) {
     std::error_code error;
     if (std::filesystem::is_regular_file(path, error)) return path;
     if (model.in_model_cache) {
-      throw std::invalid_argument("model '" + name + "' needs " + path + ", a mesh of the Debian package " +
+      throw MissingModel("model '" + name + "' needs " + path + ", a mesh of the Debian package " +
                                   model.package + " that setup.sh downloads and unpacks there (apt-get download " +
                                   model.package + "; set OIT_MODEL_DIR to use another directory)");
     }
-    throw std::invalid_argument("model '" + name + "' needs " + path + " from the Debian package " + model.package +
+    throw MissingModel("model '" + name + "' needs " + path + " from the Debian package " + model.package +
                                 " (apt-get install " + model.package + ", or bash setup.sh build)");
   }
   std::string names;
