@@ -102,6 +102,18 @@ TEST(Cli, BenchWithBothClocksWritesEveryStageOfEveryTechniqueTwice) {
   }
 }
 
+TEST(Cli, StatsPrintsTheQuadsComplexityAndWritesTheHeatmap) {
+  // 8 full-screen layers: every pixel's list has 8 fragments, so Psi = 1.
+  const std::string heatmap = kOut + "/stats_heatmap.png";
+  std::filesystem::remove(heatmap);
+  const Outcome o = run_oitbench("stats --scene quads --scene-set layers=8 --size 16x8 --heatmap " + heatmap);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("fragments         1,024"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("depth complexity  max 8, mean 8.000"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("psi               1.0000"), std::string::npos) << o.output;
+  EXPECT_GT(std::filesystem::file_size(heatmap), 0u);
+}
+
 TEST(Cli, BadParameterExitsNonZeroNamingTheKey) {
   const Outcome o = run_oitbench("render --technique reference --set initial_nodes_per_pixel=0 --scene quads "
                                  "--size 8x8 --out " + kOut + "/never.png");

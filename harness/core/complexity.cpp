@@ -12,8 +12,10 @@ namespace oit {
 
 DepthComplexity measure_depth_complexity(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection,
                                          int width, int height) {
-  static thread_local Program program;  // compiled once per context thread
-  if (!program) program = build_geometry_program("shaders/count_fragments.frag");
+  // Built per call, not kept in a static: a static program would outlive the
+  // context and be deleted at exit without one. Callers measure once per
+  // scene and size, and Mesa's shader cache makes the rebuild cheap.
+  const Program program = build_geometry_program("shaders/count_fragments.frag");
   Texture counts = make_texture_2d(GL_R32UI, width, height);
   const GLuint zero = 0;
   glClearTexImage(counts.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
