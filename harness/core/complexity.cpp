@@ -41,6 +41,10 @@ DepthComplexity measure_depth_complexity(const SceneGpu& scene, const glm::mat4&
   glGetTextureImage(counts.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(result.per_pixel.size() * 4),
                     result.per_pixel.data());
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  // The program is deleted on return: leaving it in use would leave a name
+  // that code saving and restoring GL_CURRENT_PROGRAM (ImGui's renderer in
+  // `oitbench view`) restores after the name is gone (GL_INVALID_VALUE).
+  glUseProgram(0);
   gl_check("depth complexity pass");
   summarize_depth_complexity(result);
   return result;
