@@ -12,14 +12,36 @@ namespace oit::illustration_buffer {
 constexpr uint32_t kNoNeighbor = 0xffffffffu;  // IB_NONE in ib_storage.glsl
 constexpr uint32_t kOffImage = 0xfffffffeu;    // IB_OFF_IMAGE
 
-// IbSorted of ib_storage.glsl (64 B).
+// IbSortedSearch (fragData2) and IbSortedShade (fragData3) of ib_storage.glsl, 32 B each.
+struct SortedSearchRecord {
+  uint32_t key[4];       // depth bits, stable triangle id, object id, pixel
+  uint32_t geometry[4];  // packed normal, dz/dx bits, dz/dy bits, fill record index
+};
+static_assert(sizeof(SortedSearchRecord) == 32);
+struct SortedShadeRecord {
+  float color[4];
+  uint32_t links[4];  // left, right, down, up
+};
+static_assert(sizeof(SortedShadeRecord) == 32);
+
+// One sorted fragment, both halves joined on the CPU (read-back only).
 struct SortedRecord {
   float color[4];
   uint32_t key[4];       // depth bits, stable triangle id, object id, pixel
   uint32_t geometry[4];  // packed normal, dz/dx bits, dz/dy bits, fill record index
   uint32_t links[4];     // left, right, down, up
 };
-static_assert(sizeof(SortedRecord) == 64);
+
+inline SortedRecord join(const SortedSearchRecord& search, const SortedShadeRecord& shade) {
+  SortedRecord r;
+  for (int i = 0; i < 4; ++i) {
+    r.color[i] = shade.color[i];
+    r.key[i] = search.key[i];
+    r.geometry[i] = search.geometry[i];
+    r.links[i] = shade.links[i];
+  }
+  return r;
+}
 
 // The fill's ground-truth record (16 B): surface id, u, v bits, fwidth(uv) as half2.
 struct TruthRecord {

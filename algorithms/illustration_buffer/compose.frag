@@ -34,7 +34,7 @@ void main() {
   vec3 accumulated = vec3(0.0);
   float transmittance = 1.0;
   for (uint i = first; i < end; ++i) {
-    const vec4 c = ib_sorted[i].color;
+    const vec4 c = ib_shade[i].color;
 #ifdef IB_MODULATE
     const vec4 field = ib_fields_in[i];
     const float alpha = clamp(field.x, 0.0, 1.0);

@@ -1,6 +1,6 @@
 // The illustration buffer (carnecky2013 section 4.1, pastyrik2016 section 3):
 // per-pixel head/count, per-fragment next pointers and records, the sorted
-// contiguous copy fragData2, global counters and the triangle table.
+// contiguous copy fragData2 + fragData3, global counters and the triangle table.
 // Records are read and written as whole vec4/uvec4 members: on Mesa 22.3
 // llvmpipe, reading single scalar members of a struct array in a loop
 // returned wrong values.
@@ -18,19 +18,26 @@ struct IbFragment {
   vec4 slopes;  // x: d(depth)/dx, y: d(depth)/dy per pixel, zw: unused
 };
 
-// fragData2: the sorted lists, each pixel's fragments contiguous, nearest first (64 B).
-struct IbSorted {
-  vec4 color;      // straight RGBA
+// The sorted lists, each pixel's fragments contiguous, nearest first, split
+// over two buffers of 32 B per record (together 64 B; one 64 B array would
+// pass llvmpipe's 128 MiB storage-block limit at 2.1M fragments):
+// fragData2: what the neighbour search compares.
+struct IbSortedSearch {
   uvec4 key;       // x: view depth bits, y: stable triangle id, z: object id, w: pixel index
   uvec4 geometry;  // x: packed view normal, y: dz/dx bits, z: dz/dy bits, w: index of the fill record (fragData)
-  uvec4 links;     // sorted indices of the left, right, down, up neighbours (or IB_NONE / IB_OFF_IMAGE)
+};
+// fragData3: what stylize and compose read, and the links the search writes.
+struct IbSortedShade {
+  vec4 color;   // straight RGBA
+  uvec4 links;  // sorted indices of the left, right, down, up neighbours (or IB_NONE / IB_OFF_IMAGE)
 };
 
 layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) coherent buffer IbPixelHead { uint ib_head[]; };
 layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) coherent buffer IbPixelCount { uint ib_count[]; };
 layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 2) buffer IbFragNext { uint ib_next[]; };
 layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 3) buffer IbFragData { IbFragment ib_fragments[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 4) buffer IbFragData2 { IbSorted ib_sorted[]; };
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 4) buffer IbFragData2 { IbSortedSearch ib_search[]; };
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 10) buffer IbFragData3 { IbSortedShade ib_shade[]; };
 // produced: fragments the fill generated (may exceed the pool: overflow).
 // longest: the longest list. dropped / truncated: fragments beyond
 // max_per_pixel and the lists that had any. allocated: the sort's range allocator.

@@ -96,5 +96,5 @@ void main() {
   links.y = search(s, pixel, x, y, 1, 0);
   links.z = search(s, pixel, x, y, 0, -1);
   links.w = search(s, pixel, x, y, 0, 1);
-  ib_sorted[s].links = links;
+  ib_shade[s].links = links;
 }

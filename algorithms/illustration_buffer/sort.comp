@@ -1,10 +1,10 @@
 #version 450 core
 // Sort (carnecky2013 section 4.3): one invocation per pixel gathers its list
 // into a local array ordered by (view depth, stable triangle id), reserves a
-// contiguous range of fragData2 with one atomic add (the range's first index
-// and length replace pixelHead and pixelCount) and copies the records there
-// in order. Lists longer than IB_ARRAY keep their IB_ARRAY nearest fragments
-// (the fill counted the rest as dropped).
+// contiguous range of fragData2/fragData3 with one atomic add (the range's
+// first index and length replace pixelHead and pixelCount) and copies the
+// records there in order. Lists longer than IB_ARRAY keep their IB_ARRAY
+// nearest fragments (the fill counted the rest as dropped).
 //
 // The list is walked by ONE flat loop: each iteration either takes the next
 // node or moves the pending node's insertion hole one step nearer. Mesa 22.3
@@ -60,7 +60,7 @@ void main() {
     const vec4 color = uintBitsToFloat(texelFetch(ib_fragment_view, int(node * 3u)));
     const uvec4 key = texelFetch(ib_fragment_view, int(node * 3u + 1u));
     const uvec4 slopes = texelFetch(ib_fragment_view, int(node * 3u + 2u));
-    ib_sorted[first + i] = IbSorted(color, uvec4(key.xyz, pixel), uvec4(key.w, slopes.x, slopes.y, node),
-                                    uvec4(IB_NONE));
+    ib_search[first + i] = IbSortedSearch(uvec4(key.xyz, pixel), uvec4(key.w, slopes.x, slopes.y, node));
+    ib_shade[first + i] = IbSortedShade(color, uvec4(IB_NONE));
   }
 }

@@ -30,7 +30,7 @@ void main() {
   const uint pixel = ib_sorted_key(s).w;
   const uint layer = ib_layer_of(s, pixel);
   const uvec4 links = ib_sorted_links(s);
-  const float own_alpha = uintBitsToFloat(texelFetch(ib_sorted_view, int(s * 4u)).a);
+  const float own_alpha = ib_sorted_color(s).a;
   const float alpha = u_adaptive ? 1.0 - pow(1.0 - own_alpha, 1.0 / float(ib_count[pixel])) : own_alpha;
 
   const bool silhouette = any(equal(links, uvec4(IB_NONE)));

@@ -18,12 +18,18 @@
 namespace oit::illustration_buffer {
 namespace {
 
-constexpr GLsizeiptr kFragmentBytes = 48, kSortedBytes = 64, kNextBytes = 4, kTruthBytes = 16, kFieldBytes = 16;
+constexpr GLsizeiptr kFragmentBytes = 48, kNextBytes = 4, kTruthBytes = 16, kFieldBytes = 16;
+// The sorted records, split over fragData2 (key, geometry) and fragData3 (colour, links).
+constexpr GLsizeiptr kSearchBytes = 32, kShadeBytes = 32;
+// The largest per-record buffer (fragData; it also holds both field ranges) bounds the pool.
+constexpr GLsizeiptr kLargestRecordBytes = std::max({kFragmentBytes, kSearchBytes, kShadeBytes, 2 * kFieldBytes});
 constexpr GLsizeiptr kCounterBytes = 20;  // produced, longest, dropped, truncated, allocated
 constexpr GLuint kBinding = OIT_FIRST_TECHNIQUE_BINDING;
-enum : GLuint { kHead = kBinding, kCount, kNext, kData, kData2, kCounters, kTruth, kTriangles, kFieldsIn, kFieldsOut };
+enum : GLuint {
+  kHead = kBinding, kCount, kNext, kData, kData2, kCounters, kTruth, kTriangles, kFieldsIn, kFieldsOut, kData3
+};
 // Texture units of views.glsl.
-constexpr GLuint kSortedUnit = 0, kTrianglesUnit = 1, kFieldsUnit = 2;
+constexpr GLuint kSearchUnit = 0, kTrianglesUnit = 1, kFieldsUnit = 2, kShadeUnit = 3;
 constexpr GLuint kFragmentUnit = 0, kNextUnit = 1;  // the sort's views (sort.comp)
 constexpr uint32_t kSmallestArray = 8;
 constexpr double kPoolSlack = 1.25;
@@ -128,7 +134,8 @@ class IllustrationBuffer final : public Technique {
     }
     const GLintptr second_range = second_field_range();
     if (modulated()) {
-      glBindTextureUnit(kSortedUnit, sorted_view_.id());
+      glBindTextureUnit(kSearchUnit, search_view_.id());
+      glBindTextureUnit(kShadeUnit, shade_view_.id());
       {
         auto stage = frame.clock.stage("neighbors");
         prepare_scene_data(frame.scene.scene());
@@ -155,13 +162,13 @@ class IllustrationBuffer final : public Technique {
     glUseProgram(compose_.id());
     frame.set_shared_uniforms(compose_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    for (GLuint unit : {kSortedUnit, kTrianglesUnit, kFieldsUnit}) glBindTextureUnit(unit, 0);
+    for (GLuint unit : {kSearchUnit, kTrianglesUnit, kFieldsUnit, kShadeUnit}) glBindTextureUnit(unit, 0);
   }
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
     const uint64_t per_fragment =
-        uint64_t(kNextBytes + kFragmentBytes + kSortedBytes + (s_.measure_accuracy ? kTruthBytes : 0));
+        uint64_t(kNextBytes + kFragmentBytes + kSearchBytes + kShadeBytes + (s_.measure_accuracy ? kTruthBytes : 0));
     c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * 8 + capacity_ * per_fragment + kCounterBytes +
                         triangle_rows_ * 16;
     c.fragments_stored = stored_;
@@ -269,24 +276,26 @@ class IllustrationBuffer final : public Technique {
     GLint64 max_block = 0, max_texels = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
     glGetInteger64v(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-    const GLint64 sorted_texels = kSortedBytes / 16;  // the largest view in texels per record
-    if (capacity > 0x1ffffff0ull || (max_block > 0 && GLint64(capacity) * kSortedBytes > max_block) ||
-        (max_texels > 0 && GLint64(capacity) * sorted_texels > max_texels)) {
+    const GLint64 largest_texels = kLargestRecordBytes / 16;  // the largest view (fragData) in texels per record
+    if (capacity > 0x1ffffff0ull || (max_block > 0 && GLint64(capacity) * kLargestRecordBytes > max_block) ||
+        (max_texels > 0 && GLint64(capacity) * largest_texels > max_texels)) {
       throw std::runtime_error("illustration_buffer: " + std::to_string(capacity) + " fragments (" +
-                               std::to_string(capacity * kSortedBytes >> 20) +
-                               " MiB of sorted records) exceed the device's largest storage buffer (" +
+                               std::to_string(capacity * kLargestRecordBytes >> 20) +
+                               " MiB of fill records) exceed the device's largest storage buffer (" +
                                std::to_string(max_block >> 20) + " MiB) or buffer texture (" +
                                std::to_string(max_texels) + " texels); render at a smaller size");
     }
     next_ = make_buffer(GLsizeiptr(capacity) * kNextBytes);
     data_ = make_buffer(GLsizeiptr(capacity) * kFragmentBytes);
-    data2_ = make_buffer(GLsizeiptr(capacity) * kSortedBytes);
+    data2_ = make_buffer(GLsizeiptr(capacity) * kSearchBytes);
+    data3_ = make_buffer(GLsizeiptr(capacity) * kShadeBytes);
     if (s_.measure_accuracy) truth_ = make_buffer(GLsizeiptr(capacity) * kTruthBytes);
     gl_check("allocating the illustration buffer's fragment pool");
     capacity_ = capacity;
     fragment_view_ = buffer_view(data_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kFragmentBytes);
     next_view_ = buffer_view(next_, GL_R32UI, 0, GLsizeiptr(capacity) * kNextBytes);
-    sorted_view_ = buffer_view(data2_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kSortedBytes);
+    search_view_ = buffer_view(data2_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kSearchBytes);
+    shade_view_ = buffer_view(data3_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kShadeBytes);
     const GLsizeiptr field_bytes = kFieldBytes * GLsizeiptr(capacity);
     fields_view_[0] = buffer_view(data_, GL_RGBA32F, 0, field_bytes);
     fields_view_[1] = buffer_view(data_, GL_RGBA32F, second_field_range(), field_bytes);
@@ -299,6 +308,7 @@ class IllustrationBuffer final : public Technique {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNext, next_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kData, data_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kData2, data2_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kData3, data3_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCounters, counters_.id());
     if (truth_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTruth, truth_.id());
   }
@@ -308,8 +318,8 @@ class IllustrationBuffer final : public Technique {
   Settings s_;
   Program fill_, compose_, neighbors_, stylize_init_, stylize_diffuse_;
   std::map<uint32_t, Program> sorts_;  // by local array size
-  Buffer counters_, head_, count_, next_, data_, data2_, truth_, triangles_;
-  Texture fragment_view_, next_view_, sorted_view_, triangles_view_, fields_view_[2];  // read-only views (views.glsl)
+  Buffer counters_, head_, count_, next_, data_, data2_, data3_, truth_, triangles_;
+  Texture fragment_view_, next_view_, search_view_, shade_view_, triangles_view_, fields_view_[2];  // read-only views (views.glsl)
   Framebuffer empty_framebuffer_;
   const Scene* scene_seen_ = nullptr;
   std::string scene_hash_;
@@ -324,15 +334,20 @@ void IllustrationBuffer::append_neighbor_statistics(TechniqueCounters& c) const 
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   const size_t pixels = size_t(width_) * size_t(height_);
   std::vector<uint32_t> first(pixels), count(pixels);
-  std::vector<SortedRecord> sorted(stored_);
+  std::vector<SortedSearchRecord> search(stored_);
+  std::vector<SortedShadeRecord> shade(stored_);
   std::vector<TruthRecord> truth(s_.measure_accuracy ? produced_ : 0);
   glGetNamedBufferSubData(head_.id(), 0, GLsizeiptr(pixels * 4), first.data());
   glGetNamedBufferSubData(count_.id(), 0, GLsizeiptr(pixels * 4), count.data());
-  if (!sorted.empty())
-    glGetNamedBufferSubData(data2_.id(), 0, GLsizeiptr(sorted.size() * sizeof(SortedRecord)), sorted.data());
+  if (stored_ > 0) {
+    glGetNamedBufferSubData(data2_.id(), 0, GLsizeiptr(search.size() * sizeof(SortedSearchRecord)), search.data());
+    glGetNamedBufferSubData(data3_.id(), 0, GLsizeiptr(shade.size() * sizeof(SortedShadeRecord)), shade.data());
+  }
   if (!truth.empty())
     glGetNamedBufferSubData(truth_.id(), 0, GLsizeiptr(truth.size() * sizeof(TruthRecord)), truth.data());
   gl_check("illustration_buffer: reading back the lists for the neighbour statistics");
+  std::vector<SortedRecord> sorted(stored_);
+  for (size_t i = 0; i < sorted.size(); ++i) sorted[i] = join(search[i], shade[i]);
   const NeighborStatistics stats =
       neighbor_statistics(width_, height_, first, count, sorted, truth, s_.accuracy_footprints);
   const char* names[4] = {"links_left", "links_right", "links_down", "links_up"};

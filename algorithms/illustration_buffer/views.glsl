@@ -3,11 +3,13 @@
 // addresses is a vector gather, while an SSBO load with per-invocation
 // addresses is a lane-by-lane loop; the per-fragment passes read their
 // neighbours' records through these views (their writes still go to SSBOs).
-layout(binding = 0) uniform usamplerBuffer ib_sorted_view;   // RGBA32UI, 4 texels per IbSorted
+layout(binding = 0) uniform usamplerBuffer ib_search_view;   // RGBA32UI, 2 texels per IbSortedSearch (fragData2)
 layout(binding = 1) uniform usamplerBuffer ib_triangle_view; // RGBA32UI, one row per stable triangle id
 layout(binding = 2) uniform samplerBuffer ib_fields_view;    // RGBA32F, the input field range
+layout(binding = 3) uniform usamplerBuffer ib_shade_view;    // RGBA32UI, 2 texels per IbSortedShade (fragData3)
 
-// Members of IbSorted by texel: 0 color, 1 key, 2 geometry, 3 links.
-uvec4 ib_sorted_key(uint s) { return texelFetch(ib_sorted_view, int(s * 4u + 1u)); }
-uvec4 ib_sorted_geometry(uint s) { return texelFetch(ib_sorted_view, int(s * 4u + 2u)); }
-uvec4 ib_sorted_links(uint s) { return texelFetch(ib_sorted_view, int(s * 4u + 3u)); }
+// Members by texel: IbSortedSearch 0 key, 1 geometry; IbSortedShade 0 color, 1 links.
+uvec4 ib_sorted_key(uint s) { return texelFetch(ib_search_view, int(s * 2u)); }
+uvec4 ib_sorted_geometry(uint s) { return texelFetch(ib_search_view, int(s * 2u + 1u)); }
+vec4 ib_sorted_color(uint s) { return uintBitsToFloat(texelFetch(ib_shade_view, int(s * 2u))); }
+uvec4 ib_sorted_links(uint s) { return texelFetch(ib_shade_view, int(s * 2u + 1u)); }
