@@ -1,0 +1,47 @@
+// The descriptor of the bucketed k-buffer: parameters, stages, support check.
+#include <string>
+
+#include "core/technique.h"
+
+namespace oit {
+
+std::unique_ptr<Technique> make_bucketed_kbuffer(const ParamSet& params);  // bucketed_kbuffer.cpp
+
+void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
+  TechniqueDescriptor d;
+  d.id = "bucketed_kbuffer";
+  d.display_name = "Bucketed k-buffer (mean curvature transparency)";
+  d.paper = "Murray, Baril, Granier 2016, Shape depiction for transparent objects with bucketed k-buffer";
+  d.params = {
+      ParamSpec::integer("k", 16, 1, 64, "slots per pixel: the k nearest fragments are kept"),
+      ParamSpec::choice("buckets", "auto", {"auto", "on", "off"},
+                        "neighbour query in one bucket (on), over all fragments (off, brute force), "
+                        "or on unless the scene has a single object (auto)"),
+      ParamSpec::choice("color_transfer", "mean_curvature_shading",
+                        {"mean_curvature_shading", "curved_bright", "identity"},
+                        "1D colour transfer function of kappa: murray2016 Figure 6(a), 6(b), or colour unchanged"),
+      ParamSpec::choice("opacity_transfer", "front_focus", {"front_focus", "depth_range", "identity"},
+                        "2D opacity transfer function of |kappa| and depth: murray2016 Figure 7/8(a), 7/8(b), "
+                        "or alpha unchanged"),
+      ParamSpec::choice("depth_bits", "16", {"16", "24"},
+                        "depth bits of the 32-bit key; the shape id gets the rest (24: at most 256 objects)"),
+      ParamSpec::real("curvature_scale", 1.0, 1e-3, 1e3,
+                      "kappa = tanh(curvature_scale * (k1 + k2)), curvatures in 1 / scene units"),
+      ParamSpec::boolean("measure_accuracy", false,
+                         "keep links and curvatures for counters(): link checksum, kappa error on analytic scenes")};
+  d.stages = {"clear", "fill", "sort", "bucket", "store", "neighbors", "stylize", "compose"};
+  d.exactness = Exactness::approximate;
+  d.quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32", "64"}}};
+  d.extra_support_check = [](const ParamSet& params, const SceneFacts& scene) -> std::string {
+    const bool wide = params.choice("depth_bits") == "24";
+    const uint32_t limit = wide ? 256u : 65536u;
+    if (scene.objects > limit)
+      return "bucketed_kbuffer: depth_bits=" + params.choice("depth_bits") + " leaves room for " +
+             std::to_string(limit) + " shape ids; the scene has " + std::to_string(scene.objects) + " objects";
+    return "";
+  };
+  d.create = make_bucketed_kbuffer;
+  registry.add(std::move(d));
+}
+
+}  // namespace oit

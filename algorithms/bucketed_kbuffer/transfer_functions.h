@@ -1,0 +1,47 @@
+#pragma once
+// The stylization transfer functions of the bucketed k-buffer (murray2016
+// section 5.2), as plain functions (tests evaluate them too) and as the
+// texture contents the stylize pass samples. The shapes follow the paper's
+// example figures; the figures give no formulas, so the curves here are
+// smooth functions with the behaviour the text describes.
+#include <string>
+#include <vector>
+
+#include "gl/handles.h"
+
+namespace oit::bkb {
+
+constexpr int kColorTransferSize = 256;   // texels of the 1D colour function over kappa in [-1, 1]
+constexpr int kOpacityTransferSize = 64;  // texels per axis of the 2D opacity function
+
+enum class ColorTransfer {
+  identity,                // the shaded colour unchanged
+  mean_curvature_shading,  // Figure 6(a): bright convexities (kappa -> -1), dark concavities (+1)
+  curved_bright,           // Figure 6(b): bright curved surfaces, dark flat ones
+};
+enum class OpacityTransfer {
+  identity,     // the fragment's own alpha unchanged
+  front_focus,  // Figures 7/8(a): transparent flat and near, opaque curved, opacity quickly growing with depth
+  depth_range,  // Figures 7/8(b): less focus in front, curvature shown over a wider range of depth
+};
+
+// Parameter text <-> function; the names are the parameter's choices.
+ColorTransfer color_transfer_from_name(const std::string& name);
+OpacityTransfer opacity_transfer_from_name(const std::string& name);
+
+// Multiplier of the shaded rgb (the same for r, g, b); kappa in [-1, 1].
+float color_multiplier(ColorTransfer function, float kappa);
+// The opacity replacing the fragment's alpha; abs_kappa and depth in [0, 1].
+// Not defined for OpacityTransfer::identity (the stylize pass keeps alpha).
+float opacity(OpacityTransfer function, float abs_kappa, float depth);
+
+// Texture contents: kColorTransferSize RGBA texels (m, m, m, 1) from
+// kappa = -1 to +1, and kOpacityTransferSize^2 R texels (x: |kappa|, y: depth).
+std::vector<float> color_texels(ColorTransfer function);
+std::vector<float> opacity_texels(OpacityTransfer function);
+
+// The textures the stylize pass samples (linear filtering, clamped).
+Texture make_color_texture(ColorTransfer function);      // GL_TEXTURE_1D, RGBA32F
+Texture make_opacity_texture(OpacityTransfer function);  // GL_TEXTURE_2D, R32F
+
+}  // namespace oit::bkb

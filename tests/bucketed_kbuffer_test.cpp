@@ -1,0 +1,251 @@
+// The bucketed k-buffer (murray2016): with identity transfer functions and
+// k covering the depth complexity its image is the reference up to the RGBA8
+// packing bound; buckets do not change which neighbours are found; the
+// screen-space curvature of a sphere matches 1/r; truncation is counted.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+#include "../algorithms/bucketed_kbuffer/transfer_functions.h"
+#include "core/error_metrics.h"
+#include "gl_fixture.h"
+#include "stacked_quads.h"
+
+namespace oit {
+namespace {
+
+constexpr const char* kId = "bucketed_kbuffer";
+constexpr double kRgba8Step = 1.0 / 255.0;
+
+double extra(const RunResult& r, const std::string& name) {
+  for (const auto& [key, value] : r.counters.extra)
+    if (key == name) return value;
+  ADD_FAILURE() << "no extra counter '" << name << "'";
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+// Largest change of a composite (rgb and alpha) when each layer's colour and
+// alpha are rounded to RGBA8, i.e. each is off by at most d = 0.5/255:
+//   out = sum_i T_i a_i c_i + T_n bg,  T_i = prod_{j<i} (1 - a_j)
+//   |d out / d c_i| = T_i a_i           (these sum to at most 1)
+//   |d out / d a_i| = T_i |c_i - R_i|  <= T_i  (R_i: composite behind i, in [0, 1])
+//   |d (1 - T_n) / d a_i| = T_n / (1 - a_i) <= T_i
+// Along the segment between exact and stored values each a_j may be up to d
+// smaller, so bound = d * (1 + sum_i prod_{j<i} (1 - a + d)), plus float
+// rounding of the compose.
+double packing_bound(double alpha, int layers) {
+  const double d = 0.5 * kRgba8Step;
+  double transmittance_sum = 0.0, transmittance = 1.0;
+  for (int i = 0; i < layers; ++i) {
+    transmittance_sum += transmittance;
+    transmittance *= 1.0 - alpha + d;
+  }
+  return d * (1.0 + transmittance_sum) + 1e-5;
+}
+
+// Stylization off: both transfer functions are the identity.
+RawParams unstylized(RawParams params = {}) {
+  params["color_transfer"] = "identity";
+  params["opacity_transfer"] = "identity";
+  return params;
+}
+
+RunResult run(RawParams params, const std::string& scene, RawParams scene_params, int size,
+              const std::string& order = "original") {
+  RunSpec spec;
+  spec.technique = kId;
+  spec.params = std::move(params);
+  spec.scene = scene;
+  spec.scene_params = std::move(scene_params);
+  spec.submission_order = order;
+  spec.width = spec.height = size;
+  spec.warmup = 0;
+  spec.frames = 1;
+  RunResult r = test::harness().run(spec);
+  EXPECT_EQ(r.status, RunStatus::ok) << r.message;
+  return r;
+}
+
+TEST(BucketedKBuffer, IdentityTransferEqualsReferenceOnQuadsWithinPackingBound) {
+  for (const char* objects : {"32", "4"}) {
+    const RunResult r = run(unstylized({{"k", "32"}}), "quads", {{"layers", "32"}, {"objects", objects}}, 64);
+    ASSERT_TRUE(r.error.has_value());
+    EXPECT_LE(r.error->max_abs, packing_bound(0.3, 32)) << "objects=" << objects;
+    EXPECT_EQ(r.counters.fragments_stored, 32u * 64u * 64u);
+    EXPECT_EQ(r.counters.fragments_dropped, 0u);
+    EXPECT_EQ(r.counters.passes, 2u);
+    EXPECT_EQ(extra(r, "store_misses"), 0.0);
+    // The 16-bit depth step is far below the quads' layer spacing of 1.
+    EXPECT_LT(extra(r, "depth_step"), 1e-3);
+  }
+}
+
+TEST(BucketedKBuffer, IdentityTransferEqualsReferenceOnSpheresInAnyOrder) {
+  const RunResult r = run(unstylized(), "spheres", {}, 64);
+  ASSERT_LE(r.max_depth_complexity, 16u) << "k=16 must cover the depth complexity";
+  ASSERT_TRUE(r.error.has_value());
+  EXPECT_LE(r.error->max_abs, packing_bound(0.4, int(r.max_depth_complexity)));
+  EXPECT_EQ(r.counters.fragments_dropped, 0u);
+  EXPECT_EQ(r.counters.fragments_stored, r.scene_fragments);
+  const RunResult shuffled = run(unstylized(), "spheres", {}, 64, "shuffled:7");
+  EXPECT_LE(shuffled.error->max_abs, packing_bound(0.4, int(r.max_depth_complexity)));
+  EXPECT_EQ(compare_images(shuffled.image, r.image).max_abs, 0.0) << "the image depends on the submission order";
+}
+
+TEST(BucketedKBuffer, SixteenBitDepthKeyDoesNotMisorderTheTestScenes) {
+  // 24-bit keys resolve 256x finer depth gaps; if the 16-bit key had tied or
+  // swapped two layers of these scenes, the images would differ.
+  for (const auto& [scene, params, size, k] :
+       {std::tuple{"quads", RawParams{{"layers", "32"}}, 32, "32"}, std::tuple{"spheres", RawParams{}, 48, "32"}}) {
+    const RunResult narrow = run(unstylized({{"k", k}}), scene, params, size);
+    const RunResult wide = run(unstylized({{"k", k}, {"depth_bits", "24"}}), scene, params, size);
+    EXPECT_EQ(compare_images(narrow.image, wide.image).max_abs, 0.0) << scene;
+    EXPECT_NEAR(extra(narrow, "depth_step") / extra(wide, "depth_step"), 16777214.0 / 65534.0, 1e-3) << scene;
+  }
+}
+
+TEST(BucketedKBuffer, LayersFartherApartThanOneDepthStepComeOutInOrder) {
+  // stress_layers (ndc): 8 full-screen layers, `gap` view units apart, near 2.
+  // The 16-bit step here is 6.3e-5 view units, the 24-bit step 2.5e-7.
+  auto layers = [](const char* gap, const char* bits) {
+    return run(unstylized({{"k", "32"}, {"depth_bits", bits}}), "stress_layers", {{"gap", gap}}, 8);
+  };
+  const double bound = packing_bound(0.5, 8);
+  const RunResult two_steps = layers("1e-4", "16");
+  EXPECT_GT(1e-4, extra(two_steps, "depth_step"));
+  EXPECT_LE(two_steps.error->max_abs, bound);
+  // A sixth of a 16-bit step: the keys tie and the order is lost; 24 bits resolve it.
+  const RunResult tied = layers("1e-5", "16");
+  EXPECT_LT(1e-5, extra(tied, "depth_step"));
+  EXPECT_GT(tied.error->max_abs, bound);
+  EXPECT_LE(layers("1e-5", "24").error->max_abs, bound);
+}
+
+TEST(BucketedKBuffer, WideDepthKeysLeaveRoomForOnly256Shapes) {
+  RunSpec spec;
+  spec.technique = kId;
+  spec.params = {{"depth_bits", "24"}};
+  spec.scene = "quads";
+  spec.scene_params = {{"layers", "400"}, {"objects", "400"}};
+  spec.width = spec.height = 4;
+  const RunResult r = test::harness().run(spec);
+  EXPECT_EQ(r.status, RunStatus::skipped);
+  EXPECT_NE(r.message.find("256"), std::string::npos) << r.message;
+}
+
+TEST(BucketedKBuffer, BucketsFindTheSameNeighbourLinksAsBruteForce) {
+  for (const auto& [scene, params, size] :
+       {std::tuple{"quads", RawParams{{"layers", "16"}, {"objects", "4"}}, 64},
+        std::tuple{"spheres", RawParams{}, 64}}) {
+    const RunResult on = run({{"buckets", "on"}, {"measure_accuracy", "true"}}, scene, params, size);
+    const RunResult off = run({{"buckets", "off"}, {"measure_accuracy", "true"}}, scene, params, size);
+    EXPECT_EQ(extra(on, "buckets_used"), 1.0);
+    EXPECT_EQ(extra(off, "buckets_used"), 0.0);
+    EXPECT_GT(extra(on, "neighbor_links"), 0.0) << scene;
+    EXPECT_EQ(extra(on, "neighbor_links"), extra(off, "neighbor_links")) << scene;
+    EXPECT_EQ(extra(on, "link_checksum"), extra(off, "link_checksum")) << scene;
+    EXPECT_GT(extra(on, "buckets_per_pixel"), 1.0) << scene << ": the buckets must split the lists";
+    EXPECT_EQ(compare_images(on.image, off.image).max_abs, 0.0) << scene;
+  }
+  // Every 16-layer quad pixel links to all 4 neighbours except on the image border.
+  const RunResult quads = run({{"buckets", "on"}}, "quads", {{"layers", "16"}, {"objects", "4"}}, 64);
+  EXPECT_EQ(extra(quads, "neighbor_links"), 16.0 * (4.0 * 64 * 64 - 4 * 64));
+}
+
+TEST(BucketedKBuffer, SphereCurvatureMatchesOneOverRadiusAwayFromSilhouettes) {
+  // kappa = tanh(0.2 * (k1 + k2)) = tanh(-0.2 * 2 / 0.8) on the front faces:
+  // inside tanh's linear range, so kappa errors reflect curvature errors.
+  const RunResult r = run({{"measure_accuracy", "true"}, {"curvature_scale", "0.2"}}, "spheres", {}, 64);
+  EXPECT_GE(extra(r, "kappa_samples"), 2000.0);
+  EXPECT_LE(extra(r, "curvature_mean_rel_error"), 0.02);  // measured 0.6 %
+  EXPECT_LE(extra(r, "curvature_max_rel_error"), 0.08);   // measured 2 %
+  EXPECT_LE(extra(r, "kappa_max_error"), 0.02);
+}
+
+TEST(BucketedKBuffer, FragmentsBeyondKAreCountedAsDropped) {
+  const RunResult r = run(unstylized({{"k", "8"}}), "quads", {{"layers", "16"}}, 32);
+  EXPECT_EQ(r.counters.fragments_dropped, (16u - 8u) * 32u * 32u);
+  EXPECT_EQ(r.counters.fragments_stored, 8u * 32u * 32u);
+}
+
+TEST(BucketedKBuffer, AutoFallsBackToBruteForceOnASingleObject) {
+  EXPECT_EQ(extra(run({}, "quads", {{"layers", "4"}, {"objects", "1"}}, 16), "buckets_used"), 0.0);
+  EXPECT_EQ(extra(run({}, "quads", {{"layers", "4"}, {"objects", "4"}}, 16), "buckets_used"), 1.0);
+  // Forced on with one object: one bucket holding every fragment of the pixel.
+  const RunResult single = run({{"buckets", "on"}}, "quads", {{"layers", "4"}, {"objects", "1"}}, 16);
+  EXPECT_EQ(extra(single, "buckets_used"), 1.0);
+  EXPECT_EQ(extra(single, "buckets_per_pixel"), 1.0);
+  EXPECT_EQ(extra(single, "fragments_per_bucket"), 4.0);
+}
+
+TEST(BucketedKBuffer, TransferFunctionsStylizeFlatInteriorAndImageBorder) {
+  // Quads are flat (kappa = 0) except on the image border, where a neighbour
+  // is missing (kappa = -1). Expected pixels from the CPU transfer functions,
+  // for both of the paper's example pairs and for a colour-only stylization.
+  StackedQuadsParams p;
+  p.layers = 8;
+  auto layers = stacked_quad_layers(p);
+  std::sort(layers.begin(), layers.end(), [](auto& a, auto& b) { return a.eye_distance < b.eye_distance; });
+  for (const auto& [color_name, opacity_name] : {std::pair{"mean_curvature_shading", "front_focus"},
+                                                 std::pair{"curved_bright", "depth_range"},
+                                                 std::pair{"mean_curvature_shading", "identity"}}) {
+    const RunResult r = run({{"k", "8"}, {"color_transfer", color_name}, {"opacity_transfer", opacity_name}}, "quads",
+                            {{"layers", "8"}}, 64);
+    const bkb::ColorTransfer color = bkb::color_transfer_from_name(color_name);
+    const bkb::OpacityTransfer opacity = bkb::opacity_transfer_from_name(opacity_name);
+    const double near = extra(r, "depth_near"), far = extra(r, "depth_far");
+    auto expected = [&](float kappa) {
+      glm::dvec3 accumulated(0.0);
+      double transmittance = 1.0;
+      for (const QuadLayer& layer : layers) {
+        const double depth = std::round((layer.eye_distance - near) / (far - near) * 65534.0) / 65534.0;
+        const double alpha = opacity == bkb::OpacityTransfer::identity
+                                 ? double(layer.color.a)
+                                 : double(bkb::opacity(opacity, std::abs(kappa), float(depth)));
+        const glm::dvec3 rgb = glm::min(glm::dvec3(layer.color) * double(bkb::color_multiplier(color, kappa)), 1.0);
+        accumulated += transmittance * alpha * rgb;
+        transmittance *= 1.0 - alpha;
+      }
+      return glm::dvec4(accumulated, 1.0 - transmittance);
+    };
+    // RGBA8 storage twice (shading, stylization) and bilinear transfer textures.
+    const double tolerance = 0.02;
+    const glm::dvec4 interior = expected(0.0f), border = expected(-1.0f);
+    for (int c = 0; c < 4; ++c) {
+      const std::string what = std::string(color_name) + "/" + opacity_name + " channel " + std::to_string(c);
+      EXPECT_NEAR(r.image.at(32, 32, c), interior[c], tolerance) << what;
+      EXPECT_NEAR(r.image.at(0, 32, c), border[c], tolerance) << what;
+    }
+    double largest_change = 0.0;  // the stylization is visible
+    for (int c = 0; c < 3; ++c) largest_change = std::max(largest_change, std::abs(border[c] - interior[c]));
+    EXPECT_GT(largest_change, 0.05) << color_name << "/" << opacity_name;
+  }
+}
+
+TEST(BucketedKBuffer, InvalidParametersAreErrorsNamingTheParameter) {
+  const RawParams invalid[] = {{{"k", "65"}},
+                               {{"k", "0"}},
+                               {{"buckets", "sometimes"}},
+                               {{"color_transfer", "rainbow"}},
+                               {{"opacity_transfer", "paper"}},
+                               {{"depth_bits", "20"}},
+                               {{"curvature_scale", "0"}},
+                               {{"curvature_scale", "nan"}},
+                               {{"measure_accuracy", "perhaps"}}};
+  for (const RawParams& params : invalid) {
+    RunSpec spec;
+    spec.technique = kId;
+    spec.params = params;
+    spec.width = spec.height = 4;
+    const RunResult r = test::harness().run(spec);
+    const std::string& name = params.begin()->first;
+    EXPECT_EQ(r.status, RunStatus::error) << name;
+    EXPECT_NE(r.message.find("'" + name + "'"), std::string::npos) << r.message;
+  }
+}
+
+}  // namespace
+}  // namespace oit
