@@ -42,21 +42,6 @@ std::string key_of(const std::string& scene, const RawParams& params) {
   return key;
 }
 
-// The harness-owned image a technique composes into.
-struct RenderTarget {
-  Texture color;
-  Framebuffer framebuffer;
-  RenderTarget(int width, int height) {
-    color = make_texture_2d(GL_RGBA32F, width, height);
-    framebuffer = make_framebuffer();
-    glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, color.id(), 0);
-    if (glCheckNamedFramebufferStatus(framebuffer.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-      throw GlError("RGBA32F render target of " + std::to_string(width) + "x" + std::to_string(height) +
-                    " is incomplete");
-    }
-  }
-};
-
 // Default GL state every technique may assume at the start of a frame.
 void reset_gl_state() {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -70,6 +55,30 @@ void reset_gl_state() {
 }
 
 }  // namespace
+
+RenderTarget::RenderTarget(int width, int height) {
+  color = make_texture_2d(GL_RGBA32F, width, height);
+  framebuffer = make_framebuffer();
+  glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, color.id(), 0);
+  if (glCheckNamedFramebufferStatus(framebuffer.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    throw GlError("RGBA32F render target of " + std::to_string(width) + "x" + std::to_string(height) +
+                  " is incomplete");
+  }
+}
+
+void render_frame(Technique& technique, const Frame& frame, bool record) {
+  reset_gl_state();
+  const GLfloat clear_color[4] = {frame.background.r, frame.background.g, frame.background.b, 0.0f};
+  glClearNamedFramebufferfv(frame.target_framebuffer, GL_COLOR, 0, clear_color);
+  frame.clock.begin_frame(record);
+  {
+    auto total = frame.clock.stage("total");
+    frame.scene.bind();
+    technique.render(frame);
+  }
+  frame.clock.end_frame();
+  reset_gl_state();
+}
 
 Harness::Harness(GlContext& context, const TechniqueRegistry& registry)
     : context_(context), registry_(registry), reference_cache_(ReferenceCache::from_environment()) {}
@@ -194,20 +203,10 @@ void Harness::execute(const RunSpec& spec, RunResult& result) {
   const Frame frame{*loaded.gpu,  loaded.scene.camera.view,   loaded.scene.camera.projection(aspect),
                     spec.width,   spec.height,                spec.background,
                     target.framebuffer.id(), clock};
-  const GLfloat clear_color[4] = {spec.background.r, spec.background.g, spec.background.b, 0.0f};
   for (int i = 0; i < spec.warmup + spec.frames; ++i) {
-    reset_gl_state();
-    glClearNamedFramebufferfv(target.framebuffer.id(), GL_COLOR, 0, clear_color);
-    clock.begin_frame(i >= spec.warmup);
-    {
-      auto total = clock.stage("total");
-      loaded.gpu->bind();
-      technique->render(frame);
-    }
-    clock.end_frame();
+    render_frame(*technique, frame, i >= spec.warmup);
     gl_check("frame " + std::to_string(i) + " of " + spec.technique);
   }
-  reset_gl_state();
   result.counters = technique->counters();
   result.image = read_texture_rgba32f(target.color.id(), spec.width, spec.height);
   gl_check("reading back the image of " + spec.technique);

@@ -72,6 +72,19 @@ struct RunResult {
   const StageResult* stage(const std::string& name, const std::string& clock) const;
 };
 
+// The RGBA32F image a technique composes into (Frame::target_framebuffer).
+struct RenderTarget {
+  Texture color;
+  Framebuffer framebuffer;
+  RenderTarget(int width, int height);  // throws GlError when incomplete
+};
+
+// One frame exactly as Harness::run renders it: default GL state, the target
+// cleared to the background (alpha 0), the `total` stage around the
+// technique's render. Shared with the interactive viewer so that it has no
+// rendering path of its own. `record` = false: a warm-up frame.
+void render_frame(Technique& technique, const Frame& frame, bool record);
+
 class Harness {
  public:
   Harness(GlContext& context, const TechniqueRegistry& registry);
