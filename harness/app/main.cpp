@@ -1,4 +1,4 @@
-// oitbench: command-line entry point (list, render, bench).
+// oitbench: command-line entry point (list, render, bench, view, ...).
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -8,6 +8,7 @@
 #include "app/commands.h"
 #include "app/pareto.h"
 #include "app/stress.h"
+#include "app/viewer/view_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"oitbench: order-independent transparency techniques, timed stage by stage and compared "
@@ -98,6 +99,9 @@ int main(int argc, char** argv) {
   stats_cmd->add_option("--size", stats.size, "WIDTHxHEIGHT (default 512x512)");
   stats_cmd->add_option("--heatmap", stats.heatmap, "list-length heatmap .png (blue 0 .. red longest)");
 
+  oit::ViewOptions view;
+  auto* view_cmd = oit::add_view_command(app, view);
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*list) return oit::run_list(common);
@@ -107,6 +111,7 @@ int main(int argc, char** argv) {
     if (*pareto_cmd) return oit::run_pareto(common, pareto);
     if (*order_cmd) return oit::run_check_order(common, order);
     if (*stats_cmd) return oit::run_stats(common, stats);
+    if (*view_cmd) return oit::run_view(common, view);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "oitbench: error: %s\n", e.what());
     return 1;

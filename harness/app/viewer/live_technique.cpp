@@ -1,0 +1,66 @@
+#include "app/viewer/live_technique.h"
+
+#include "gl/check.h"
+
+namespace oit {
+
+LiveTechnique::LiveTechnique(const TechniqueRegistry& registry, const DeviceInfo& device, ClockKind clock)
+    : registry_(registry), device_(device), clock_kind_(clock) {}
+
+std::string LiveTechnique::configure(const std::string& id, const RawParams& params, const SceneFacts& facts,
+                                     int width, int height) {
+  try {
+    const TechniqueDescriptor& descriptor = registry_.get(id);
+    const ParamSet values(descriptor.params, params, "technique '" + id + "'");
+    if (std::string reason = supports(descriptor, values, device_, facts); !reason.empty()) {
+      return id + " cannot run here: " + reason;
+    }
+    // Build everything first so a failure leaves the running one intact.
+    std::unique_ptr<Technique> technique = descriptor.create(values);
+    technique->resize(width, height);
+    auto target = std::make_unique<RenderTarget>(width, height);
+    gl_check("creating " + id);
+    technique_ = std::move(technique);
+    target_ = std::move(target);
+    clock_ = std::make_unique<StageClock>(clock_kind_);
+    frames_in_window_ = 0;
+    timings_.clear();
+    id_ = id;
+    params_ = params;
+    canonical_ = values.canonical();
+    width_ = width;
+    height_ = height;
+    return "";
+  } catch (const std::exception& e) {
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    return e.what();
+  }
+}
+
+void LiveTechnique::render(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection,
+                           const glm::vec3& background) {
+  if (!technique_) return;
+  const Frame frame{scene, view, projection, width_, height_, background, target_->framebuffer.id(), *clock_};
+  render_frame(*technique_, frame, true);
+  gl_check("a viewer frame of " + id_);
+  // The very first frame closes a window at once, so timings show up
+  // without waiting (and a short --frames run has them too).
+  if (++frames_in_window_ == kWindow || timings_.empty()) finish_window();
+}
+
+void LiveTechnique::finish_window() {
+  timings_.clear();
+  // gl clock: results() waits for the window's queries, once per window.
+  const std::string clock_name = clock_kind_ == ClockKind::gl ? "gl" : "wall";
+  for (auto& [name, samples] : clock_->results()) {
+    const std::vector<double>& ms = clock_name == "gl" ? samples.gl_ms : samples.wall_ms;
+    if (!ms.empty()) timings_.push_back({name, summarize(ms)});
+  }
+  clock_ = std::make_unique<StageClock>(clock_kind_);
+  frames_in_window_ = 0;
+}
+
+Image LiveTechnique::read_image() const { return read_texture_rgba32f(target_->color.id(), width_, height_); }
+
+}  // namespace oit

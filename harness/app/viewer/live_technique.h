@@ -1,0 +1,64 @@
+#pragma once
+// One technique of the registry rendering frame after frame for the viewer,
+// through the harness's own render_frame() and StageClock, so the viewer's
+// images and timings are those `oitbench bench` would record.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/runner.h"
+
+namespace oit {
+
+struct StageTiming {
+  std::string stage;
+  Summary summary;  // over the last window of frames, milliseconds
+};
+
+class LiveTechnique {
+ public:
+  LiveTechnique(const TechniqueRegistry& registry, const DeviceInfo& device, ClockKind clock);
+
+  // Switches to technique `id` with `params` at `width` x `height`. Returns
+  // "" on success, else why not (the schema's validation message, the
+  // technique's support check, or the error of its construction); on
+  // failure the technique that ran before keeps running unchanged.
+  std::string configure(const std::string& id, const RawParams& params, const SceneFacts& facts, int width,
+                        int height);
+  bool ready() const { return technique_ != nullptr; }
+
+  // Renders one frame into target(); throws what the technique throws.
+  void render(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection, const glm::vec3& background);
+
+  const RenderTarget& target() const { return *target_; }
+  Image read_image() const;
+  int width() const { return width_; }
+  int height() const { return height_; }
+  const std::string& id() const { return id_; }
+  const RawParams& params() const { return params_; }  // as applied
+  const std::string& canonical_params() const { return canonical_; }
+  TechniqueCounters counters() const { return technique_ ? technique_->counters() : TechniqueCounters{}; }
+  // Per-stage timings of the last complete window (empty before the first).
+  const std::vector<StageTiming>& timings() const { return timings_; }
+  ClockKind clock_kind() const { return clock_kind_; }
+
+ private:
+  // Frames per timing window: medians over a few frames are steadier than
+  // single frames yet still follow parameter changes within a second or so.
+  static constexpr int kWindow = 8;
+  void finish_window();
+
+  const TechniqueRegistry& registry_;
+  const DeviceInfo& device_;
+  ClockKind clock_kind_;
+  std::unique_ptr<Technique> technique_;
+  std::unique_ptr<RenderTarget> target_;
+  std::unique_ptr<StageClock> clock_;
+  int frames_in_window_ = 0;
+  std::vector<StageTiming> timings_;
+  std::string id_, canonical_;
+  RawParams params_;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace oit

@@ -1,0 +1,112 @@
+#pragma once
+// The viewer's state and frame loop. The window holds the scene area (the
+// rendered image at 1:1, top-left, exactly --size pixels) and a control
+// panel to its right. Every image comes from registry techniques rendered
+// through the harness's render_frame(); diagnostics use the harness's
+// comparison, heatmap and depth-complexity functions.
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "app/viewer/live_technique.h"
+#include "app/viewer/orbit_camera.h"
+#include "app/viewer/sweep_line.h"
+#include "app/viewer/view_command.h"
+#include "gl/glfw_window.h"
+
+namespace oit {
+
+class Viewer {
+ public:
+  static constexpr int kPanelWidth = 470;
+  static constexpr int kMinHeight = 720;
+
+  Viewer(GlfwWindowContext& window, const ViewOptions& options);
+  ~Viewer();
+  int run();
+
+ private:
+  enum class Display { image, reference, error, list_length };
+  enum class Show { a, b, split };
+  // Technique A or B: what the user asked for and what runs.
+  struct Slot {
+    explicit Slot(LiveTechnique live) : live(std::move(live)) {}
+    LiveTechnique live;
+    std::string wanted_id;
+    RawParams wanted_params;  // edited in the panel; may be invalid
+    std::string message;      // why wanted_* is not what runs ("" = it is)
+    std::string render_error; // the last render threw: not rendered until reconfigured
+  };
+
+  // Scene and camera.
+  std::string open_scene(const std::string& spec, const RawParams& params);
+  std::string apply_camera_preset(const std::string& spec);
+  std::string preset_spec() const;
+  glm::mat4 projection() const;
+  SceneFacts facts() const;
+  // Techniques.
+  void configure(Slot& slot);
+  void render_slot(Slot& slot);
+  // The technique the scene area and the diagnostics show: A, unless the
+  // comparison is on and toggled to B (split shows A's diagnostics).
+  const Slot& shown_slot() const { return compare_ && show_ == Show::b ? *b_ : *a_; }
+  void update_diagnostics();
+  std::string diagnostic_key() const;
+  void upload(const Image& image);
+  // Output.
+  void draw_scene_area(int framebuffer_height);
+  void handle_mouse();
+  void save_screenshot(const std::string& path);
+  void add_to_sweep_file();
+  ViewConfig config_of(const Slot& slot) const;
+  // The panel (viewer_panel.cpp).
+  void draw_panel(int framebuffer_width, int framebuffer_height);
+  void panel_scene();
+  void panel_camera();
+  void panel_technique(Slot& slot, const char* label);
+  void panel_timings(const Slot& slot, const char* label);
+  void panel_diagnostics();
+  void panel_output();
+
+  GlfwWindowContext& window_;
+  const TechniqueRegistry& registry_;
+  ViewOptions options_;
+  int width_ = 0, height_ = 0;
+  glm::vec3 background_{0.0f};
+
+  std::string scene_spec_;       // as loaded
+  RawParams scene_params_;       // as loaded
+  std::string scene_input_;      // the panel's scene field
+  RawParams scene_wanted_;       // the panel's scene parameters
+  std::string scene_message_;
+  std::unique_ptr<Scene> scene_;
+  std::unique_ptr<SceneGpu> scene_gpu_;
+  int scene_generation_ = 0;     // diagnostics key: bumps on every load
+
+  int preset_kind_ = 0;          // 0 default, 1 random view, 2 max_list
+  int preset_count_ = 16, preset_seed_ = 1, preset_index_ = 0;
+  std::string camera_message_;
+  OrbitCamera orbit_;
+
+  std::unique_ptr<Slot> a_, b_;
+  bool compare_ = false;
+  Show show_ = Show::a;
+  float split_ = 0.5f;           // share of the width showing A
+
+  Display display_ = Display::image;
+  std::unique_ptr<LiveTechnique> reference_;
+  std::string diagnostics_key_;  // what the diagnostics below were computed for
+  std::string diagnostics_message_;
+  Image reference_image_;
+  std::optional<ImageError> error_;
+  DepthComplexity complexity_;
+  std::unique_ptr<RenderTarget> display_target_;  // uploaded diagnostic image
+
+  std::string screenshot_path_ = "oitbench_view.png";
+  std::string sweep_file_, sweep_csv_;
+  std::string output_message_;
+  bool screenshot_requested_ = false;
+  bool space_was_down_ = false;
+};
+
+}  // namespace oit

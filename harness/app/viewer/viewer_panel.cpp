@@ -1,0 +1,228 @@
+// The viewer's control panel: one ImGui window to the right of the scene
+// area. Every control here acts on the Viewer state in viewer.cpp; widgets
+// for parameters come from the schemas (param_editor.cpp).
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include "app/viewer/param_editor.h"
+#include "app/viewer/viewer.h"
+#include "scene_library.h"
+
+namespace oit {
+namespace {
+
+const ImVec4 kRed{1.0f, 0.45f, 0.4f, 1.0f};
+const ImVec4 kGrey{0.65f, 0.65f, 0.65f, 1.0f};
+
+void wrapped_colored(const ImVec4& colour, const std::string& text) {
+  ImGui::PushStyleColor(ImGuiCol_Text, colour);
+  ImGui::TextWrapped("%s", text.c_str());
+  ImGui::PopStyleColor();
+}
+
+const ParamSchema* scene_schema(const std::string& id) {
+  for (const auto& s : scene_library())
+    if (s.id == id) return &s.params;
+  return nullptr;  // a file: no parameters
+}
+
+std::string mib(uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f MiB", double(bytes) / (1024.0 * 1024.0));
+  return text;
+}
+
+}  // namespace
+
+void Viewer::draw_panel(int framebuffer_width, int framebuffer_height) {
+  ImGui::SetNextWindowPos(ImVec2(float(width_), 0.0f));
+  ImGui::SetNextWindowSize(ImVec2(float(std::max(framebuffer_width - width_, 200)), float(framebuffer_height)));
+  ImGui::Begin("oitbench view", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                             ImGuiWindowFlags_NoCollapse);
+  ImGui::TextColored(kGrey, "%s", window_.device().renderer.c_str());
+  ImGui::Text("%.1f frames/s", ImGui::GetIO().Framerate);
+  if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) panel_scene();
+  if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) panel_camera();
+  if (ImGui::CollapsingHeader("Technique A", ImGuiTreeNodeFlags_DefaultOpen)) panel_technique(*a_, "A");
+  if (ImGui::CollapsingHeader("A/B comparison")) {
+    if (ImGui::Checkbox("compare with technique B", &compare_) && compare_ && !b_->live.ready()) configure(*b_);
+    if (compare_) {
+      int show = int(show_);
+      ImGui::RadioButton("A", &show, 0);
+      ImGui::SameLine();
+      ImGui::RadioButton("B", &show, 1);
+      ImGui::SameLine();
+      ImGui::RadioButton("split (A | B)", &show, 2);
+      show_ = Show(show);
+      ImGui::TextColored(kGrey, "Space toggles A/B");
+      if (show_ == Show::split) ImGui::SliderFloat("split", &split_, 0.0f, 1.0f, "%.2f");
+      panel_technique(*b_, "B");
+    }
+  }
+  if (ImGui::CollapsingHeader("Timings and counters", ImGuiTreeNodeFlags_DefaultOpen)) {
+    panel_timings(*a_, "A");
+    if (compare_) panel_timings(*b_, "B");
+  }
+  if (ImGui::CollapsingHeader("Diagnostics", ImGuiTreeNodeFlags_DefaultOpen)) panel_diagnostics();
+  if (ImGui::CollapsingHeader("Output", ImGuiTreeNodeFlags_DefaultOpen)) panel_output();
+  ImGui::End();
+
+  // Labels over the split image, drawn by ImGui on top of the scene area.
+  if (compare_ && show_ == Show::split && display_ == Display::image) {
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    const float x = std::clamp(split_, 0.0f, 1.0f) * float(width_);
+    draw->AddLine(ImVec2(x, 0.0f), ImVec2(x, float(height_)), IM_COL32(255, 255, 255, 160));
+    draw->AddText(ImVec2(6.0f, 4.0f), IM_COL32(255, 255, 255, 220), a_->live.id().c_str());
+    draw->AddText(ImVec2(x + 6.0f, 4.0f), IM_COL32(255, 255, 255, 220), b_->live.id().c_str());
+  }
+}
+
+void Viewer::panel_scene() {
+  ImGui::Text("%s: %zu triangles, %u objects", scene_spec_.c_str(), scene_->triangle_count(), scene_->object_count);
+  if (ImGui::BeginCombo("library", scene_schema(scene_input_) ? scene_input_.c_str() : "(file)")) {
+    for (const auto& s : scene_library()) {
+      if (ImGui::Selectable(s.id.c_str(), s.id == scene_input_)) {
+        scene_input_ = s.id;
+        scene_wanted_.clear();
+        scene_message_ = open_scene(scene_input_, scene_wanted_);
+        if (scene_message_.empty()) camera_message_ = apply_camera_preset(preset_spec());
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", s.description.c_str());
+    }
+    ImGui::EndCombo();
+  }
+  ImGui::InputText("file or id", &scene_input_);
+  ImGui::SameLine();
+  bool reload = ImGui::Button("Load");
+  if (const ParamSchema* schema = scene_schema(scene_input_)) reload |= edit_params("scene", *schema, scene_wanted_);
+  if (reload) {
+    scene_message_ = open_scene(scene_input_, scene_wanted_);
+    if (scene_message_.empty()) camera_message_ = apply_camera_preset(preset_spec());
+  }
+  if (!scene_message_.empty()) wrapped_colored(kRed, scene_message_);
+  ImGui::ColorEdit3("background", &background_.r, ImGuiColorEditFlags_Float);
+}
+
+void Viewer::panel_camera() {
+  const char* kinds[] = {"scene default", "random viewpoint", "max_list"};
+  bool changed = ImGui::Combo("preset", &preset_kind_, kinds, 3);
+  if (preset_kind_ != 0) {
+    changed |= ImGui::SliderInt("set size N", &preset_count_, 1, 64);
+    changed |= ImGui::SliderInt("seed", &preset_seed_, 1, 1000);
+    if (preset_kind_ == 1) changed |= ImGui::SliderInt("view I", &preset_index_, 0, std::max(preset_count_ - 1, 0));
+  }
+  if (changed) camera_message_ = apply_camera_preset(preset_spec());
+  if (ImGui::Button("Reset to preset")) orbit_.reset();
+  ImGui::SameLine();
+  ImGui::TextColored(kGrey, "%s%s", preset_spec().c_str(), orbit_.moved() ? " (moved)" : "");
+  ImGui::TextColored(kGrey, "drag: orbit, right/shift-drag: pan, wheel: zoom");
+  if (!camera_message_.empty()) wrapped_colored(kRed, camera_message_);
+}
+
+void Viewer::panel_technique(Slot& slot, const char* label) {
+  ImGui::PushID(label);
+  bool changed = false;
+  if (ImGui::BeginCombo("technique", slot.wanted_id.c_str())) {
+    for (const auto& t : registry_.all()) {
+      if (ImGui::Selectable(t.id.c_str(), t.id == slot.wanted_id)) {
+        slot.wanted_id = t.id;
+        slot.wanted_params.clear();
+        changed = true;
+      }
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s (%s)\n%s", t.display_name.c_str(),
+                          t.exactness == Exactness::exact ? "exact" : "approximate", t.paper.c_str());
+    }
+    ImGui::EndCombo();
+  }
+  const TechniqueDescriptor& descriptor = registry_.get(slot.wanted_id);
+  changed |= edit_params(label, descriptor.params, slot.wanted_params);
+  if (ImGui::Button("Defaults")) {
+    slot.wanted_params.clear();
+    changed = true;
+  }
+  if (changed) configure(slot);
+  if (!slot.message.empty()) wrapped_colored(kRed, "refused: " + slot.message);
+  if (!slot.render_error.empty()) wrapped_colored(kRed, "render failed: " + slot.render_error);
+  if (slot.live.ready())
+    ImGui::TextColored(kGrey, "running: %s %s", slot.live.id().c_str(), slot.live.canonical_params().c_str());
+  ImGui::PopID();
+}
+
+void Viewer::panel_timings(const Slot& slot, const char* label) {
+  ImGui::PushID(label);
+  ImGui::Text("%s: %s, %s clock, ms over %s", label, slot.live.id().c_str(),
+              slot.live.clock_kind() == ClockKind::gl ? "gl" : "wall+glFinish", "the last 8 frames");
+  if (ImGui::BeginTable("stages", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_SizingStretchSame)) {
+    ImGui::TableSetupColumn("stage");
+    ImGui::TableSetupColumn("median");
+    ImGui::TableSetupColumn("p05");
+    ImGui::TableSetupColumn("p95");
+    ImGui::TableHeadersRow();
+    for (const auto& t : slot.live.timings()) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(t.stage.c_str());
+      ImGui::TableNextColumn();
+      ImGui::Text("%.2f", t.summary.median);
+      ImGui::TableNextColumn();
+      ImGui::Text("%.2f", t.summary.p05);
+      ImGui::TableNextColumn();
+      ImGui::Text("%.2f", t.summary.p95);
+    }
+    ImGui::EndTable();
+  }
+  const TechniqueCounters c = slot.live.counters();
+  const uint64_t target_bytes = uint64_t(width_) * uint64_t(height_) * 16;
+  ImGui::Text("memory: technique %s, scene %s, image %s", mib(c.bytes_allocated).c_str(),
+              mib(scene_gpu_->bytes()).c_str(), mib(target_bytes).c_str());
+  ImGui::Text("fragments %llu, dropped %llu", static_cast<unsigned long long>(c.fragments_stored),
+              static_cast<unsigned long long>(c.fragments_dropped));
+  ImGui::Text("passes %llu, overflow retries %llu", static_cast<unsigned long long>(c.passes),
+              static_cast<unsigned long long>(c.overflow_retries));
+  for (const auto& [name, value] : c.extra) ImGui::Text("%s %.4g", name.c_str(), value);
+  ImGui::Separator();
+  ImGui::PopID();
+}
+
+void Viewer::panel_diagnostics() {
+  int display = int(display_);
+  ImGui::RadioButton("image", &display, int(Display::image));
+  ImGui::SameLine();
+  ImGui::RadioButton("reference", &display, int(Display::reference));
+  ImGui::SameLine();
+  ImGui::RadioButton("error", &display, int(Display::error));
+  ImGui::SameLine();
+  ImGui::RadioButton("list length", &display, int(Display::list_length));
+  display_ = Display(display);
+  if (display_ == Display::image) return;
+  const Slot& shown = shown_slot();
+  if (display_ == Display::reference) ImGui::TextColored(kGrey, "exact reference (%s)", registry_.reference().id.c_str());
+  if (display_ == Display::error && error_) {
+    ImGui::Text("%s vs reference (heatmap: blue 0 .. red max)", shown.live.id().c_str());
+    ImGui::Text("max abs %.4g   rmse %.4g", error_->max_abs, error_->rmse);
+    ImGui::Text("psnr %.2f dB   ssim %.4f", error_->psnr_db, error_->ssim);
+    ImGui::Text("pixels off by > 1/255: %.2f%%", 100.0 * error_->share_over_1_255);
+  }
+  if (display_ == Display::list_length) {
+    ImGui::Text("fragments per pixel (blue 0 .. red %u)", complexity_.max);
+    ImGui::Text("Psi %.4f   mean %.3f   max %u", complexity_.psi, complexity_.mean, complexity_.max);
+    ImGui::Text("fragments %llu, covered pixels %llu", static_cast<unsigned long long>(complexity_.fragments),
+                static_cast<unsigned long long>(complexity_.covered_pixels));
+  }
+  if (!diagnostics_message_.empty()) wrapped_colored(kRed, diagnostics_message_);
+}
+
+void Viewer::panel_output() {
+  ImGui::InputText("PNG", &screenshot_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Save screenshot")) screenshot_requested_ = true;
+  ImGui::InputText("sweep file", &sweep_file_);
+  ImGui::InputText("bench --csv", &sweep_csv_);
+  if (ImGui::Button("Add this configuration to the sweep file")) add_to_sweep_file();
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("appends the equivalent `oitbench bench ...` line (A, and B when comparing)");
+  if (!output_message_.empty()) ImGui::TextWrapped("%s", output_message_.c_str());
+}
+
+}  // namespace oit
