@@ -1,0 +1,106 @@
+// The viewer's parts that need no window: the orbit camera (an untouched
+// camera is its preset, bit for bit) and the sweep-file line (what it
+// appends is a command `oitbench bench` accepts and runs).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "app/viewer/orbit_camera.h"
+#include "app/viewer/param_editor.h"
+#include "app/viewer/sweep_line.h"
+#include "scene.h"
+
+namespace oit {
+namespace {
+
+Camera preset() {
+  return frame_bounding_sphere(BoundingSphere{glm::vec3(1.0f, 2.0f, 3.0f), 2.0f}, glm::vec3(1.0f, 0.5f, 2.0f));
+}
+
+TEST(ViewerOrbitCamera, UntouchedCameraIsThePresetExactly) {
+  const Camera p = preset();
+  const OrbitCamera orbit(p, BoundingSphere{glm::vec3(1.0f, 2.0f, 3.0f), 2.0f});
+  EXPECT_FALSE(orbit.moved());
+  const Camera c = orbit.camera();
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) EXPECT_EQ(c.view[i][j], p.view[i][j]);
+  EXPECT_EQ(c.znear, p.znear);
+  EXPECT_EQ(c.zfar, p.zfar);
+}
+
+TEST(ViewerOrbitCamera, OrbitKeepsTheTargetAndDistanceZoomMovesCloserResetRestores) {
+  const BoundingSphere sphere{glm::vec3(1.0f, 2.0f, 3.0f), 2.0f};
+  OrbitCamera orbit(preset(), sphere);
+  const float d0 = glm::length(orbit.eye() - sphere.center);
+  orbit.orbit(40.0f, -25.0f, 256.0f);
+  EXPECT_TRUE(orbit.moved());
+  EXPECT_NEAR(glm::length(orbit.eye() - sphere.center), d0, 1e-4f * d0);
+  // The target stays in the middle of the image.
+  const Camera c = orbit.camera();
+  const glm::vec4 centre = c.projection(1.0f) * c.view * glm::vec4(sphere.center, 1.0f);
+  EXPECT_NEAR(centre.x / centre.w, 0.0f, 1e-4f);
+  EXPECT_NEAR(centre.y / centre.w, 0.0f, 1e-4f);
+  orbit.zoom(2.0f);
+  EXPECT_LT(orbit.distance(), d0);
+  orbit.pan(10.0f, 0.0f, 256.0f);
+  orbit.reset();
+  EXPECT_FALSE(orbit.moved());
+  EXPECT_EQ(orbit.camera().view, preset().view);
+}
+
+TEST(ViewerSweepLine, QuotesWhatTheShellWouldSplit) {
+  ViewConfig c;
+  c.technique = "kbuffer";
+  c.params = {{"k", "8"}, {"tail", "blend"}};
+  c.scene = "/tmp/my model's dir/a b.obj";
+  c.width = 64;
+  c.height = 32;
+  c.camera = "random:4:7@2";
+  EXPECT_EQ(bench_command_line(c, "out.csv"),
+            "oitbench bench --technique kbuffer --set k=8 --set tail=blend --scene '/tmp/my model'\\''s dir/a b.obj' "
+            "--size 64x32 --camera random:4:7@2 --background 0,0,0 --csv out.csv");
+}
+
+TEST(ViewerSweepLine, RealParametersReadBackExactly) {
+  for (double v : {0.1, 1.0 / 3.0, 2.5e-7, 100.0}) EXPECT_EQ(std::strtod(real_text(v).c_str(), nullptr), v);
+}
+
+TEST(ViewerSweepLine, AppendedLineRunsAsABenchCommand) {
+  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/viewer";
+  std::filesystem::create_directories(dir);
+  const std::string sweep = dir + "/sweep.txt", csv = dir + "/sweep.csv";
+  std::filesystem::remove(sweep);
+  std::filesystem::remove(csv);
+  ViewConfig c;
+  c.technique = "kbuffer";
+  c.params = {{"k", "4"}};
+  c.scene = "quads";
+  c.scene_params = {{"layers", "8"}};
+  c.width = c.height = 32;
+  append_to_sweep_file(sweep, bench_command_line(c, csv), "a comment line");
+  append_to_sweep_file(sweep, bench_command_line(c, csv));
+  std::ifstream in(sweep);
+  std::string comment, line, second;
+  std::getline(in, comment);
+  std::getline(in, line);
+  std::getline(in, second);
+  EXPECT_EQ(comment, "# a comment line");
+  EXPECT_EQ(line, second);
+  ASSERT_EQ(line.rfind("oitbench bench ", 0), 0u);
+  // Run it with the built binary (a few frames: the line is about the
+  // configuration, not the frame count).
+  const std::string command = std::string(OIT_BINARY_DIR) + "/harness/oitbench" + line.substr(8) +
+                              " --frames 1 --warmup 0 > " + dir + "/bench.log 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  std::ifstream rows(csv);
+  std::stringstream text;
+  text << rows.rdbuf();
+  EXPECT_NE(text.str().find("kbuffer"), std::string::npos);
+  EXPECT_NE(text.str().find("k=4"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace oit

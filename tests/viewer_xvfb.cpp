@@ -1,0 +1,182 @@
+// `oitbench view` in a real window: run under `xvfb-run -a` (see
+// CMakeLists.txt). Headless runs (--frames N --screenshot) must show, in the
+// scene area (the top-left --size pixels of the screenshot), what the
+// headless commands write for the same configuration: `render` for the
+// technique and the reference, `stats --heatmap` for list lengths, and the
+// harness's error_heatmap for the error view.
+//
+// Tolerance: every RGB channel within 1 of 255. The viewer converts the
+// float image to 8 bits in a framebuffer blit, the PNG writer with lround;
+// both clamp, but GL allows the blit to round either way at a half step.
+// Alpha is not compared: the window is opaque, render's PNG keeps coverage.
+#include <gtest/gtest.h>
+#include <stb_image.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/heatmap.h"
+#include "core/image.h"
+#include "core/runner.h"
+
+namespace oit {
+namespace {
+
+const std::string kOitbench = std::string(OIT_BINARY_DIR) + "/harness/oitbench";
+const std::string kOut = std::string(OIT_BINARY_DIR) + "/test_output/viewer_xvfb";
+constexpr int kTolerance = 1;  // 8-bit levels
+
+struct Outcome {
+  int exit_code;
+  std::string output;
+};
+
+Outcome run(const std::string& command_line) {
+  std::filesystem::create_directories(kOut);
+  const std::string log = kOut + "/last_command.txt";
+  const int status = std::system((command_line + " > " + log + " 2>&1").c_str());
+  std::ifstream in(log);
+  std::stringstream text;
+  text << in.rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+struct Png {
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgba;  // top row first
+  int at(int x, int y, int c) const { return rgba[(size_t(y) * size_t(width) + size_t(x)) * 4 + size_t(c)]; }
+};
+
+Png load_png(const std::string& path) {
+  Png png;
+  int channels = 0;
+  unsigned char* data = stbi_load(path.c_str(), &png.width, &png.height, &channels, 4);
+  if (!data) return png;
+  png.rgba.assign(data, data + size_t(png.width) * size_t(png.height) * 4);
+  stbi_image_free(data);
+  return png;
+}
+
+// Largest RGB difference between the screenshot and `expected` over the
+// columns [x0, x1) and rows [y0, expected.height) (rows from the top).
+int max_difference(const Png& screenshot, const Png& expected, int x0, int x1, int y0 = 0) {
+  int worst = 0;
+  for (int y = y0; y < expected.height; ++y)
+    for (int x = x0; x < x1; ++x)
+      for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(screenshot.at(x, y, c) - expected.at(x, y, c)));
+  return worst;
+}
+
+// Runs the viewer for a few frames and returns its screenshot.
+Png view_screenshot(const std::string& arguments, const std::string& name) {
+  const std::string shot = kOut + "/" + name + "_view.png";
+  std::filesystem::remove(shot);
+  const Outcome o = run(kOitbench + " view " + arguments + " --frames 3 --screenshot " + shot);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("scene area x=0 y=0"), std::string::npos) << o.output;
+  return load_png(shot);
+}
+
+Png render_png(const std::string& arguments, const std::string& name) {
+  const std::string out = kOut + "/" + name + "_render.png";
+  const Outcome o = run(kOitbench + " render " + arguments + " --out " + out);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  return load_png(out);
+}
+
+void expect_scene_area_matches(const std::string& arguments, const std::string& name) {
+  const Png expected = render_png(arguments, name);
+  const Png shot = view_screenshot(arguments, name);
+  ASSERT_GT(expected.width, 0);
+  ASSERT_GE(shot.width, expected.width);
+  ASSERT_GE(shot.height, expected.height);
+  EXPECT_LE(max_difference(shot, expected, 0, expected.width), kTolerance) << name;
+}
+
+TEST(Viewer, ScreenshotSceneAreaMatchesRender) {
+  expect_scene_area_matches("--technique linked_list --scene quads --size 128x96", "linked_list_quads");
+}
+
+TEST(Viewer, ScreenshotMatchesRenderFromARandomViewpointWithParameters) {
+  expect_scene_area_matches(
+      "--technique kbuffer --set k=2 --scene spheres --size 96x96 --camera random:4:7@2 --background 0.2,0.3,0.4",
+      "kbuffer_spheres_random");
+}
+
+TEST(Viewer, ReferenceDisplayMatchesRenderOfTheReference) {
+  const std::string config = "--scene torus --size 96x80";
+  const Png expected = render_png("--technique reference " + config, "reference_torus");
+  const Png shot = view_screenshot("--technique unsorted --display reference " + config, "reference_torus");
+  ASSERT_GT(expected.width, 0);
+  EXPECT_LE(max_difference(shot, expected, 0, expected.width), kTolerance);
+}
+
+TEST(Viewer, ListLengthDisplayMatchesStatsHeatmap) {
+  const std::string heatmap = kOut + "/list_length_stats.png";
+  const Outcome o = run(kOitbench + " stats --scene spheres --size 96x96 --heatmap " + heatmap);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const Png shot = view_screenshot("--scene spheres --size 96x96 --display list_length", "list_length");
+  const Png expected = load_png(heatmap);
+  ASSERT_GT(expected.width, 0);
+  EXPECT_LE(max_difference(shot, expected, 0, expected.width), kTolerance);
+}
+
+TEST(Viewer, ErrorDisplayIsTheHarnessErrorHeatmap) {
+  // The expected heatmap from the harness itself (RGBA, as the viewer
+  // compares), on a headless context of this process.
+  auto context = create_headless_context();
+  Harness harness(*context, builtin_techniques());
+  RunSpec spec;
+  spec.technique = "kbuffer";
+  spec.params = {{"k", "2"}};
+  spec.scene = "quads";
+  spec.scene_params = {{"layers", "8"}};
+  spec.width = spec.height = 64;
+  spec.warmup = 0;
+  spec.frames = 1;
+  const RunResult result = harness.run(spec);
+  ASSERT_EQ(result.status, RunStatus::ok) << result.message;
+  ASSERT_GT(result.error->max_abs, 0.0) << "k=2 on 8 layers should be approximate";
+  const Image& reference = harness.reference_image("quads", spec.scene_params, 64, 64, glm::vec3(0.0f));
+  const std::string expected_path = kOut + "/error_expected.png";
+  write_image(error_heatmap(result.image, reference), expected_path);
+  const Png shot = view_screenshot(
+      "--technique kbuffer --set k=2 --display error --scene quads --scene-set layers=8 --size 64x64", "error");
+  const Png expected = load_png(expected_path);
+  ASSERT_GT(expected.width, 0);
+  EXPECT_LE(max_difference(shot, expected, 0, expected.width), kTolerance);
+}
+
+TEST(Viewer, SplitShowsTechniqueAOnTheLeftAndBOnTheRight) {
+  const std::string config = " --scene spheres --size 128x96";
+  const Png a = render_png("--technique linked_list" + config, "split_a");
+  const Png b = render_png("--technique unsorted" + config, "split_b");
+  const Png shot =
+      view_screenshot("--technique linked_list --compare unsorted --show split" + config, "split");
+  ASSERT_GT(a.width, 0);
+  // The split line (x = 64) and the technique labels (top rows) are drawn
+  // over the image; compare around them.
+  EXPECT_LE(max_difference(shot, a, 0, 62, 20), kTolerance);
+  EXPECT_LE(max_difference(shot, b, 66, 128, 20), kTolerance);
+  EXPECT_GT(max_difference(shot, b, 0, 62, 20), kTolerance) << "A and B should differ on spheres";
+}
+
+TEST(Viewer, WithoutADisplayExitsNonZeroWithAdvice) {
+  const Outcome o = run("env -u DISPLAY -u WAYLAND_DISPLAY " + kOitbench + " view --frames 1");
+  EXPECT_EQ(o.exit_code, 1) << o.output;  // an orderly error, not a crash (signal)
+  EXPECT_NE(o.output.find("DISPLAY"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("oitbench render"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("xvfb-run"), std::string::npos) << o.output;
+}
+
+TEST(Viewer, InvalidParameterIsRefusedWithTheSchemaMessage) {
+  const Outcome o = run(kOitbench + " view --technique kbuffer --set k=0 --size 32x32 --frames 1");
+  EXPECT_NE(o.exit_code, 0);
+  EXPECT_NE(o.output.find("'k'"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("[1, 64]"), std::string::npos) << o.output;
+}
+
+}  // namespace
+}  // namespace oit
