@@ -1,6 +1,8 @@
 // The viewer's parts that need no window: the orbit camera (an untouched
-// camera is its preset, bit for bit) and the sweep-file line (what it
-// appends is a command `oitbench bench` accepts and runs).
+// camera is its preset, bit for bit), the sweep-file line (what it appends
+// is a command `oitbench bench` accepts and runs) and the live technique
+// (on the headless context: the harness's image, stage timings, refusal of
+// invalid parameters with the schema's message).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -8,10 +10,13 @@
 #include <fstream>
 #include <sstream>
 
+#include "app/viewer/live_technique.h"
 #include "app/viewer/orbit_camera.h"
 #include "app/viewer/param_editor.h"
 #include "app/viewer/sweep_line.h"
+#include "gl_fixture.h"
 #include "scene.h"
+#include "scene_library.h"
 
 namespace oit {
 namespace {
@@ -100,6 +105,47 @@ TEST(ViewerSweepLine, AppendedLineRunsAsABenchCommand) {
   text << rows.rdbuf();
   EXPECT_NE(text.str().find("kbuffer"), std::string::npos);
   EXPECT_NE(text.str().find("k=4"), std::string::npos);
+}
+
+struct LiveQuads {
+  GlContext& context = test::gl_context();  // first: the scene uploads into it
+  Scene scene = load_scene("quads", {{"layers", "8"}});
+  SceneGpu gpu{scene};
+  SceneFacts facts{scene.triangle_count(), scene.object_count, true};
+};
+
+TEST(ViewerLiveTechnique, RendersTheHarnessImageWithStageTimings) {
+  LiveQuads quads;
+  LiveTechnique live(builtin_techniques(), quads.context.device(), ClockKind::wall);
+  ASSERT_EQ(live.configure("kbuffer", {{"k", "2"}}, quads.facts, 48, 32), "");
+  const Camera& camera = quads.scene.camera;
+  for (int i = 0; i < 2; ++i) live.render(quads.gpu, camera.view, camera.projection(48.0f / 32.0f), glm::vec3(0.0f));
+  const Image image = live.read_image();
+  const RunResult run = test::render_once("kbuffer", {{"k", "2"}}, "quads", {{"layers", "8"}}, 48, 32);
+  ASSERT_EQ(image.rgba.size(), run.image.rgba.size());
+  EXPECT_EQ(image.rgba, run.image.rgba);
+  bool has_total = false;
+  for (const auto& t : live.timings()) has_total |= t.stage == "total" && t.summary.median > 0.0;
+  EXPECT_TRUE(has_total);
+  EXPECT_GT(live.counters().fragments_stored, 0u);
+  EXPECT_EQ(live.canonical_params(), "k=2 tail=drop");
+}
+
+TEST(ViewerLiveTechnique, InvalidParametersAreRefusedWithTheSchemaMessageAndTheOldOneKeepsRunning) {
+  LiveQuads quads;
+  LiveTechnique live(builtin_techniques(), quads.context.device(), ClockKind::wall);
+  ASSERT_EQ(live.configure("kbuffer", {{"k", "4"}}, quads.facts, 16, 16), "");
+  const std::string message = live.configure("kbuffer", {{"k", "65"}}, quads.facts, 16, 16);
+  EXPECT_NE(message.find("'k'"), std::string::npos) << message;
+  EXPECT_NE(message.find("[1, 64]"), std::string::npos) << message;
+  EXPECT_NE(live.configure("kbuffer", {{"tail", "nope"}}, quads.facts, 16, 16).find("{drop, blend}"),
+            std::string::npos);
+  EXPECT_NE(live.configure("no_such_technique", {}, quads.facts, 16, 16), "");
+  ASSERT_TRUE(live.ready());
+  EXPECT_EQ(live.id(), "kbuffer");
+  EXPECT_EQ(live.canonical_params(), "k=4 tail=drop");
+  const Camera& camera = quads.scene.camera;
+  live.render(quads.gpu, camera.view, camera.projection(1.0f), glm::vec3(0.0f));
 }
 
 }  // namespace
