@@ -19,7 +19,7 @@ namespace oit {
 class Viewer {
  public:
   static constexpr int kPanelWidth = 470;
-  static constexpr int kMinHeight = 720;
+  static constexpr int kMinHeight = 940;
 
   Viewer(GlfwWindowContext& window, const ViewOptions& options);
   ~Viewer();
