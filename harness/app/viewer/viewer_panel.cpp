@@ -39,11 +39,14 @@ void Viewer::draw_panel(int framebuffer_width, int framebuffer_height) {
   ImGui::SetNextWindowSize(ImVec2(float(std::max(framebuffer_width - width_, 200)), float(framebuffer_height)));
   ImGui::Begin("oitbench view", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
                                              ImGuiWindowFlags_NoCollapse);
+  // Widgets leave room for their labels (long parameter names included).
+  ImGui::PushItemWidth(-170.0f);
   ImGui::TextColored(kGrey, "%s", window_.device().renderer.c_str());
   ImGui::Text("%.1f frames/s", ImGui::GetIO().Framerate);
   if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) panel_scene();
   if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) panel_camera();
   if (ImGui::CollapsingHeader("Technique A", ImGuiTreeNodeFlags_DefaultOpen)) panel_technique(*a_, "A");
+  if (compare_) ImGui::SetNextItemOpen(true, ImGuiCond_Once);  // --compare given
   if (ImGui::CollapsingHeader("A/B comparison")) {
     if (ImGui::Checkbox("compare with technique B", &compare_) && compare_ && !b_->live.ready()) configure(*b_);
     if (compare_) {
@@ -65,6 +68,7 @@ void Viewer::draw_panel(int framebuffer_width, int framebuffer_height) {
   }
   if (ImGui::CollapsingHeader("Diagnostics", ImGuiTreeNodeFlags_DefaultOpen)) panel_diagnostics();
   if (ImGui::CollapsingHeader("Output", ImGuiTreeNodeFlags_DefaultOpen)) panel_output();
+  ImGui::PopItemWidth();
   ImGui::End();
 
   // Labels over the split image, drawn by ImGui on top of the scene area.
@@ -145,7 +149,7 @@ void Viewer::panel_technique(Slot& slot, const char* label) {
   if (!slot.message.empty()) wrapped_colored(kRed, "refused: " + slot.message);
   if (!slot.render_error.empty()) wrapped_colored(kRed, "render failed: " + slot.render_error);
   if (slot.live.ready())
-    ImGui::TextColored(kGrey, "running: %s %s", slot.live.id().c_str(), slot.live.canonical_params().c_str());
+    wrapped_colored(kGrey, "running: " + slot.live.id() + " " + slot.live.canonical_params());
   ImGui::PopID();
 }
 
