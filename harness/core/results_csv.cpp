@@ -48,7 +48,13 @@ std::string number(double value) {
 
 std::string extra_text(const std::vector<std::pair<std::string, double>>& extra) {
   std::string text;
-  for (const auto& [name, value] : extra) text += (text.empty() ? "" : " ") + name + "=" + number(value);
+  // Ten significant digits: counts such as a scene's triangles stay exact
+  // (six would print 1234567 as 1.23457e+06).
+  for (const auto& [name, value] : extra) {
+    char formatted[64];
+    std::snprintf(formatted, sizeof(formatted), "%.10g", value);
+    text += (text.empty() ? "" : " ") + name + "=" + formatted;
+  }
   return text;
 }
 

@@ -159,6 +159,10 @@ RunResult Harness::run(const RunSpec& spec) {
     execute(spec, result);
     result.other_process_load = load.stop();
     result.noisy = result.other_process_load > kNoisyLoadThreshold;
+    // The scene's size goes with every row so plots against triangles or
+    // vertices (carnecky2013 Fig. 15, pastyrik2016 Fig. 9) need only the CSV.
+    result.counters.extra.emplace_back("scene_triangles", double(loaded.scene.triangle_count()));
+    result.counters.extra.emplace_back("scene_vertices", double(loaded.scene.vertices.size()));
 
     const std::string size_key = std::to_string(spec.width) + "x" + std::to_string(spec.height);
     auto complexity = loaded.complexity.find(size_key);

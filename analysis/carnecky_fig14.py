@@ -1,0 +1,54 @@
+"""carnecky2013 Figure 14: illustration buffer stage times versus number of fragments.
+
+A resolution sweep of one surface (the paper: a toroid, 128^2 .. 2048^2)
+under a random camera set: each point is one resolution, its x the number of
+fragments and its stage times averaged over the views (fragments differ per
+view, so they are averaged too). Stacked areas are cumulative, as the paper's
+lines are; the paper finds every stage linear in the fragment count.
+"""
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from analysis import common  # noqa: E402
+
+TECHNIQUE = "illustration_buffer"
+
+
+def scaling_figure(runs, key, x_column, x_label, what):
+    """Shared by Fig. 14 and 15: group the technique's rows by `key` (the swept
+    quantity), x = mean of `x_column` over each group's views."""
+    rows = common.select(runs, TECHNIQUE)
+    if rows.empty:
+        raise common.NoData(f"no {TECHNIQUE} rows")
+    if x_column not in rows:
+        raise common.NoData(f"no {x_column} column (CSV written before oitbench recorded it?)")
+    rows = rows.assign(point=key(rows))
+    x = rows.groupby("point")[x_column].mean()
+    table = common.stage_table(rows, "point")
+    order = x.sort_values().index
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    common.stacked_stages(ax, x.loc[order].to_numpy(), table.loc[order])
+    if "total" in table:
+        ax.plot(x.loc[order].to_numpy(), table.loc[order, "total"].to_numpy(), color="black", marker="o",
+                markersize=3, linewidth=1, label="total")
+    ax.set_xlabel(x_label)
+    ax.set_ylabel("cumulative time per frame (ms)")
+    ax.set_xlim(left=0)
+    ax.set_ylim(bottom=0)
+    ax.legend(fontsize=7, loc="upper left")
+    views = rows.groupby("point")["camera"].nunique().max()
+    ax.set_title(common.title(rows, f"{what} ({rows['scene'].iloc[0]}, mean over {views} camera view(s))"),
+                 fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def draw(runs, args=None):
+    return scaling_figure(runs, lambda r: r["width"] * r["height"], "fragments", "number of fragments",
+                          "carnecky2013 Fig. 14: illustration buffer vs fragments (resolution sweep)")
+
+
+if __name__ == "__main__":
+    common.cli(__doc__.splitlines()[0], draw)

@@ -1,0 +1,127 @@
+"""What every paper plot shares: reading an oitbench CSV, choosing one clock,
+the `extra` counters as columns, and a title naming device, resolution and
+date (times are only comparable within one device)."""
+import argparse
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import pandas as pd  # noqa: E402
+
+# The fixed stage vocabulary of DESIGN.md, in pipeline order.
+STAGE_ORDER = ["clear", "count", "fill", "store", "peel", "sort", "bucket", "neighbors", "stylize", "compose"]
+NUMERIC = ["width", "height", "median_ms", "fragments", "max_depth_complexity", "mean_depth_complexity", "psi",
+           "bytes_allocated", "fragments_stored", "passes"]
+
+
+class NoData(Exception):
+    """The CSV holds no row the plot can use; the message says which."""
+
+
+def tokens(text):
+    """'a=1 b=2' -> {'a': '1', 'b': '2'} (params, scene_params and extra are written this way)."""
+    out = {}
+    for item in str(text).split():
+        key, _, value = item.partition("=")
+        out[key] = value
+    return out
+
+
+def load(path, clock=None):
+    """Successful rows of one CSV (or several, concatenated), numeric columns
+    parsed, `extra` counters as extra_<name> columns, restricted to one clock
+    (the given one, else the one most rows use: mixing clocks mixes devices'
+    notions of time)."""
+    paths = [path] if isinstance(path, str) else list(path)
+    frames = [pd.read_csv(p, keep_default_na=False, dtype=str) for p in paths]
+    runs = pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
+    if runs.empty or "status" not in runs:
+        raise NoData(f"{', '.join(paths)}: no rows")
+    runs = runs[runs["status"] == "ok"].copy()
+    if runs.empty:
+        raise NoData(f"{', '.join(paths)}: no successful runs")
+    for column in NUMERIC:
+        runs[column] = pd.to_numeric(runs[column], errors="coerce")
+    extra = runs["extra"].map(tokens)
+    for name in sorted({key for counters in extra for key in counters}):
+        runs[f"extra_{name}"] = pd.to_numeric(extra.map(lambda c, n=name: c.get(n, "")), errors="coerce")
+    if clock is None:
+        clock = runs["clock"].value_counts().idxmax()
+    runs = runs[runs["clock"] == clock]
+    if runs.empty:
+        raise NoData(f"{', '.join(paths)}: no successful runs with clock {clock}")
+    runs["date"] = runs["timestamp"].str.slice(0, 10)
+    return runs
+
+
+def select(runs, technique=None, scene=None, params=None):
+    """Rows of one technique/scene whose params contain every key=value of `params`."""
+    keep = pd.Series(True, index=runs.index)
+    if technique is not None:
+        keep &= runs["technique"] == technique
+    if scene is not None:
+        keep &= runs["scene"] == scene
+    for key, value in (params or {}).items():
+        keep &= runs["params"].map(lambda p: tokens(p).get(key) == value)
+    return runs[keep]
+
+
+def title(runs, what):
+    """`what` on a first line; device, resolution(s), clock and date(s) on the second."""
+    sizes = sorted({(int(w), int(h)) for w, h in zip(runs["width"], runs["height"])})
+    size_text = (f"{sizes[0][0]}x{sizes[0][1]}" if len(sizes) == 1
+                 else f"{sizes[0][0]}x{sizes[0][1]}..{sizes[-1][0]}x{sizes[-1][1]}")
+    dates = sorted(runs["date"].unique())
+    date_text = dates[0] if len(dates) == 1 else f"{dates[0]}..{dates[-1]}"
+    devices = ", ".join(sorted(runs["device"].unique()))
+    return f"{what}\n{devices} | {size_text} | clock {', '.join(sorted(runs['clock'].unique()))} | {date_text}"
+
+
+def stage_table(runs, index):
+    """Median ms of each stage per value of `index` (a column or list of
+    columns), averaged over the rows sharing it (e.g. the views of a random
+    camera set); columns in pipeline order, then `total`."""
+    table = runs.pivot_table(index=index, columns="stage", values="median_ms", aggfunc="mean")
+    stages = [s for s in STAGE_ORDER if s in table.columns]
+    extra = [s for s in table.columns if s not in STAGE_ORDER and s != "total"]
+    ordered = stages + sorted(extra) + (["total"] if "total" in table.columns else [])
+    return table[ordered]
+
+
+def cli(description, draw, extra_arguments=None):
+    """The shared command line: CSV(s) in, -o PNG out, --clock; `draw(runs,
+    args)` returns the figure."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("csv", nargs="+")
+    parser.add_argument("-o", "--out", required=True, help="PNG to write")
+    parser.add_argument("--clock", default=None, help="gl or wall (default: the clock most rows use)")
+    if extra_arguments:
+        extra_arguments(parser)
+    args = parser.parse_args()
+    try:
+        fig = draw(load(args.csv, args.clock), args)
+    except NoData as e:
+        sys.exit(f"{description.split(':')[0]}: {e}")
+    fig.savefig(args.out, dpi=110)
+    print(f"wrote {args.out}")
+
+
+def stacked_stages(ax, x, table, groups=None):
+    """Cumulative stage times as stacked areas over x (the papers draw each
+    stage's time on top of the preceding ones). `groups` maps an area label to
+    the stages summed into it; by default one area per stage. Returns the
+    labels drawn, bottom to top."""
+    if groups is None:
+        groups = [(s, [s]) for s in table.columns if s != "total"]
+    labels, series = [], []
+    for label, members in groups:
+        present = [m for m in members if m in table.columns]
+        if not present:
+            continue
+        labels.append(label)
+        series.append(table[present].fillna(0.0).sum(axis=1).to_numpy())
+    if not series:
+        raise NoData("no stage rows besides total")
+    ax.stackplot(x, *series, labels=labels, alpha=0.85)
+    return labels

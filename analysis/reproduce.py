@@ -1,0 +1,323 @@
+"""Run the sweeps behind the papers' timing plots, then draw every plot.
+
+Usage (from the repository root, after `bash setup.sh build`):
+    /usr/bin/python3 -m analysis.reproduce [--quick] [--out results/<date>] [--only NAME ...]
+        [--oitbench build/harness/oitbench] [--dry-run]
+
+One CSV per sweep under --out (murray_fig10.csv, carnecky_fig14.csv,
+carnecky_fig15.csv, models.csv, layers.csv), heatmaps under --out/heatmaps,
+the PNG plots next to them. Resumable: before starting a bench the driver
+reads the sweep's CSV and leaves out every run (technique, its swept
+parameters, scene, swept scene parameters, camera, width, height) that already
+has an ok or skipped row there; a run that failed with an error is tried
+again. Interrupt it at any point and start it again with the same --out.
+
+--quick: small sizes, 1 warm-up + 3 timed frames, a few models: minutes on 2
+cores with software GL. Without it the sweeps are sized for a real GPU (the
+papers' resolutions and tessellations).
+"""
+import argparse
+import csv
+import datetime
+import os
+import re
+import subprocess
+import sys
+import time
+from collections import OrderedDict, namedtuple
+
+# A run: technique parameters and scene parameters are tuples of (key, value)
+# holding only what the sweep sets; everything else stays at its default.
+Point = namedtuple("Point", "technique tparams scene sparams camera width height")
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DEFAULT_OITBENCH = os.path.join(REPO, "build", "harness", "oitbench")
+COMPARISON = ["depth_peeling", "dual_depth_peeling", "linked_list", "illustration_buffer"]
+QUICK_MODELS = ["wuson", "elephant", "dragon", "bones", "bunny"]
+
+
+class Catalogue:
+    """What `oitbench list` says this build has: technique ids (with their
+    parameter defaults, and which is the reference) and model names."""
+
+    def __init__(self, text):
+        self.techniques = OrderedDict()  # id -> {param: default}
+        self.reference = set()
+        self.models = []
+        section, current, scene = None, None, None
+        for line in text.splitlines():
+            if line.startswith("Techniques:"):
+                section = "techniques"
+            elif line.startswith("Scenes"):
+                section = "scenes"
+            elif section and re.match(r"^  \S", line):
+                current = line.split()[0]
+                if section == "techniques":
+                    self.techniques[current] = {}
+                    if ", reference]" in line:
+                        self.reference.add(current)
+                else:
+                    scene = current
+            elif section and (m := re.match(r"^ {6}(\S+)\s+default (\S+)\s+(.*)", line)):
+                if section == "techniques" and current in self.techniques:
+                    self.techniques[current][m.group(1)] = m.group(2)
+                elif section == "scenes" and scene == "model" and m.group(1) == "name":
+                    choices = re.search(r"one of \{([^}]*)\}", m.group(3))
+                    if choices:
+                        self.models = [c.strip() for c in choices.group(1).split(",")]
+
+    def timed(self):
+        """Every technique but the exact reference, the paper's four first."""
+        ids = [t for t in self.techniques if t not in self.reference]
+        return [t for t in COMPARISON if t in ids] + [t for t in ids if t not in COMPARISON]
+
+
+class Sweep:
+    def __init__(self, name, points, plots, warmup, frames, skip_reason=""):
+        self.name, self.points, self.plots = name, points, plots
+        self.warmup, self.frames, self.skip_reason = warmup, frames, skip_reason
+
+
+def cross(techniques, scene, scene_sets, cameras, sizes, tparams=()):
+    return [Point(t, tuple(tparams), scene, tuple(s), c, w, h)
+            for s in scene_sets for (w, h) in sizes for c in cameras for t in techniques]
+
+
+def random_views(count, seed):
+    """The views of a random camera set one by one, so each is resumable on its own."""
+    return [f"random:{count}:{seed}@{i}" for i in range(count)]
+
+
+def plan(catalogue, quick):
+    """The sweeps and the plots each feeds. Quick: small enough for software
+    GL on 2 cores; full: the papers' sizes (fragments grow with the square of
+    the resolution: 2048^2 may not fit every device, its run becomes an error
+    row and the plot stops where the device stopped)."""
+    warmup, frames = (1, 3) if quick else (3, 20)
+    sweeps = []
+
+    objects = [1, 2, 4, 8, 16, 32]
+    size = [(64, 64)] if quick else [(512, 512)]
+    scene_sets = [[("layers", "32"), ("objects", str(n))] for n in objects]
+    bkb = catalogue.techniques.get("bucketed_kbuffer")
+    points, skip = [], ""
+    if bkb is None:
+        skip = "bucketed_kbuffer is not in this build (`oitbench list`): murray2016 Fig. 10 left out"
+    else:
+        points = cross(["kbuffer"], "quads", scene_sets, ["default"], size)
+        # The bucketed run names the default of `buckets` so that a resumed run
+        # can tell it from the brute-force run (which sets buckets=off).
+        points += cross(["bucketed_kbuffer"], "quads", scene_sets, ["default"], size,
+                        [("buckets", bkb.get("buckets", "on"))] if "buckets" in bkb else [])
+        if "buckets" in bkb:
+            points += cross(["bucketed_kbuffer"], "quads", scene_sets, ["default"], size, [("buckets", "off")])
+    sweeps.append(Sweep("murray_fig10", points, [("murray_fig10", {})], warmup, frames, skip))
+
+    sides = [128, 192, 256] if quick else [128, 256, 512, 1024, 2048]
+    views = random_views(2, 1) if quick else random_views(8, 1)
+    sweeps.append(Sweep("carnecky_fig14",
+                        cross(["illustration_buffer"], "torus", [[]], views, [(s, s) for s in sides]),
+                        [("carnecky_fig14", {})], warmup, frames))
+
+    tessellations = [(8, 4), (16, 8), (32, 16), (64, 32), (128, 64)] if quick else \
+        [(16, 8), (32, 16), (64, 32), (128, 64), (256, 128), (512, 256), (1024, 512)]
+    side = 128 if quick else 1024
+    sweeps.append(Sweep("carnecky_fig15",
+                        cross(["illustration_buffer"], "torus",
+                              [[("slices", str(a)), ("stacks", str(b))] for a, b in tessellations], views,
+                              [(side, side)]),
+                        [("carnecky_fig15", {})], warmup, frames))
+
+    models = [m for m in QUICK_MODELS if m in catalogue.models] if quick else catalogue.models
+    side = 128 if quick else 600  # pastyrik2016 section 4.3 quotes 600x600
+    sweeps.append(Sweep("models",
+                        cross(catalogue.timed(), "model", [[("name", m)] for m in models], ["default"],
+                              [(side, side)]),
+                        [("pastyrik_fig8", {}), ("pastyrik_fig9", {}), ("pastyrik_fig10", {"heatmaps": True}),
+                         ("oit_comparison", {})], warmup, frames))
+
+    layers = [4, 8, 16, 32, 64]
+    side = 64 if quick else 512
+    sweeps.append(Sweep("layers",
+                        cross(catalogue.timed(), "quads", [[("layers", str(n))] for n in layers], ["default"],
+                              [(side, side)]),
+                        [("time_per_fragment", {})], warmup, frames))
+    return sweeps
+
+
+def tokens(text):
+    return dict(item.partition("=")[::2] for item in text.split())
+
+
+def finished(point, rows):
+    """Whether the CSV rows already hold this run (ok or skipped; an error is retried)."""
+    for row in rows:
+        if (row.get("status") in ("ok", "skipped") and row.get("technique") == point.technique
+                and row.get("scene") == point.scene and row.get("camera") == point.camera
+                and row.get("width") == str(point.width) and row.get("height") == str(point.height)):
+            params, scene_params = tokens(row.get("params", "")), tokens(row.get("scene_params", ""))
+            if all(params.get(k) == v for k, v in point.tparams) and \
+                    all(scene_params.get(k) == v for k, v in point.sparams):
+                return True
+    return False
+
+
+def read_rows(path):
+    if not os.path.exists(path) or os.path.getsize(path) == 0:
+        return []
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def batches(points):
+    """Missing runs grouped into bench invocations: runs that differ only by
+    technique share one process (one GL context, one reference image); runs
+    with technique parameters go alone, since --set would apply to every one."""
+    groups = OrderedDict()
+    for p in points:
+        key = (p.tparams and p.technique, p.tparams, p.scene, p.sparams, p.camera, p.width, p.height)
+        groups.setdefault(key, []).append(p)
+    return list(groups.values())
+
+
+def bench_command(oitbench, batch, csv_path, warmup, frames):
+    first = batch[0]
+    command = [oitbench, "bench"]
+    for p in batch:
+        command += ["--technique", p.technique]
+    for key, value in first.tparams:
+        command += ["--set", f"{first.technique}.{key}={value}"]
+    command += ["--scene", first.scene]
+    for key, value in first.sparams:
+        command += ["--scene-set", f"{key}={value}"]
+    command += ["--size", f"{first.width}x{first.height}", "--camera", first.camera, "--warmup", str(warmup),
+                "--frames", str(frames), "--csv", csv_path]
+    return command
+
+
+def describe(batch):
+    p = batch[0]
+    text = "+".join(q.technique for q in batch)
+    text += "".join(f" {k}={v}" for k, v in p.tparams)
+    text += f" on {p.scene}" + "".join(f" {k}={v}" for k, v in p.sparams)
+    return text + f" {p.width}x{p.height}" + ("" if p.camera == "default" else f" camera {p.camera}")
+
+
+def run_sweep(sweep, args, env):
+    """Runs what the sweep's CSV lacks; returns the bench commands started."""
+    csv_path = os.path.join(args.out, f"{sweep.name}.csv")
+    rows = read_rows(csv_path)
+    missing = [p for p in sweep.points if not finished(p, rows)]
+    todo = batches(missing)
+    print(f"== {sweep.name}: {len(sweep.points)} runs, {len(sweep.points) - len(missing)} already in {csv_path}, "
+          f"{len(todo)} bench invocation(s) to go", flush=True)
+    started = []
+    for i, batch in enumerate(todo):
+        command = bench_command(args.oitbench, batch, csv_path, sweep.warmup, sweep.frames)
+        started.append(command)
+        print(f"[{sweep.name} {i + 1}/{len(todo)}] {describe(batch)}", flush=True)
+        if args.dry_run:
+            print("  would run: " + " ".join(command), flush=True)
+            continue
+        begin = time.monotonic()
+        # Bench's own progress goes to stderr, which stays on the terminal;
+        # its summary table (stdout) is left out to keep the log short.
+        result = subprocess.run(command, stdout=subprocess.DEVNULL, env=env)
+        note = "" if result.returncode == 0 else f" (exit status {result.returncode}: its rows are retried next time)"
+        print(f"  {time.monotonic() - begin:.1f} s{note}", flush=True)
+    return started
+
+
+def model_heatmaps(sweep, args, env):
+    """`oitbench stats --heatmap` per model of the models sweep (pastyrik2016 Fig. 10)."""
+    directory = os.path.join(args.out, "heatmaps")
+    os.makedirs(directory, exist_ok=True)
+    started = []
+    seen = OrderedDict((dict(p.sparams)["name"], p) for p in sweep.points)
+    for model, p in seen.items():
+        png = os.path.join(directory, f"heatmap_{model}.png")
+        if os.path.exists(png):
+            continue
+        command = [args.oitbench, "stats", "--scene", p.scene, "--scene-set", f"name={model}", "--size",
+                   f"{p.width}x{p.height}", "--heatmap", png]
+        started.append(command)
+        print(f"[heatmaps] {model}", flush=True)
+        if args.dry_run:
+            print("  would run: " + " ".join(command), flush=True)
+            continue
+        with open(os.path.join(directory, f"stats_{model}.txt"), "w") as log:
+            result = subprocess.run(command, stdout=log, stderr=subprocess.STDOUT, env=env)
+        if result.returncode != 0:
+            print(f"  stats failed (exit status {result.returncode}), see stats_{model}.txt", flush=True)
+    return started
+
+
+def draw_plots(sweep, args):
+    """Each plot module's draw() on the sweep's CSV; a plot without data is
+    reported and left out, the others are still drawn."""
+    import importlib
+
+    import matplotlib.pyplot as plt
+
+    from analysis import common
+
+    csv_path = os.path.join(args.out, f"{sweep.name}.csv")
+    drawn = []
+    for module_name, options in sweep.plots:
+        out = os.path.join(args.out, f"{module_name}.png")
+        module = importlib.import_module(f"analysis.{module_name}")
+        plot_args = argparse.Namespace(heatmaps=os.path.join(args.out, "heatmaps")) if options.get("heatmaps") else None
+        try:
+            fig = module.draw(common.load(csv_path), plot_args)
+        except (common.NoData, FileNotFoundError) as e:
+            print(f"  {module_name}: not drawn: {e}", flush=True)
+            continue
+        fig.savefig(out, dpi=90)
+        plt.close(fig)
+        drawn.append(out)
+        print(f"  wrote {out}", flush=True)
+    return drawn
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="small sizes, 1 warm-up + 3 frames (software GL)")
+    parser.add_argument("--out", default=os.path.join("results", datetime.date.today().isoformat()))
+    parser.add_argument("--oitbench", default=DEFAULT_OITBENCH)
+    parser.add_argument("--only", nargs="+", default=None, help="sweep names to run (default: all)")
+    parser.add_argument("--dry-run", action="store_true", help="print the invocations a run would start, run none")
+    parser.add_argument("--no-plots", action="store_true")
+    args = parser.parse_args(argv)
+    if not os.access(args.oitbench, os.X_OK):
+        sys.exit(f"reproduce: {args.oitbench} is not an executable (build first: bash setup.sh build)")
+    os.makedirs(args.out, exist_ok=True)
+    env = dict(os.environ)
+    # Mesa compiles each shader once per machine, not once per bench process.
+    env.setdefault("MESA_SHADER_CACHE_DIR", os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
+        os.path.abspath(args.oitbench)))), "mesa_shader_cache"))
+    listing = subprocess.run([args.oitbench, "list"], capture_output=True, text=True, env=env, check=True).stdout
+    catalogue = Catalogue(listing)
+    sweeps = plan(catalogue, args.quick)
+    if args.only:
+        unknown = set(args.only) - {s.name for s in sweeps}
+        if unknown:
+            sys.exit(f"reproduce: unknown sweep(s) {', '.join(sorted(unknown))}: "
+                     f"expected {', '.join(s.name for s in sweeps)}")
+        sweeps = [s for s in sweeps if s.name in args.only]
+    started, drawn = [], []
+    for sweep in sweeps:
+        if sweep.skip_reason:
+            print(f"== {sweep.name}: skipped: {sweep.skip_reason}", flush=True)
+            continue
+        started += run_sweep(sweep, args, env)
+        if sweep.name == "models":
+            started += model_heatmaps(sweep, args, env)
+        if not args.dry_run and not args.no_plots:
+            drawn += draw_plots(sweep, args)
+    print(f"reproduce: {len(started)} invocation(s) {'listed' if args.dry_run else 'run'}, "
+          f"{len(drawn)} plot(s) in {args.out}", flush=True)
+    return started
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,43 @@
+"""Time per fragment of every technique versus depth complexity.
+
+Stacked quads with a growing number of layers (`--scene quads --scene-set
+layers=4,..,64`): every pixel holds exactly `layers` fragments, so the total
+time divided by the fragment count shows how each technique's cost per
+fragment grows with list length (sorting, peeling passes, k-buffer
+overflow).
+"""
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from analysis import common  # noqa: E402
+
+
+def draw(runs, args=None):
+    rows = runs[(runs["stage"] == "total") & (runs["technique"] != "reference") & (runs["fragments"] > 0)]
+    if rows.empty:
+        raise common.NoData("no total rows with fragments")
+    rows = rows.assign(label=rows["technique"] + rows["params"].map(lambda p: f" {p}" if p else ""),
+                       ns_per_fragment=rows["median_ms"] * 1e6 / rows["fragments"])
+    # Parameters of one technique differ between runs only where swept: label
+    # by technique unless the CSV holds several parameter sets of it.
+    several = rows.groupby("technique")["params"].nunique()
+    rows["label"] = [label if several[t] > 1 else t for label, t in zip(rows["label"], rows["technique"])]
+    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    for label, series in rows.groupby("label"):
+        line = series.groupby("max_depth_complexity")["ns_per_fragment"].mean().sort_index()
+        ax.plot(line.index, line.to_numpy(), marker="o", markersize=3, label=label)
+    ax.set_xscale("log", base=2)
+    ax.set_yscale("log")
+    ax.set_xlabel("depth complexity (fragments per pixel, longest list)")
+    ax.set_ylabel("total time per fragment (ns, log)")
+    ax.legend(fontsize=7, loc="best")
+    scenes = ", ".join(sorted(rows["scene"].unique()))
+    ax.set_title(common.title(rows, f"time per fragment vs depth complexity ({scenes})"), fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+if __name__ == "__main__":
+    common.cli(__doc__.splitlines()[0], draw)

@@ -1,0 +1,39 @@
+"""CSV fixtures for the analysis tests, in the exact column layout the harness
+writes: the column list is read from harness/core/results_csv.cpp itself, so
+a new column there cannot leave the fixtures silently out of date."""
+import csv
+import os
+import re
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(HERE)
+DEVICE = "llvmpipe (LLVM 15.0.6, 256 bits)"  # holds a comma: the fixtures must quote it like the harness
+
+
+def csv_columns():
+    with open(os.path.join(REPO, "harness", "core", "results_csv.cpp")) as f:
+        source = f.read()
+    block = re.search(r"csv_columns\(\) \{.*?=\s*\{(.*?)\};", source, re.S).group(1)
+    return re.findall(r'"([a-z0-9_]+)"', block)
+
+
+def row(technique, stage, median_ms, params="", scene="quads", scene_params="layers=32", camera="default",
+        width=64, height=64, status="ok", **fields):
+    values = {"timestamp": "2026-11-22T09:00:00Z", "git_revision": "abc", "device": DEVICE, "gl_version": "4.5",
+              "platform": "egl-surfaceless", "technique": technique, "params": params, "scene": scene,
+              "scene_params": scene_params, "camera": camera, "width": str(width), "height": str(height),
+              "clock": "wall", "stage": stage, "median_ms": str(median_ms), "frames": "3", "warmup": "1",
+              "status": status, "noisy": "false"}
+    values.update({k: str(v) for k, v in fields.items()})
+    return values
+
+
+def write_csv(path, rows, append=False):
+    columns = csv_columns()
+    new = not append or not os.path.exists(path) or os.path.getsize(path) == 0
+    with open(path, "a" if append else "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=columns, restval="", lineterminator="\n")
+        if new:
+            writer.writeheader()
+        for r in rows:
+            writer.writerow(r)
