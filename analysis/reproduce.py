@@ -33,7 +33,7 @@ Point = namedtuple("Point", "technique tparams scene sparams camera width height
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DEFAULT_OITBENCH = os.path.join(REPO, "build", "harness", "oitbench")
 COMPARISON = ["depth_peeling", "dual_depth_peeling", "linked_list", "illustration_buffer"]
-QUICK_MODELS = ["wuson", "elephant", "dragon", "bones", "bunny"]
+QUICK_MODELS = ["wuson", "elephant", "dragon", "bones", "bunny", "engine", "armadillo"]
 
 
 class Catalogue:
@@ -113,23 +113,25 @@ def plan(catalogue, quick):
             points += cross(["bucketed_kbuffer"], "quads", scene_sets, ["default"], size, [("buckets", "off")])
     sweeps.append(Sweep("murray_fig10", points, [("murray_fig10", {})], warmup, frames, skip))
 
-    sides = [128, 192, 256] if quick else [128, 256, 512, 1024, 2048]
-    views = random_views(2, 1) if quick else random_views(8, 1)
+    # carnecky2013 timed its own neighbour search (Algorithm 2), not pastyrik2016's triangle indices.
+    heuristic = [("neighbors", "heuristic")]
+    sides = [128, 192, 256, 384, 512] if quick else [128, 256, 512, 1024, 2048]
+    views = random_views(3, 1) if quick else random_views(8, 1)
     sweeps.append(Sweep("carnecky_fig14",
-                        cross(["illustration_buffer"], "torus", [[]], views, [(s, s) for s in sides]),
+                        cross(["illustration_buffer"], "torus", [[]], views, [(s, s) for s in sides], heuristic),
                         [("carnecky_fig14", {})], warmup, frames))
 
-    tessellations = [(8, 4), (16, 8), (32, 16), (64, 32), (128, 64)] if quick else \
+    tessellations = [(8, 4), (16, 8), (32, 16), (64, 32), (128, 64), (256, 128)] if quick else \
         [(16, 8), (32, 16), (64, 32), (128, 64), (256, 128), (512, 256), (1024, 512)]
-    side = 128 if quick else 1024
+    side = 256 if quick else 1024
     sweeps.append(Sweep("carnecky_fig15",
                         cross(["illustration_buffer"], "torus",
                               [[("slices", str(a)), ("stacks", str(b))] for a, b in tessellations], views,
-                              [(side, side)]),
+                              [(side, side)], heuristic),
                         [("carnecky_fig15", {})], warmup, frames))
 
     models = [m for m in QUICK_MODELS if m in catalogue.models] if quick else catalogue.models
-    side = 128 if quick else 600  # pastyrik2016 section 4.3 quotes 600x600
+    side = 256 if quick else 600  # pastyrik2016 section 4.3 quotes 600x600
     sweeps.append(Sweep("models",
                         cross(catalogue.timed(), "model", [[("name", m)] for m in models], ["default"],
                               [(side, side)]),
@@ -137,7 +139,7 @@ def plan(catalogue, quick):
                          ("oit_comparison", {})], warmup, frames))
 
     layers = [4, 8, 16, 32, 64]
-    side = 64 if quick else 512
+    side = 128 if quick else 512
     sweeps.append(Sweep("layers",
                         cross(catalogue.timed(), "quads", [[("layers", str(n))] for n in layers], ["default"],
                               [(side, side)]),

@@ -24,7 +24,7 @@ def draw(runs, args=None):
     # by technique unless the CSV holds several parameter sets of it.
     several = rows.groupby("technique")["params"].nunique()
     rows["label"] = [label if several[t] > 1 else t for label, t in zip(rows["label"], rows["technique"])]
-    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    fig, ax = plt.subplots(figsize=(8.5, 4.8))
     for label, series in rows.groupby("label"):
         line = series.groupby("max_depth_complexity")["ns_per_fragment"].mean().sort_index()
         ax.plot(line.index, line.to_numpy(), marker="o", markersize=3, label=label)
@@ -32,7 +32,7 @@ def draw(runs, args=None):
     ax.set_yscale("log")
     ax.set_xlabel("depth complexity (fragments per pixel, longest list)")
     ax.set_ylabel("total time per fragment (ns, log)")
-    ax.legend(fontsize=7, loc="best")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # lines fill the whole axes
     scenes = ", ".join(sorted(rows["scene"].unique()))
     ax.set_title(common.title(rows, f"time per fragment vs depth complexity ({scenes})"), fontsize=8)
     fig.tight_layout()

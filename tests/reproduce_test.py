@@ -58,9 +58,9 @@ class ReproduceTest(unittest.TestCase):
         self.assertEqual(len(fig10), 18)
         self.assertEqual(sum("bucketed_kbuffer.buckets=off" in c for c in fig10), 6)
         self.assertEqual(sum("bucketed_kbuffer.buckets=on" in c for c in fig10), 6)
-        # Fig. 14: 3 sizes x 2 views of random:2:1, one view per run.
+        # Fig. 14: 5 sizes x 3 views of random:3:1, one view per run.
         fig14 = [c for c in benches if c[c.index("--csv") + 1].endswith("carnecky_fig14.csv")]
-        self.assertEqual(sorted(c[c.index("--camera") + 1] for c in fig14), ["random:2:1@0"] * 3 + ["random:2:1@1"] * 3)
+        self.assertEqual(sorted(c[c.index("--camera") + 1] for c in fig14), ["random:3:1@0"] * 5 + ["random:3:1@1"] * 5 + ["random:3:1@2"] * 5)
         self.assertTrue(all(c[c.index("--warmup") + 1] == "1" and c[c.index("--frames") + 1] == "3" for c in benches))
         # Techniques without parameters share one process per scene point; the reference is never timed.
         models = [c for c in benches if c[c.index("--csv") + 1].endswith("models.csv")]
