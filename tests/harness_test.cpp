@@ -3,9 +3,12 @@
 // loader's #include / #define / error reporting.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "gl/check.h"
 #include "gl/shader_program.h"
 #include "gl_fixture.h"
+#include "scene_library.h"
 
 namespace oit {
 namespace {
@@ -134,6 +137,19 @@ TEST(Harness, FailingTechniqueIsAnErrorRowAndTheNextRunWorks) {
 
   spec.params = {};
   EXPECT_EQ(harness.run(spec).status, RunStatus::ok);
+}
+
+// The paper plots against triangles and vertices (carnecky2013 Fig. 15,
+// pastyrik2016 Fig. 9) read them from every run's extra counters.
+TEST(Harness, EveryRunRecordsTheScenesTrianglesAndVertices) {
+  const RunSpec spec = small_run("unsorted");
+  const RunResult r = test::harness().run(spec);
+  ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+  const Scene scene = load_scene(spec.scene, spec.scene_params);
+  std::map<std::string, double> extra(r.counters.extra.begin(), r.counters.extra.end());
+  EXPECT_EQ(extra["scene_triangles"], double(scene.triangle_count()));
+  EXPECT_EQ(extra["scene_vertices"], double(scene.vertices.size()));
+  EXPECT_GT(extra["scene_triangles"], 0.0);
 }
 
 TEST(Harness, BothClocksGiveEveryStageTwiceAndACalibrationFigure) {

@@ -126,5 +126,11 @@ TEST(ResultsCsv, WriterAppendsUnderOneHeaderAndRefusesAForeignFile) {
   }
 }
 
+TEST(ResultsCsv, LargeExtraCountsAreWrittenExactly) {
+  RunResult r = finished_run();
+  r.counters.extra = {{"scene_triangles", 1234567.0}, {"scene_vertices", 98765432.0}};
+  EXPECT_EQ(csv_rows(r, context())[0][column("extra")], "scene_triangles=1234567 scene_vertices=98765432");
+}
+
 }  // namespace
 }  // namespace oit
