@@ -91,6 +91,14 @@ class MurrayFig10Test(PlotTest):
         self.assertEqual(len(ax.collections), 5)
         self.assertEqual([line.get_label() for line in ax.get_lines()], [])
 
+    def test_a_stage_outside_the_groups_gets_its_own_area_before_compose(self):
+        rows = self.rows(False, False)
+        rows += [fx.row("bucketed_kbuffer", "peel", 1.0, params="buckets=on k=8",
+                        scene_params=f"layers=32 objects={n} seed=1") for n in (1, 2, 4)]
+        ax = self.draw(murray_fig10, rows).axes[0]
+        self.assertEqual([c.get_label() for c in ax.collections],
+                         ["clear", "fill/sort/bucket/store", "neighbors", "stylize", "peel", "compose"])
+
     def test_no_bucketed_rows_is_no_data(self):
         with self.assertRaises(common.NoData):
             self.draw(murray_fig10, [fx.row("kbuffer", "total", 1.0)])
