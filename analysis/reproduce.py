@@ -296,8 +296,9 @@ def main(argv=None):
     os.makedirs(args.out, exist_ok=True)
     env = dict(os.environ)
     # Mesa compiles each shader once per machine, not once per bench process.
-    env.setdefault("MESA_SHADER_CACHE_DIR", os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
-        os.path.abspath(args.oitbench)))), "mesa_shader_cache"))
+    # build/harness/oitbench -> build/mesa_shader_cache, where setup.sh and the tests keep it.
+    env.setdefault("MESA_SHADER_CACHE_DIR", os.path.join(os.path.dirname(os.path.dirname(
+        os.path.abspath(args.oitbench))), "mesa_shader_cache"))
     listing = subprocess.run([args.oitbench, "list"], capture_output=True, text=True, env=env, check=True).stdout
     catalogue = Catalogue(listing)
     sweeps = plan(catalogue, args.quick)
