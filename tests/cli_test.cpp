@@ -114,6 +114,16 @@ TEST(Cli, StatsPrintsTheQuadsComplexityAndWritesTheHeatmap) {
   EXPECT_GT(std::filesystem::file_size(heatmap), 0u);
 }
 
+TEST(Cli, BenchSummaryNamesTheSweptSceneParameters) {
+  const std::string csv = kOut + "/swept_scene.csv";
+  std::filesystem::remove(csv);
+  const Outcome o = run_oitbench("bench --technique unsorted --scene quads --scene-set layers=2,3 --size 8x8 "
+                                 "--frames 1 --warmup 0 --csv " + csv);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("quads layers=2 "), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("quads layers=3 "), std::string::npos) << o.output;
+}
+
 TEST(Cli, BadParameterExitsNonZeroNamingTheKey) {
   const Outcome o = run_oitbench("render --technique reference --set initial_nodes_per_pixel=0 --scene quads "
                                  "--size 8x8 --out " + kOut + "/never.png");

@@ -48,10 +48,15 @@ void print_summary(const std::vector<RunResult>& results, const std::string& bas
     char ratio[32] = "";
     if (ok && base > 0.0) std::snprintf(ratio, sizeof ratio, "%.1f", median_total(r) / base);
     const std::string camera = r.spec.camera == "default" ? "" : " camera " + r.spec.camera;
+    // A scene swept over its parameters (model name=..., quads objects=...)
+    // needs them on the line to tell its rows apart.
+    bool swept = false;
+    for (const auto& o : results) swept |= o.spec.scene == r.spec.scene && o.scene_params != r.scene_params;
+    const std::string scene = swept ? r.spec.scene + " " + r.scene_params : r.spec.scene;
     std::printf("%-18s %-46s %-8s %10.2f %10s %7llu %10.3g %9llu  %s %dx%d%s\n", r.spec.technique.c_str(),
                 r.technique_params.c_str(), to_string(r.status).c_str(), ok ? median_total(r) : 0.0, ratio,
                 static_cast<unsigned long long>(r.counters.passes), r.error ? r.error->max_abs : 0.0,
-                static_cast<unsigned long long>(r.counters.fragments_dropped), r.spec.scene.c_str(), r.spec.width,
+                static_cast<unsigned long long>(r.counters.fragments_dropped), scene.c_str(), r.spec.width,
                 r.spec.height, camera.c_str());
   }
 }
