@@ -18,6 +18,7 @@ packages=(
   libegl-mesa0 libgl1-mesa-dri mesa-utils xvfb xauth
   python3-matplotlib python3-pandas python3-numpy
   glmark2-data assimp-testmodels
+  clang libclang-rt-14-dev
 )
 
 install_missing_packages() {
