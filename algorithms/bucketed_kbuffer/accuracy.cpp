@@ -4,6 +4,8 @@
 #include <bit>
 #include <cmath>
 
+#include <glm/packing.hpp>  // unpackHalf2x16 (GLSL core packing)
+
 namespace oit::bkb {
 namespace {
 
@@ -16,7 +18,64 @@ double normal_z(uint32_t word) {
   return (word & 0x40000000u) ? -z : z;
 }
 
+struct SurfacePoint {
+  uint32_t surface;
+  glm::vec2 uv, footprint;
+};
+
+SurfacePoint surface_point(const std::vector<uint32_t>& truth, size_t slot) {
+  return {truth[4 * slot], glm::vec2(std::bit_cast<float>(truth[4 * slot + 1]), std::bit_cast<float>(truth[4 * slot + 2])),
+          glm::unpackHalf2x16(truth[4 * slot + 3])};
+}
+
+float wrapped_distance(float a, float b) {
+  const float d = std::abs(a - b) - std::floor(std::abs(a - b));  // parameters are periodic on [0, 1)
+  return std::min(d, 1.0f - d);
+}
+
 }  // namespace
+
+LinkAccuracy link_accuracy(const SlotReadback& slots, int width, int height, int k, double footprints) {
+  constexpr int kDx[4] = {-1, 1, 0, 0};  // left, right, down, up: the byte order of a link word
+  constexpr int kDy[4] = {0, 0, -1, 1};
+  constexpr float kSmallestFootprint = 1e-6f;  // flat-shaded or degenerate uv
+  LinkAccuracy a;
+  const size_t slot_count = size_t(width) * size_t(height) * size_t(k);
+  if (slots.truth.size() < 4 * slot_count || slots.links.size() < slot_count) return a;
+  auto has_data = [&](size_t slot) { return slots.keys[slot] != kEmptyKey && slots.normals[slot] != 0u; };
+  auto adjacent = [&](const SurfacePoint& p, const SurfacePoint& q) {
+    if (p.surface != q.surface) return false;
+    const glm::vec2 tolerance =
+        float(footprints) * glm::max(glm::max(p.footprint, q.footprint), glm::vec2(kSmallestFootprint));
+    return wrapped_distance(p.uv.x, q.uv.x) <= tolerance.x && wrapped_distance(p.uv.y, q.uv.y) <= tolerance.y;
+  };
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const size_t base = (size_t(y) * size_t(width) + size_t(x)) * size_t(k);
+      for (size_t i = base; i < base + size_t(k); ++i) {
+        if (!has_data(i)) continue;
+        const SurfacePoint mine = surface_point(slots.truth, i);
+        for (int d = 0; d < 4; ++d) {
+          const int nx = x + kDx[d], ny = y + kDy[d];
+          if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+          const size_t other = (size_t(ny) * size_t(width) + size_t(nx)) * size_t(k);
+          bool exists = false;
+          for (size_t j = other; j < other + size_t(k) && !exists; ++j)
+            exists = has_data(j) && adjacent(mine, surface_point(slots.truth, j));
+          a.true_neighbors += exists;
+          const uint32_t link = (slots.links[i] >> (8 * d)) & 0xffu;
+          if (link == 0xffu) continue;
+          ++a.links;
+          const size_t j = other + link;
+          a.correct_links += link < uint32_t(k) && has_data(j) && adjacent(mine, surface_point(slots.truth, j));
+        }
+      }
+    }
+  }
+  a.precision = a.links > 0 ? double(a.correct_links) / double(a.links) : 1.0;
+  a.recall = a.true_neighbors > 0 ? double(a.correct_links) / double(a.true_neighbors) : 1.0;
+  return a;
+}
 
 SlotStatistics slot_statistics(const SlotReadback& slots, int k, int shape_bits) {
   SlotStatistics s;

@@ -16,6 +16,9 @@ struct SlotReadback {
   std::vector<uint32_t> links;     // measure_accuracy only
   std::vector<float> expected;     // analytic k1 + k2, measure_accuracy only
   std::vector<float> estimated;    // screen-space k1 + k2, measure_accuracy only
+  // measure_accuracy only, 4 words per slot: surface id, u and v (float
+  // bits), fwidth(uv) as half2 (the uv footprint of one pixel).
+  std::vector<uint32_t> truth;
 };
 
 struct SlotStatistics {
@@ -40,5 +43,23 @@ struct CurvatureAccuracy {
 // fragments away from silhouettes: all four neighbours linked and the
 // viewer-facing normal within 60 degrees of the view axis (n_z >= 0.5).
 CurvatureAccuracy curvature_accuracy(const SlotReadback& slots, double curvature_scale);
+
+struct LinkAccuracy {
+  uint64_t links = 0;           // links of stored fragments (all four directions)
+  uint64_t correct_links = 0;   // links joining true surface neighbours
+  uint64_t true_neighbors = 0;  // (fragment, direction) pairs whose adjacent pixel holds one
+  double precision = 1.0;       // correct_links / links (1 without links)
+  double recall = 1.0;          // correct_links / true_neighbors (1 without true neighbours)
+};
+// Tolerance of a correct link, in pixel footprints (illustration_buffer's
+// default accuracy_footprints).
+constexpr double kLinkFootprints = 1.5;
+// Precision and recall of the links against the parametric ground truth, as
+// illustration_buffer measures them: a link i -> j is correct when both
+// fragments lie on the same surface and |du|, |dv| (wrapped on [0, 1)) are at
+// most `footprints` times the larger of the two fragments' fwidth(uv). Recall
+// counts the (fragment, direction) pairs, inside the image, for which the
+// adjacent pixel holds such a fragment. Needs keys, normals, links and truth.
+LinkAccuracy link_accuracy(const SlotReadback& slots, int width, int height, int k, double footprints);
 
 }  // namespace oit::bkb

@@ -36,6 +36,9 @@ layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 5) coherent buffer BkbCou
 layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 6) coherent buffer BkbLinks { uint bkb_links[]; };
 layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 7) coherent buffer BkbExpected { float bkb_expected[]; };
 layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 8) coherent buffer BkbEstimated { float bkb_estimated[]; };
+// Ground truth of the link precision/recall, measure_accuracy only: per slot
+// surface id, (u, v) bits and the uv footprint of one pixel (fwidth, half2).
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 9) coherent buffer BkbTruth { uvec4 bkb_truth[]; };
 
 layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform int u_width;
 layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_height;

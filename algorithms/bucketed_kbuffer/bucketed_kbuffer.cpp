@@ -19,7 +19,7 @@
 namespace oit {
 namespace {
 
-constexpr GLuint kBinding = OIT_FIRST_TECHNIQUE_BINDING;  // + 0..8, see bkb_common.glsl
+constexpr GLuint kBinding = OIT_FIRST_TECHNIQUE_BINDING;  // + 0..9, see bkb_common.glsl
 constexpr GLint kUniform = OIT_FIRST_TECHNIQUE_UNIFORM;   // + 0..5
 enum class BucketMode { automatic, on, off };
 
@@ -74,6 +74,7 @@ class BucketedKBuffer final : public Technique {
       links_ = make_buffer(slots * 4);
       expected_ = make_buffer(slots * 4);
       estimated_ = make_buffer(slots * 4);
+      truth_ = make_buffer(slots * 16);
     }
     no_attachments_ = make_framebuffer();
     glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
@@ -115,7 +116,8 @@ class BucketedKBuffer final : public Technique {
     TechniqueCounters c;
     c.passes = 2;
     const size_t slots = size_t(width_) * size_t(height_) * size_t(k_);
-    const uint64_t bytes_per_slot = measure_ ? 32 : 20;  // Z + B + colour + normal + features (+ diagnostics)
+    // Z + B + colour + normal + features (+ links, expected, estimated, truth)
+    const uint64_t bytes_per_slot = measure_ ? 48 : 20;
     c.bytes_allocated = slots * bytes_per_slot + sizeof(GLuint) +
                         (color_transfer_ ? sizeof(float) * 4 * bkb::kColorTransferSize : 0) +
                         (opacity_transfer_ ? sizeof(float) * bkb::kOpacityTransferSize * bkb::kOpacityTransferSize : 0);
@@ -144,6 +146,12 @@ class BucketedKBuffer final : public Technique {
                {"depth_step", (depth_far_ - depth_near_) / double((1u << depth_bits_) - 2u)}};
     if (measure_) {
       c.extra.push_back({"link_checksum", double(s.link_checksum)});
+      r.truth = read_uints(truth_, slots * 4);
+      const bkb::LinkAccuracy links = bkb::link_accuracy(r, width_, height_, k_, bkb::kLinkFootprints);
+      c.extra.push_back({"neighbor_precision", links.precision});
+      c.extra.push_back({"neighbor_recall", links.recall});
+      c.extra.push_back({"neighbor_correct_links", double(links.correct_links)});
+      c.extra.push_back({"neighbor_true_neighbors", double(links.true_neighbors)});
       if (analytic_curvature_) {
         r.expected = read_floats(expected_, slots);
         r.estimated = read_floats(estimated_, slots);
@@ -236,9 +244,9 @@ class BucketedKBuffer final : public Technique {
   }
 
   void bind_storage() const {
-    const Buffer* buffers[] = {&z_,       &buckets_, &colors_,   &normals_,  &features_,
-                               &counter_, &links_,   &expected_, &estimated_};
-    for (GLuint i = 0; i < 9; ++i)
+    const Buffer* buffers[] = {&z_,       &buckets_, &colors_,   &normals_,    &features_,
+                               &counter_, &links_,   &expected_, &estimated_, &truth_};
+    for (GLuint i = 0; i < 10; ++i)
       if (*buffers[i]) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBinding + i, buffers[i]->id());
   }
 
@@ -260,7 +268,7 @@ class BucketedKBuffer final : public Technique {
   double curvature_scale_;
   BucketMode mode_ = BucketMode::automatic;
   Program fill_, sort_, bucket_, store_, neighbors_bucketed_, neighbors_brute_force_, stylize_, compose_;
-  Buffer z_, buckets_, colors_, normals_, features_, counter_, links_, expected_, estimated_;
+  Buffer z_, buckets_, colors_, normals_, features_, counter_, links_, expected_, estimated_, truth_;
   Texture color_transfer_, opacity_transfer_;
   Framebuffer no_attachments_;
   int width_ = 0, height_ = 0;

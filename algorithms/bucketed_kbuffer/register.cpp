@@ -28,7 +28,8 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
       ParamSpec::real("curvature_scale", 1.0, 1e-3, 1e3,
                       "kappa = tanh(curvature_scale * (k1 + k2)), curvatures in 1 / scene units"),
       ParamSpec::boolean("measure_accuracy", false,
-                         "keep links and curvatures for counters(): link checksum, kappa error on analytic scenes")};
+                         "keep links, curvatures and surface id/uv for counters(): link checksum, link "
+                         "precision/recall, kappa error on analytic scenes")};
   d.stages = {"clear", "fill", "sort", "bucket", "store", "neighbors", "stylize", "compose"};
   d.exactness = Exactness::approximate;
   d.quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32", "64"}}};

@@ -14,6 +14,10 @@ layout(location = OIT_UNIFORM_PROJECTION) uniform mat4 u_projection;
 vec3 to_viewer() { return u_projection[2][3] == 0.0 ? vec3(0.0, 0.0, 1.0) : -v_view_position; }
 
 void main() {
+#if MEASURE_ACCURACY
+  // Before any invocation of the quad returns: derivatives need all four.
+  vec2 footprint = fwidth(v_uv);
+#endif
   uint shape = v_object_id & BKB_SHAPE_MASK;
   uint key = bkb_shape_key(shape, bkb_quantise_depth(oit_view_depth()));
   uint base = bkb_pixel_base();
@@ -39,6 +43,8 @@ void main() {
     // the scene's mean curvature H belongs to its own (outward) normal;
     // a surface bulging towards the viewer is negative.
     bkb_expected[base + slot] = -2.0 * v_mean_curvature * (outward_faces_viewer ? 1.0 : -1.0);
+    bkb_truth[base + slot] = uvec4(v_surface_id, floatBitsToUint(v_uv.x), floatBitsToUint(v_uv.y),
+                                   packHalf2x16(footprint));
 #endif
     return;
   }
