@@ -279,3 +279,59 @@ TEST(BucketedKBuffer, InvalidParametersAreErrorsNamingTheParameter) {
 
 }  // namespace
 }  // namespace oit
+
+namespace oit {
+namespace {
+
+const DiagnosticImage* find_diagnostic(const std::vector<DiagnosticImage>& images, const std::string& name) {
+  for (const DiagnosticImage& d : images)
+    if (d.name == name) return &d;
+  ADD_FAILURE() << "no diagnostic image '" << name << "'";
+  return nullptr;
+}
+
+TEST(BucketedKBuffer, KappaDiagnosticIsZeroOnFlatQuadsAndMinusOneOnTheImageBorder) {
+  const int w = 24, h = 16;
+  const std::vector<DiagnosticImage> images =
+      test::diagnostic_images_once(kId, {{"k", "8"}}, "quads", {{"layers", "4"}}, w, h);
+  const DiagnosticImage* kappa = find_diagnostic(images, "kappa");
+  const DiagnosticImage* count = find_diagnostic(images, "neighbor_count");
+  ASSERT_TRUE(kappa && count);
+  EXPECT_EQ(kappa->low, -1.0f);
+  EXPECT_EQ(kappa->high, 1.0f);
+  int wrong = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const bool border = x == 0 || y == 0 || x == w - 1 || y == h - 1;
+      const float neighbours = 4.0f - float(x == 0) - float(x == w - 1) - float(y == 0) - float(y == h - 1);
+      const size_t p = size_t(y * w + x);
+      wrong += kappa->values[p] != (border ? -1.0f : 0.0f) || count->values[p] != neighbours;
+    }
+  EXPECT_EQ(wrong, 0);
+}
+
+TEST(BucketedKBuffer, KappaDiagnosticOfASphereIsNegativeAndMatchesOneOverRadius) {
+  // One sphere of radius 0.8: k1 + k2 = -2 / 0.8 facing the viewer, so
+  // kappa = tanh(0.2 * -2.5) on the front fragments with all neighbours.
+  const int size = 64;
+  const std::vector<DiagnosticImage> images = test::diagnostic_images_once(
+      kId, {{"curvature_scale", "0.2"}}, "spheres", {{"count", "1"}}, size, size);
+  const DiagnosticImage* kappa = find_diagnostic(images, "kappa");
+  const DiagnosticImage* count = find_diagnostic(images, "neighbor_count");
+  ASSERT_TRUE(kappa && count);
+  const float expected = std::tanh(0.2f * -2.0f / 0.8f);
+  std::vector<float> linked;
+  int empty = 0;
+  for (size_t p = 0; p < kappa->values.size(); ++p) {
+    if (std::isnan(kappa->values[p])) ++empty;
+    else if (count->values[p] == 4.0f) linked.push_back(kappa->values[p]);
+  }
+  EXPECT_GT(empty, 0);
+  ASSERT_GT(linked.size(), 500u);
+  std::sort(linked.begin(), linked.end());
+  EXPECT_LT(linked.back(), 0.0f) << "a convex sphere has kappa < 0 everywhere";
+  EXPECT_NEAR(linked[linked.size() / 2], expected, 0.01f) << "median";
+}
+
+}  // namespace
+}  // namespace oit

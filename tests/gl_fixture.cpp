@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include "scene.h"
+#include "scene_library.h"
+
 namespace oit::test {
 
 GlContext& gl_context() {
@@ -28,6 +31,25 @@ RunResult render_once(const std::string& technique, const RawParams& params, con
   RunResult result = harness().run(spec);
   EXPECT_EQ(result.status, RunStatus::ok) << technique << ": " << result.message;
   return result;
+}
+
+std::vector<DiagnosticImage> diagnostic_images_once(const std::string& technique, const RawParams& params,
+                                                    const std::string& scene, const RawParams& scene_params,
+                                                    int width, int height) {
+  gl_context();
+  const TechniqueDescriptor& descriptor = builtin_techniques().get(technique);
+  const ParamSet values(descriptor.params, params, technique);
+  const Scene loaded = load_scene(scene, scene_params);
+  const SceneGpu gpu(loaded);
+  const Camera camera = resolve_camera(gpu, "default");
+  std::unique_ptr<Technique> instance = descriptor.create(values);
+  instance->resize(width, height);
+  RenderTarget target(width, height);
+  StageClock clock(ClockKind::wall);
+  const Frame frame{gpu, camera.view, camera.projection(float(width) / float(height)), width, height,
+                    glm::vec3(0.0f), target.framebuffer.id(), clock};
+  render_frame(*instance, frame, false);
+  return instance->diagnostic_images();
 }
 
 }  // namespace oit::test

@@ -12,4 +12,10 @@ Harness& harness();
 RunResult render_once(const std::string& technique, const RawParams& params, const std::string& scene,
                       const RawParams& scene_params, int width, int height);
 
+// Renders one frame of a technique (the scene's default camera, black
+// background) and returns its diagnostic_images() of that frame.
+std::vector<DiagnosticImage> diagnostic_images_once(const std::string& technique, const RawParams& params,
+                                                    const std::string& scene, const RawParams& scene_params,
+                                                    int width, int height);
+
 }  // namespace oit::test

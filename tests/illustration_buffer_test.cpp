@@ -268,3 +268,72 @@ TEST(IllustrationBuffer, InvalidParametersAreErrorsNamingTheParameter) {
 
 }  // namespace
 }  // namespace oit
+
+namespace oit {
+namespace {
+
+const DiagnosticImage* find_diagnostic(const std::vector<DiagnosticImage>& images, const std::string& name) {
+  for (const DiagnosticImage& d : images)
+    if (d.name == name) return &d;
+  ADD_FAILURE() << "no diagnostic image '" << name << "'";
+  return nullptr;
+}
+
+TEST(IllustrationBuffer, DiagnosticImagesShowTheFrontFragmentsNeighboursOnFullScreenQuads) {
+  const int w = 24, h = 16;
+  for (const char* search : {"triangle_index", "heuristic"}) {
+    const std::vector<DiagnosticImage> images = test::diagnostic_images_once(
+        "illustration_buffer", {{"neighbors", search}}, "quads", {{"layers", "4"}}, w, h);
+    const DiagnosticImage* count = find_diagnostic(images, "neighbor_count");
+    const DiagnosticImage* silhouette = find_diagnostic(images, "silhouette");
+    ASSERT_TRUE(count && silhouette);
+    ASSERT_EQ(count->values.size(), size_t(w * h));
+    EXPECT_EQ(count->low, 0.0f);
+    EXPECT_EQ(count->high, 4.0f);
+    int wrong = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        // Off-image directions are not counted: 3 on edges, 2 in corners.
+        const float expected = 4.0f - float(x == 0) - float(x == w - 1) - float(y == 0) - float(y == h - 1);
+        const size_t p = size_t(y * w + x);
+        wrong += count->values[p] != expected || silhouette->values[p] != 0.0f;
+      }
+    EXPECT_EQ(wrong, 0) << search;
+  }
+}
+
+TEST(IllustrationBuffer, DiagnosticImagesMarkSilhouettesAndEmptyPixels) {
+  // A sphere: a silhouette ring of front fragments missing a neighbour,
+  // linked interior, no value (NaN) outside.
+  const int size = 48;
+  const std::vector<DiagnosticImage> images =
+      test::diagnostic_images_once("illustration_buffer", {}, "spheres", {{"count", "1"}}, size, size);
+  const DiagnosticImage* count = find_diagnostic(images, "neighbor_count");
+  const DiagnosticImage* silhouette = find_diagnostic(images, "silhouette");
+  ASSERT_TRUE(count && silhouette);
+  int empty = 0, rim = 0, interior = 0;
+  for (size_t p = 0; p < count->values.size(); ++p) {
+    const int x = int(p % size_t(size)), y = int(p / size_t(size));
+    const float in_image = 4.0f - float(x == 0) - float(x == size - 1) - float(y == 0) - float(y == size - 1);
+    if (std::isnan(count->values[p])) {
+      EXPECT_TRUE(std::isnan(silhouette->values[p]));
+      ++empty;
+    } else if (silhouette->values[p] == 1.0f) {
+      EXPECT_LT(count->values[p], in_image);
+      ++rim;
+    } else {
+      EXPECT_EQ(count->values[p], in_image);
+      ++interior;
+    }
+  }
+  EXPECT_GT(empty, 0);
+  EXPECT_GT(rim, 0);
+  EXPECT_GT(interior, rim);
+  // Plain blending searches no neighbours and offers nothing.
+  EXPECT_TRUE(
+      test::diagnostic_images_once("illustration_buffer", {{"modulation", "none"}}, "quads", {{"layers", "2"}}, 8, 8)
+          .empty());
+}
+
+}  // namespace
+}  // namespace oit

@@ -4,8 +4,12 @@
 // bucket (per-pixel hash table), store (second geometry pass: colour and
 // normal), neighbors (links + curvature), stylize, compose (back to front).
 #include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/packing.hpp>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <limits>
 #include <cmath>
 #include <stdexcept>
 
@@ -164,6 +168,36 @@ class BucketedKBuffer final : public Technique {
       }
     }
     return c;
+  }
+
+  // Per pixel, the front (nearest kept and stored) fragment's kappa and
+  // found-neighbour count, from the Z, normal and feature buffers.
+  std::vector<DiagnosticImage> diagnostic_images() const override {
+    const size_t pixels = size_t(width_) * size_t(height_), k = size_t(k_);
+    if (pixels == 0) return {};
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    const std::vector<uint32_t> keys = read_uints(z_, pixels * k), normals = read_uints(normals_, pixels * k),
+                                features = read_uints(features_, pixels * k);
+    gl_check("bucketed_kbuffer: reading back the slots for the diagnostic images");
+    const float none = std::numeric_limits<float>::quiet_NaN();
+    DiagnosticImage kappa{"kappa",
+                          "front fragment's kappa = tanh(curvature_scale * (k1 + k2)): -1 convex (or a missing "
+                          "neighbour), 0 flat, +1 concave",
+                          width_, height_, std::vector<float>(pixels, none), -1.0f, 1.0f};
+    DiagnosticImage links{"neighbor_count", "neighbours found for the front fragment (0-4)", width_, height_,
+                          std::vector<float>(pixels, none), 0.0f, 4.0f};
+    const uint32_t depth_mask = (1u << (depth_bits_ == 24 ? 24u : 16u)) - 1u;  // after the sort: depth low bits
+    for (size_t p = 0; p < pixels; ++p) {
+      size_t front = SIZE_MAX;
+      for (size_t i = p * k; i < (p + 1) * k; ++i) {
+        if (keys[i] == bkb::kEmptyKey || normals[i] == 0u) continue;
+        if (front == SIZE_MAX || (keys[i] & depth_mask) < (keys[front] & depth_mask)) front = i;
+      }
+      if (front == SIZE_MAX) continue;
+      kappa.values[p] = glm::unpackHalf1x16(uint16_t(features[front] & 0xffffu));
+      links.values[p] = float(std::popcount((features[front] >> 16) & 0xfu));
+    }
+    return {std::move(kappa), std::move(links)};
   }
 
  private:

@@ -5,6 +5,7 @@
 // to back (compose). See README.md for the mapping to the papers.
 #include <algorithm>
 #include <bit>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
@@ -184,6 +185,8 @@ class IllustrationBuffer final : public Technique {
     return c;
   }
 
+  std::vector<DiagnosticImage> diagnostic_images() const override;
+
  private:
   bool modulated() const { return s_.modulation != Modulation::none; }
   static uint64_t pool_size_for(uint64_t fragments) { return uint64_t(double(fragments) * kPoolSlack) + 1; }
@@ -314,6 +317,8 @@ class IllustrationBuffer final : public Technique {
   }
 
   void append_neighbor_statistics(TechniqueCounters& c) const;
+  // The last frame's per-pixel ranges and sorted records (read back).
+  void read_lists(std::vector<uint32_t>& first, std::vector<uint32_t>& count, std::vector<SortedRecord>& sorted) const;
 
   Settings s_;
   Program fill_, compose_, neighbors_, stylize_init_, stylize_diffuse_;
@@ -330,24 +335,33 @@ class IllustrationBuffer final : public Technique {
 
 // Reads the last frame's lists back (outside the timed frames) and counts
 // links per direction, silhouettes and, with measure_accuracy, precision/recall.
-void IllustrationBuffer::append_neighbor_statistics(TechniqueCounters& c) const {
+void IllustrationBuffer::read_lists(std::vector<uint32_t>& first, std::vector<uint32_t>& count,
+                                    std::vector<SortedRecord>& sorted) const {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   const size_t pixels = size_t(width_) * size_t(height_);
-  std::vector<uint32_t> first(pixels), count(pixels);
+  first.assign(pixels, 0);
+  count.assign(pixels, 0);
   std::vector<SortedSearchRecord> search(stored_);
   std::vector<SortedShadeRecord> shade(stored_);
-  std::vector<TruthRecord> truth(s_.measure_accuracy ? produced_ : 0);
   glGetNamedBufferSubData(head_.id(), 0, GLsizeiptr(pixels * 4), first.data());
   glGetNamedBufferSubData(count_.id(), 0, GLsizeiptr(pixels * 4), count.data());
   if (stored_ > 0) {
     glGetNamedBufferSubData(data2_.id(), 0, GLsizeiptr(search.size() * sizeof(SortedSearchRecord)), search.data());
     glGetNamedBufferSubData(data3_.id(), 0, GLsizeiptr(shade.size() * sizeof(SortedShadeRecord)), shade.data());
   }
+  gl_check("illustration_buffer: reading back the sorted lists");
+  sorted.resize(stored_);
+  for (size_t i = 0; i < sorted.size(); ++i) sorted[i] = join(search[i], shade[i]);
+}
+
+void IllustrationBuffer::append_neighbor_statistics(TechniqueCounters& c) const {
+  std::vector<uint32_t> first, count;
+  std::vector<SortedRecord> sorted;
+  read_lists(first, count, sorted);
+  std::vector<TruthRecord> truth(s_.measure_accuracy ? produced_ : 0);
   if (!truth.empty())
     glGetNamedBufferSubData(truth_.id(), 0, GLsizeiptr(truth.size() * sizeof(TruthRecord)), truth.data());
-  gl_check("illustration_buffer: reading back the lists for the neighbour statistics");
-  std::vector<SortedRecord> sorted(stored_);
-  for (size_t i = 0; i < sorted.size(); ++i) sorted[i] = join(search[i], shade[i]);
+  gl_check("illustration_buffer: reading back the truth records for the neighbour statistics");
   const NeighborStatistics stats =
       neighbor_statistics(width_, height_, first, count, sorted, truth, s_.accuracy_footprints);
   const char* names[4] = {"links_left", "links_right", "links_down", "links_up"};
@@ -357,6 +371,38 @@ void IllustrationBuffer::append_neighbor_statistics(TechniqueCounters& c) const 
     c.extra.push_back({"neighbor_precision", stats.precision});
     c.extra.push_back({"neighbor_recall", stats.recall});
   }
+}
+
+// Neighbour links of each pixel's front fragment (the nearest of its sorted
+// list): how many of the 4 were found, and whether one inside the image is
+// missing (carnecky2013's silhouette, the seed of the beta field).
+std::vector<DiagnosticImage> IllustrationBuffer::diagnostic_images() const {
+  if (!modulated() || width_ == 0) return {};  // modulation=none searches no neighbours
+  std::vector<uint32_t> first, count;
+  std::vector<SortedRecord> sorted;
+  read_lists(first, count, sorted);
+  const size_t pixels = first.size();
+  const float none = std::numeric_limits<float>::quiet_NaN();
+  DiagnosticImage links{"neighbor_count",
+                        "neighbour links of the front fragment (0-4; image borders count only in-image directions)",
+                        width_, height_, std::vector<float>(pixels, none), 0.0f, 4.0f};
+  DiagnosticImage silhouette{"silhouette", "1 where the front fragment misses a neighbour inside the image, else 0",
+                             width_, height_, std::vector<float>(pixels, none), 0.0f, 1.0f};
+  for (size_t p = 0; p < pixels; ++p) {
+    const size_t begin = first[p], end = size_t(first[p]) + count[p];
+    if (count[p] == 0 || end > sorted.size()) continue;
+    const size_t front = begin;  // the sort orders each list front to back
+    int found = 0;
+    bool missing = false;
+    for (uint32_t link : sorted[front].links) {
+      if (link == kOffImage) continue;
+      if (link == kNoNeighbor) missing = true;
+      else ++found;
+    }
+    links.values[p] = float(found);
+    silhouette.values[p] = missing ? 1.0f : 0.0f;
+  }
+  return {std::move(links), std::move(silhouette)};
 }
 
 }  // namespace

@@ -25,6 +25,21 @@ Image heatmap(const std::vector<float>& values, int width, int height, float max
   return image;
 }
 
+Image heatmap_range(const std::vector<float>& values, int width, int height, float low, float high) {
+  if (values.size() != size_t(width) * size_t(height))
+    throw std::invalid_argument("heatmap_range: value count != pixels");
+  const float span = high > low ? high - low : 1.0f;
+  Image image{width, height, std::vector<float>(values.size() * 4, 1.0f)};
+  for (size_t p = 0; p < values.size(); ++p) {
+    if (std::isnan(values[p])) {
+      for (int c = 0; c < 3; ++c) image.rgba[4 * p + size_t(c)] = 0.0f;
+      continue;
+    }
+    ramp((values[p] - low) / span, &image.rgba[4 * p]);
+  }
+  return image;
+}
+
 Image error_heatmap(const Image& image, const Image& reference) {
   if (image.width != reference.width || image.height != reference.height)
     throw std::invalid_argument("error_heatmap: image and reference sizes differ");

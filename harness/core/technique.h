@@ -30,6 +30,18 @@ struct TechniqueCounters {
   std::vector<std::pair<std::string, double>> extra;
 };
 
+// A per-pixel scalar field a technique can show about its last frame (e.g.
+// neighbour links or curvature of each pixel's front fragment), for the
+// viewer's `--display diagnostic`. Technique-independent: the harness only
+// draws it as a heatmap over [low, high].
+struct DiagnosticImage {
+  std::string name;         // snake_case, unique per technique
+  std::string description;  // one line: what a value means
+  int width = 0, height = 0;
+  std::vector<float> values;  // one per pixel, rows bottom-up like Image; NaN = no value (drawn black)
+  float low = 0.0f, high = 1.0f;  // the field's natural range (the heatmap's blue and red ends)
+};
+
 struct TechniqueNeeds {
   bool fp64 = false;              // double precision in shaders
   bool int64 = false;             // 64-bit integers in shaders (GL_ARB_gpu_shader_int64)
@@ -71,6 +83,9 @@ class Technique {
   virtual void resize(int width, int height) = 0;
   virtual void render(const Frame& frame) = 0;
   virtual TechniqueCounters counters() const = 0;
+  // Diagnostic fields of the last rendered frame, read back after it
+  // (outside the timed frames, like counters()). Default: none.
+  virtual std::vector<DiagnosticImage> diagnostic_images() const { return {}; }
 };
 
 struct TechniqueDescriptor {
