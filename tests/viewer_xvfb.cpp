@@ -20,6 +20,7 @@
 #include "core/heatmap.h"
 #include "core/image.h"
 #include "core/runner.h"
+#include "gl_fixture.h"
 
 namespace oit {
 namespace {
@@ -147,6 +148,49 @@ TEST(Viewer, ErrorDisplayIsTheHarnessErrorHeatmap) {
   const Png expected = load_png(expected_path);
   ASSERT_GT(expected.width, 0);
   EXPECT_LE(max_difference(shot, expected, 0, expected.width), kTolerance);
+}
+
+// --display diagnostic: the heatmap (over the field's own range) of the
+// technique's diagnostic image of the same frame, computed here on the
+// headless context.
+void expect_diagnostic_display(const std::string& technique, const RawParams& params, const std::string& set,
+                               const std::string& name, const std::string& diagnostic) {
+  const std::vector<DiagnosticImage> images =
+      test::diagnostic_images_once(technique, params, "spheres", {{"count", "1"}}, 64, 64);
+  const DiagnosticImage* field = nullptr;
+  for (const DiagnosticImage& d : images)
+    if (diagnostic.empty() ? field == nullptr : d.name == diagnostic) field = &d;
+  ASSERT_NE(field, nullptr) << technique << " offers no '" << diagnostic << "'";
+  const std::string expected_path = kOut + "/" + name + "_expected.png";
+  write_image(heatmap_range(field->values, field->width, field->height, field->low, field->high), expected_path);
+  const Png shot = view_screenshot("--technique " + technique + set + " --display diagnostic" +
+                                       (diagnostic.empty() ? "" : " --diagnostic " + diagnostic) +
+                                       " --scene spheres --scene-set count=1 --size 64x64",
+                                   name);
+  const Png expected = load_png(expected_path);
+  ASSERT_GT(expected.width, 0);
+  ASSERT_GE(shot.width, expected.width);
+  EXPECT_LE(max_difference(shot, expected, 0, expected.width), kTolerance) << name;
+}
+
+TEST(Viewer, DiagnosticDisplayIsTheHeatmapOfTheTechniquesDiagnosticImage) {
+  expect_diagnostic_display("illustration_buffer", {}, "", "diagnostic_silhouette", "silhouette");
+  expect_diagnostic_display("illustration_buffer", {}, "", "diagnostic_neighbor_count", "neighbor_count");
+  // No --diagnostic: the technique's first (bucketed_kbuffer: kappa).
+  expect_diagnostic_display("bucketed_kbuffer", {{"curvature_scale", "0.2"}}, " --set curvature_scale=0.2",
+                            "diagnostic_kappa", "");
+}
+
+TEST(Viewer, DiagnosticDisplayOfATechniqueWithoutDiagnosticsIsAMessageNotAFailure) {
+  // kbuffer offers none: the scene area is black, the run still succeeds.
+  const Png shot = view_screenshot("--technique kbuffer --display diagnostic --scene quads --size 32x32",
+                                   "diagnostic_none");
+  ASSERT_GE(shot.width, 32);
+  int brightest = 0;
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x)
+      for (int c = 0; c < 3; ++c) brightest = std::max(brightest, shot.at(x, y, c));
+  EXPECT_EQ(brightest, 0);
 }
 
 TEST(Viewer, SplitShowsTechniqueAOnTheLeftAndBOnTheRight) {

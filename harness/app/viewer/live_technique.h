@@ -38,6 +38,10 @@ class LiveTechnique {
   const RawParams& params() const { return params_; }  // as applied
   const std::string& canonical_params() const { return canonical_; }
   TechniqueCounters counters() const { return technique_ ? technique_->counters() : TechniqueCounters{}; }
+  // The technique's diagnostic fields of its last frame (none by default).
+  std::vector<DiagnosticImage> diagnostic_images() const {
+    return technique_ ? technique_->diagnostic_images() : std::vector<DiagnosticImage>{};
+  }
   // Per-stage timings of the last complete window (empty before the first).
   const std::vector<StageTiming>& timings() const { return timings_; }
   ClockKind clock_kind() const { return clock_kind_; }

@@ -23,8 +23,11 @@ CLI::App* add_view_command(CLI::App& app, ViewOptions& o) {
   view->add_option("--compare", o.compare, "technique B for the A/B comparison");
   view->add_option("--compare-set", o.compare_sets, "technique B parameter key=value (repeatable)");
   view->add_option("--show", o.show, "a, b or split")->check(CLI::IsMember({"a", "b", "split"}));
-  view->add_option("--display", o.display, "image, reference, error or list_length")
-      ->check(CLI::IsMember({"image", "reference", "error", "list_length"}));
+  view->add_option("--display", o.display,
+                   "image, reference, error, list_length or diagnostic (a per-pixel field the technique offers)")
+      ->check(CLI::IsMember({"image", "reference", "error", "list_length", "diagnostic"}));
+  view->add_option("--diagnostic", o.diagnostic,
+                   "with --display diagnostic: which of the technique's fields (default: its first)");
   view->add_option("--frames", o.frames, "render N frames, then exit (0: until the window closes)")
       ->check(CLI::Range(0, 1000000));
   view->add_option("--screenshot", o.screenshot, "PNG of the window written after the last frame");

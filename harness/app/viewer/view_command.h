@@ -23,7 +23,8 @@ struct ViewOptions {
   std::string compare;              // technique B for the A/B comparison ("" = none)
   std::vector<std::string> compare_sets;
   std::string show = "a";           // a, b or split (A left, B right)
-  std::string display = "image";    // image, reference, error, list_length
+  std::string display = "image";    // image, reference, error, list_length, diagnostic
+  std::string diagnostic;           // the technique's diagnostic image to show ("": its first)
   int frames = 0;                   // > 0: render that many frames, then exit
   std::string screenshot;           // PNG of the window after the last frame
   std::string sweep_file = "oitbench_sweep.txt";

@@ -34,7 +34,9 @@ Viewer::Viewer(GlfwWindowContext& window, const ViewOptions& options)
   display_ = options.display == "reference" ? Display::reference
              : options.display == "error"   ? Display::error
              : options.display == "list_length" ? Display::list_length
+             : options.display == "diagnostic"  ? Display::diagnostic
                                                 : Display::image;
+  diagnostic_name_ = options.diagnostic;
   show_ = options.show == "b" ? Show::b : options.show == "split" ? Show::split : Show::a;
 
   IMGUI_CHECKVERSION();
@@ -153,7 +155,7 @@ std::string Viewer::diagnostic_key() const {
   // image is deterministic for a fixed configuration and camera.
   const Slot& shown = shown_slot();
   std::ostringstream key;
-  key << int(display_) << "|" << scene_generation_ << "|" << background_.r << "," << background_.g << ","
+  key << int(display_) << "|" << diagnostic_name_ << "|" << scene_generation_ << "|" << background_.r << "," << background_.g << ","
       << background_.b << "|" << shown.live.id() << " " << shown.live.canonical_params() << "|";
   const glm::mat4 view = orbit_.camera().view, proj = projection();
   for (int c = 0; c < 4; ++c)
@@ -173,8 +175,28 @@ void Viewer::update_diagnostics() {
   diagnostics_key_ = key;
   diagnostics_message_.clear();
   error_.reset();
+  diagnostic_.reset();
+  diagnostic_names_.clear();
   try {
     const glm::mat4 view = orbit_.camera().view, proj = projection();
+    if (display_ == Display::diagnostic) {
+      // Whatever the shown technique offers about its last frame (this view).
+      const Slot& shown = shown_slot();
+      if (!shown.live.ready()) throw std::runtime_error("no technique is running");
+      std::vector<DiagnosticImage> images = shown.live.diagnostic_images();
+      for (const DiagnosticImage& d : images) diagnostic_names_.push_back(d.name);
+      if (images.empty())
+        throw std::runtime_error(shown.live.id() + " offers no diagnostic images with these parameters");
+      auto it = std::find_if(images.begin(), images.end(),
+                             [&](const DiagnosticImage& d) { return d.name == diagnostic_name_; });
+      if (!diagnostic_name_.empty() && it == images.end())
+        throw std::runtime_error(shown.live.id() + " has no diagnostic image '" + diagnostic_name_ + "'");
+      if (it == images.end()) it = images.begin();
+      diagnostic_ = std::move(*it);
+      upload(heatmap_range(diagnostic_->values, diagnostic_->width, diagnostic_->height, diagnostic_->low,
+                           diagnostic_->high));
+      return;
+    }
     if (display_ == Display::list_length) {
       complexity_ = measure_depth_complexity(*scene_gpu_, view, proj, width_, height_);
       upload(list_length_heatmap(complexity_));

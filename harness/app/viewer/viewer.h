@@ -26,7 +26,7 @@ class Viewer {
   int run();
 
  private:
-  enum class Display { image, reference, error, list_length };
+  enum class Display { image, reference, error, list_length, diagnostic };
   enum class Show { a, b, split };
   // Technique A or B: what the user asked for and what runs.
   struct Slot {
@@ -100,6 +100,9 @@ class Viewer {
   Image reference_image_;
   std::optional<ImageError> error_;
   DepthComplexity complexity_;
+  std::string diagnostic_name_;             // wanted diagnostic image ("": the technique's first)
+  std::vector<std::string> diagnostic_names_;  // what the shown technique offers
+  std::optional<DiagnosticImage> diagnostic_;  // the one shown (values kept for the panel's range)
   std::unique_ptr<RenderTarget> display_target_;  // uploaded diagnostic image
 
   std::string screenshot_path_ = "oitbench_view.png";

@@ -4,6 +4,9 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "app/viewer/param_editor.h"
 #include "app/viewer/viewer.h"
 #include "scene_library.h"
@@ -198,6 +201,9 @@ void Viewer::panel_diagnostics() {
   ImGui::RadioButton("error", &display, int(Display::error));
   ImGui::SameLine();
   ImGui::RadioButton("list length", &display, int(Display::list_length));
+  ImGui::SameLine();
+  ImGui::RadioButton("technique", &display, int(Display::diagnostic));
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("diagnostic images the shown technique offers (if any)");
   display_ = Display(display);
   if (display_ == Display::image) return;
   const Slot& shown = shown_slot();
@@ -213,6 +219,26 @@ void Viewer::panel_diagnostics() {
     ImGui::Text("Psi %.4f   mean %.3f   max %u", complexity_.psi, complexity_.mean, complexity_.max);
     ImGui::Text("fragments %llu, covered pixels %llu", static_cast<unsigned long long>(complexity_.fragments),
                 static_cast<unsigned long long>(complexity_.covered_pixels));
+  }
+  if (display_ == Display::diagnostic) {
+    for (const std::string& name : diagnostic_names_) {
+      const bool current = diagnostic_ && diagnostic_->name == name;
+      if (ImGui::RadioButton(name.c_str(), current)) diagnostic_name_ = name;
+    }
+    if (diagnostic_) {
+      const DiagnosticImage& d = *diagnostic_;
+      float lo = 0.0f, hi = 0.0f;
+      size_t valued = 0;
+      for (float v : d.values) {
+        if (std::isnan(v)) continue;
+        lo = valued == 0 ? v : std::min(lo, v);
+        hi = valued == 0 ? v : std::max(hi, v);
+        ++valued;
+      }
+      ImGui::TextWrapped("%s: %s", d.name.c_str(), d.description.c_str());
+      ImGui::Text("heatmap: blue %.4g .. red %.4g (black: no fragment)", d.low, d.high);
+      if (valued > 0) ImGui::Text("values %.4g .. %.4g over %zu pixels", lo, hi, valued);
+    }
   }
   if (!diagnostics_message_.empty()) wrapped_colored(kRed, diagnostics_message_);
 }
