@@ -8,10 +8,13 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <stdexcept>
 
 #include "app/sweep.h"
 #include "cameras.h"
 #include "core/complexity.h"
+#include "core/heatmap.h"
 #include "gl_fixture.h"
 #include "scene_library.h"
 
@@ -117,6 +120,17 @@ TEST(Complexity, KnownLayersGivePsiHistogramAndHeatmap) {
   // The harness reports the same Psi for a run.
   const RunResult r = test::render_once("reference", {}, write_banded_gltf(), {}, size, size);
   EXPECT_DOUBLE_EQ(r.psi, 0.25);
+}
+
+TEST(Complexity, HeatmapRangeMapsLowToBlueHighToRedAndNanToBlack) {
+  // The signed range of a diagnostic field (e.g. kappa in [-1, 1]).
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const Image heat = heatmap_range({-1.0f, 0.0f, 1.0f, nan, 5.0f}, 5, 1, -1.0f, 1.0f);
+  const std::vector<float> expected = {0.0f, 0.0f, 0.5f, 1.0f,  0.5f, 1.0f, 0.5f, 1.0f,  0.5f, 0.0f, 0.0f, 1.0f,
+                                       0.0f, 0.0f, 0.0f, 1.0f,  0.5f, 0.0f, 0.0f, 1.0f};
+  ASSERT_EQ(heat.rgba.size(), expected.size());
+  for (size_t i = 0; i < expected.size(); ++i) EXPECT_FLOAT_EQ(heat.rgba[i], expected[i]) << i;
+  EXPECT_THROW(heatmap_range({0.0f}, 2, 1, 0.0f, 1.0f), std::invalid_argument);
 }
 
 TEST(Cameras, SpecsParseExpandAndRefuseNonsense) {
