@@ -202,7 +202,7 @@ void Viewer::panel_diagnostics() {
   ImGui::SameLine();
   ImGui::RadioButton("list length", &display, int(Display::list_length));
   ImGui::SameLine();
-  ImGui::RadioButton("technique", &display, int(Display::diagnostic));
+  ImGui::RadioButton("diagnostic", &display, int(Display::diagnostic));
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("diagnostic images the shown technique offers (if any)");
   display_ = Display(display);
   if (display_ == Display::image) return;
