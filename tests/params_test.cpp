@@ -87,5 +87,24 @@ TEST(Params, AskingForAnUndeclaredParameterIsAProgrammingError) {
   EXPECT_ANY_THROW(set.real("k"));  // wrong type
 }
 
+TEST(Params, IntegerOrAutoAcceptsAutoAndNumbersInRange) {
+  const ParamSchema schema = {ParamSpec::integer_or_auto("k", "auto", 1, 64, "slots per pixel")};
+  const ParamSet automatic(schema, {}, "t");
+  EXPECT_TRUE(automatic.is_auto("k"));
+  EXPECT_EQ(automatic.canonical(), "k=auto");
+  EXPECT_THROW(automatic.integer("k"), std::logic_error);
+  const ParamSet fixed(schema, {{"k", "8"}}, "t");
+  EXPECT_FALSE(fixed.is_auto("k"));
+  EXPECT_EQ(fixed.integer("k"), 8);
+  try {
+    ParamSet bad(schema, {{"k", "65"}}, "technique 'kbuffer'");
+    FAIL() << "k=65 was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("integer in [1, 64] or auto"), std::string::npos) << e.what();
+  }
+  // A plain integer parameter still refuses "auto".
+  EXPECT_THROW(ParamSet(kSchema, {{"k", "auto"}}, "t"), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace oit

@@ -32,6 +32,7 @@ RunResult finished_run() {
   r.counters.fragments_dropped = 7;
   r.counters.passes = 2;
   r.counters.extra = {{"links_left", 12.0}, {"neighbor_precision", 0.5}};
+  r.counters.work_saved = {{"passes_avoided", 30.0}};
   r.error = ImageError{0.5, 0.25, 12.0};
   r.scene_fragments = 65536;
   r.max_depth_complexity = 32;
@@ -59,6 +60,7 @@ TEST(ResultsCsv, OneRowPerStageAndClockWithPerRunColumnsRepeated) {
     EXPECT_EQ(row[column("frames")], "3");
     EXPECT_EQ(row[column("device")], "llvmpipe (LLVM 15.0.6, 256 bits)");
     EXPECT_EQ(row[column("extra")], "links_left=12 neighbor_precision=0.5");
+    EXPECT_EQ(row[column("work_saved")], "passes_avoided=30");
     EXPECT_EQ(row[column("camera")], "random:4:7@2");
     EXPECT_EQ(row[column("psi")], "0.25");
   }

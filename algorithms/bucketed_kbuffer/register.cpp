@@ -33,6 +33,8 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
   d.stages = {"clear", "fill", "sort", "bucket", "store", "neighbors", "stylize", "compose"};
   d.exactness = Exactness::approximate;
   d.quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32", "64"}}};
+  d.adaptive_switches = {{"buckets_auto", "runs the brute-force neighbour search when the scene has one object, where buckets cannot help",
+                          {{"buckets", "auto"}}, {{"buckets", "on"}}}};
   d.extra_support_check = [](const ParamSet& params, const SceneFacts& scene) -> std::string {
     const bool wide = params.choice("depth_bits") == "24";
     const uint32_t limit = wide ? 256u : 65536u;

@@ -237,6 +237,8 @@ void register_technique_depth_peeling(TechniqueRegistry& registry) {
   d.stages = {"clear", "peel", "compose"};
   d.exactness = Exactness::exact;
   d.quality_sweep = {{"max_passes", {"2", "4", "8", "16", "32", "64"}}};
+  d.adaptive_switches = {{"early_exit", "stops peeling at the first pass that an occlusion query finds empty (depth complexity + 1 passes)",
+                          {{"early_exit", "true"}}, {{"early_exit", "false"}}}};
   d.create = [](const ParamSet& params) -> std::unique_ptr<Technique> {
     const int max_passes = int(params.integer("max_passes"));
     const bool early_exit = params.boolean("early_exit");

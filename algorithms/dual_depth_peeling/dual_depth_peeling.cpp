@@ -205,6 +205,8 @@ void register_technique_dual_depth_peeling(TechniqueRegistry& registry) {
   d.stages = {"clear", "peel", "compose"};
   d.exactness = Exactness::exact;
   d.quality_sweep = {{"max_passes", {"2", "3", "5", "9", "17", "33"}}};
+  d.adaptive_switches = {{"early_exit", "stops peeling when an occlusion query finds a pass empty (about half the depth complexity + 1 passes)",
+                          {{"early_exit", "true"}}, {{"early_exit", "false"}}}};
   d.create = [](const ParamSet& params) -> std::unique_ptr<Technique> {
     const int max_passes = int(params.integer("max_passes"));
     const bool early_exit = params.boolean("early_exit");

@@ -21,6 +21,7 @@ ParamValue parse_value(const ParamSpec& spec, const std::string& text, const std
   };
   switch (spec.type) {
     case ParamType::integer: {
+      if (spec.accepts_auto && text == "auto") return std::string("auto");
       int64_t value = 0;
       auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
       if (ec != std::errc() || end != text.data() + text.size()) throw fail("is not an integer");
@@ -58,6 +59,13 @@ ParamSpec ParamSpec::integer(std::string name, int64_t default_value, int64_t mi
   return {std::move(name), ParamType::integer, std::to_string(default_value), double(min), double(max), {},
           std::move(description)};
 }
+ParamSpec ParamSpec::integer_or_auto(std::string name, std::string default_value, int64_t min, int64_t max,
+                                     std::string description) {
+  ParamSpec spec{std::move(name), ParamType::integer, std::move(default_value), double(min), double(max), {},
+                 std::move(description)};
+  spec.accepts_auto = true;
+  return spec;
+}
 ParamSpec ParamSpec::real(std::string name, double default_value, double min, double max, std::string description) {
   return {std::move(name), ParamType::real, format_number(default_value), min, max, {}, std::move(description)};
 }
@@ -73,7 +81,8 @@ ParamSpec ParamSpec::choice(std::string name, std::string default_value, std::ve
 std::string ParamSpec::range_text() const {
   switch (type) {
     case ParamType::integer:
-      return "integer in [" + std::to_string(int64_t(min)) + ", " + std::to_string(int64_t(max)) + "]";
+      return "integer in [" + std::to_string(int64_t(min)) + ", " + std::to_string(int64_t(max)) + "]" +
+             (accepts_auto ? " or auto" : "");
     case ParamType::real: return "number in [" + format_number(min) + ", " + format_number(max) + "]";
     case ParamType::boolean: return "true or false";
     case ParamType::choice: {
@@ -108,7 +117,16 @@ const ParamValue& ParamSet::find(const std::string& name) const {
   throw std::logic_error(owner_ + ": parameter '" + name + "' is not in the schema");
 }
 
-int64_t ParamSet::integer(const std::string& name) const { return std::get<int64_t>(find(name)); }
+int64_t ParamSet::integer(const std::string& name) const {
+  const ParamValue& value = find(name);
+  if (!std::holds_alternative<int64_t>(value))
+    throw std::logic_error(owner_ + ": parameter '" + name + "' is '" + to_string(value) + "', not an integer");
+  return std::get<int64_t>(value);
+}
+bool ParamSet::is_auto(const std::string& name) const {
+  const ParamValue& value = find(name);
+  return std::holds_alternative<std::string>(value) && std::get<std::string>(value) == "auto";
+}
 double ParamSet::real(const std::string& name) const { return std::get<double>(find(name)); }
 bool ParamSet::boolean(const std::string& name) const { return std::get<bool>(find(name)); }
 const std::string& ParamSet::choice(const std::string& name) const { return std::get<std::string>(find(name)); }

@@ -20,9 +20,14 @@ struct ParamSpec {
   double max = 0.0;
   std::vector<std::string> choices;  // for choice
   std::string description;
+  // Integer parameters only: the value may also be "auto", which the owner
+  // resolves itself (e.g. k from the view's depth complexity).
+  bool accepts_auto = false;
 
   static ParamSpec integer(std::string name, int64_t default_value, int64_t min, int64_t max, std::string description);
   static ParamSpec real(std::string name, double default_value, double min, double max, std::string description);
+  static ParamSpec integer_or_auto(std::string name, std::string default_value, int64_t min, int64_t max,
+                                   std::string description);
   static ParamSpec boolean(std::string name, bool default_value, std::string description);
   static ParamSpec choice(std::string name, std::string default_value, std::vector<std::string> choices,
                           std::string description);
@@ -39,7 +44,10 @@ class ParamSet {
   ParamSet() = default;
   ParamSet(const ParamSchema& schema, const RawParams& raw, const std::string& owner);
 
+  // Throws std::logic_error when the value is "auto" (check is_auto first).
   int64_t integer(const std::string& name) const;
+  // True when an integer_or_auto parameter was given (or defaults to) "auto".
+  bool is_auto(const std::string& name) const;
   double real(const std::string& name) const;
   bool boolean(const std::string& name) const;
   const std::string& choice(const std::string& name) const;

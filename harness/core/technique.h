@@ -28,6 +28,11 @@ struct TechniqueCounters {
   // neighbour precision), written to the CSV's `extra` column as
   // "name=value name=value". Names are snake_case.
   std::vector<std::pair<std::string, double>> extra;
+  // Work the technique's adaptive paths avoided in the last frame against
+  // its non-adaptive path on the same scene (e.g. passes_avoided,
+  // fragments_not_sorted, bytes_not_allocated), written to the CSV's
+  // `work_saved` column like `extra`. Empty when nothing adapts.
+  std::vector<std::pair<std::string, double>> work_saved;
 };
 
 // A per-pixel scalar field a technique can show about its last frame (e.g.
@@ -57,6 +62,16 @@ struct SceneFacts {
 };
 
 enum class Exactness { exact, approximate };
+
+// One adaptive feature of a technique ("skip what the scene does not
+// need"), as the parameter settings that turn it on and off. `oitbench
+// adaptive` runs both on the same scenes and reports time and memory ratios
+// and the image difference between them.
+struct AdaptiveSwitch {
+  std::string feature;      // snake_case, e.g. "early_exit"
+  std::string description;  // one line: what the feature skips
+  RawParams on, off;
+};
 
 // Everything a technique needs to render one frame.
 struct Frame {
@@ -103,6 +118,7 @@ struct TechniqueDescriptor {
   // Quality knobs for run-time-versus-error sweeps (`oitbench pareto`):
   // parameter name and the values to try, cheapest first.
   std::vector<std::pair<std::string, std::vector<std::string>>> quality_sweep;
+  std::vector<AdaptiveSwitch> adaptive_switches;
   bool is_reference = false;  // the exact technique the harness compares against
   // Optional extra check; returns "" when the run can happen, else the reason.
   std::function<std::string(const ParamSet&, const SceneFacts&)> extra_support_check;
