@@ -1,15 +1,20 @@
 // linked_list: the generated sorting networks on the CPU, then every sort
 // variant against the exact reference (quads, spheres, shuffled submission),
-// pool overflow and regrowth, counted truncation, and parameter errors.
+// pool overflow and regrowth, counted truncation, parameter errors, and the
+// adaptive paths: pool_sizing (previous_frame, count, worst_case) and
+// group_by_length, with their exact work_saved figures.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numeric>
 #include <random>
 
 #include "../algorithms/linked_list/sorting_network.h"
+#include "core/complexity.h"
 #include "gl_fixture.h"
+#include "scene_library.h"
 #include "stacked_quads.h"
 
 namespace oit {
@@ -204,6 +209,151 @@ TEST(LinkedList, OutOfRangeArraySizeIsAnError) {
   const RunResult r = test::harness().run(spec);
   EXPECT_EQ(r.status, RunStatus::error);
   EXPECT_NE(r.message.find("max_per_pixel"), std::string::npos) << r.message;
+}
+
+
+const std::vector<std::string> kPoolSizings = {"previous_frame", "count", "worst_case"};
+// Uneven depth complexity at 64x64: lists of 0 to 10 fragments (29 empty
+// pixels, 216 single fragments, 101 lists longer than 8).
+const RawParams kUnevenScene = {{"count", "64"}, {"size", "0.3"}};
+
+double work_saved(const RunResult& r, const std::string& name) {
+  for (const auto& [key, value] : r.counters.work_saved)
+    if (key == name) return value;
+  ADD_FAILURE() << "no work_saved figure " << name;
+  return -1.0;
+}
+
+double largest_difference(const Image& a, const Image& b) {
+  double worst = 0.0;
+  for (size_t i = 0; i < a.rgba.size(); ++i) worst = std::max(worst, std::abs(double(a.rgba[i]) - double(b.rgba[i])));
+  return worst;
+}
+
+TEST(LinkedListAdaptive, EveryPoolSizingAndGroupingMatchesTheReference) {
+  const std::vector<std::pair<std::string, RawParams>> scenes = {{"quads", {{"layers", "32"}}},
+                                                                 {"random_quads", kUnevenScene}};
+  for (const auto& [scene, scene_params] : scenes) {
+    for (const std::string& sizing : kPoolSizings) {
+      const RunResult grouped =
+          test::render_once("linked_list", {{"pool_sizing", sizing}}, scene, scene_params, 64, 64);
+      const RunResult single = test::render_once(
+          "linked_list", {{"pool_sizing", sizing}, {"group_by_length", "false"}}, scene, scene_params, 64, 64);
+      for (const RunResult* r : {&grouped, &single}) {
+        ASSERT_TRUE(r->error.has_value()) << scene << " " << sizing;
+        EXPECT_LT(r->error->max_abs, kFloatTolerance) << scene << " " << sizing;
+        EXPECT_EQ(r->counters.fragments_stored, r->scene_fragments) << scene << " " << sizing;
+      }
+      // The same fragments in the same order and the same float blend: the grouping only splits the draws.
+      EXPECT_LT(largest_difference(grouped.image, single.image), 1e-6) << scene << " " << sizing;
+    }
+  }
+}
+
+TEST(LinkedListAdaptive, CountingPassSizesThePoolExactlyFromTheFirstFrame) {
+  const int w = 64, h = 64;
+  for (const auto& [scene, scene_params] :
+       std::vector<std::pair<std::string, RawParams>>{{"quads", {{"layers", "32"}}}, {"random_quads", kUnevenScene}}) {
+    const RunResult r = test::render_once("linked_list", {{"pool_sizing", "count"}}, scene, scene_params, w, h);
+    EXPECT_EQ(r.counters.overflow_retries, 0u) << scene;
+    EXPECT_EQ(r.counters.passes, 2u) << scene << ": the counting pass and the fill";
+    EXPECT_NE(r.stage("count", "wall"), nullptr) << scene;
+    // Heads + lengths (8 B/pixel) + exactly one 32 B node per fragment + 12 B of counters.
+    EXPECT_EQ(r.counters.bytes_allocated, 8u * w * h + 32u * r.scene_fragments + 12u) << scene;
+    EXPECT_EQ(work_saved(r, "bytes_not_allocated"), 32.0 * (64.0 * w * h - double(r.scene_fragments))) << scene;
+  }
+}
+
+TEST(LinkedListAdaptive, WorstCaseAllocatesMaxPerPixelNodesPerPixelAndCountsGrowth) {
+  const int w = 32, h = 32;
+  const RunResult r =
+      test::render_once("linked_list", {{"pool_sizing", "worst_case"}}, "quads", {{"layers", "32"}}, w, h);
+  EXPECT_EQ(r.counters.bytes_allocated, 8u * w * h + 32u * 64u * w * h + 12u);
+  EXPECT_EQ(r.counters.overflow_retries, 0u);
+  EXPECT_EQ(r.counters.passes, 1u);
+  EXPECT_EQ(work_saved(r, "bytes_not_allocated"), 0.0);
+  // 32 layers into a worst case of 16 per pixel: the pool grows (a counted
+  // re-render), the nearest 16 are composited and the rest counted as dropped.
+  const RunResult grown = test::render_once("linked_list", {{"pool_sizing", "worst_case"}, {"max_per_pixel", "16"}},
+                                            "quads", {{"layers", "32"}}, w, h);
+  EXPECT_EQ(grown.counters.overflow_retries, 1u);
+  EXPECT_EQ(grown.counters.fragments_dropped, 16u * w * h);
+  EXPECT_EQ(grown.counters.bytes_allocated, 8u * w * h + 32u * (uint64_t(32.0 * w * h * 1.25) + 1) + 12u);
+  // previous_frame grows its first pool (1 node per pixel) to 1.25 x 32 + 1
+  // nodes: 40 per pixel of the worst case's 64 allocated.
+  const RunResult previous = test::render_once(
+      "linked_list", {{"pool_sizing", "previous_frame"}, {"initial_nodes_per_pixel", "1"}}, "quads",
+      {{"layers", "32"}}, w, h);
+  EXPECT_EQ(previous.counters.overflow_retries, 1u);
+  EXPECT_EQ(work_saved(previous, "bytes_not_allocated"), 32.0 * (64.0 * w * h - (40.0 * w * h + 1)));
+}
+
+TEST(LinkedListAdaptive, WorkSavedByGroupingOnScenesCountedByHand) {
+  const int w = 32, h = 32;
+  // One layer: every pixel has one fragment, none is sorted; the ungrouped
+  // resolve would run the 8-element network (19 compare-exchanges) on each.
+  const RunResult one = test::render_once("linked_list", {}, "quads", {{"layers", "1"}}, w, h);
+  EXPECT_LT(one.error->max_abs, kFloatTolerance);
+  EXPECT_EQ(work_saved(one, "fragments_not_sorted"), double(w * h));
+  EXPECT_EQ(work_saved(one, "pixels_in_short_groups"), 0.0);
+  EXPECT_EQ(odd_even_merge_sort(8).size(), 19u);
+  EXPECT_EQ(work_saved(one, "compare_exchanges_avoided"), 19.0 * w * h);
+  // 32 layers everywhere: every pixel needs the largest array, nothing is saved.
+  const RunResult full = test::render_once("linked_list", {}, "quads", {{"layers", "32"}}, w, h);
+  EXPECT_EQ(work_saved(full, "fragments_not_sorted"), 0.0);
+  EXPECT_EQ(work_saved(full, "pixels_in_short_groups"), 0.0);
+  EXPECT_EQ(work_saved(full, "compare_exchanges_avoided"), 0.0);
+  // 12 layers: the frame's array is 16; groups 8 and 16 exist but all lists go to 16.
+  const RunResult twelve = test::render_once("linked_list", {}, "quads", {{"layers", "12"}}, w, h);
+  EXPECT_EQ(work_saved(twelve, "pixels_in_short_groups"), 0.0);
+  // The ungrouped path saves nothing by definition; insertion sort reports no network figure.
+  const RunResult single =
+      test::render_once("linked_list", {{"group_by_length", "false"}}, "quads", {{"layers", "1"}}, w, h);
+  EXPECT_EQ(work_saved(single, "fragments_not_sorted"), 0.0);
+  EXPECT_EQ(work_saved(single, "compare_exchanges_avoided"), 0.0);
+  const RunResult insertion = test::render_once("linked_list", {{"sort", "insertion"}}, "quads", {{"layers", "1"}}, w, h);
+  EXPECT_EQ(work_saved(insertion, "fragments_not_sorted"), double(w * h));
+  for (const auto& [key, value] : insertion.counters.work_saved) EXPECT_NE(key, "compare_exchanges_avoided");
+}
+
+TEST(LinkedListAdaptive, WorkSavedByGroupingMatchesTheMeasuredListLengths) {
+  const int w = 64, h = 64;
+  const RunResult r = test::render_once("linked_list", {}, "random_quads", kUnevenScene, w, h);
+  // The harness's own per-pixel count (a separate counting shader).
+  test::gl_context();
+  const Scene scene = load_scene("random_quads", kUnevenScene);
+  const SceneGpu gpu(scene);
+  const DepthComplexity c = measure_depth_complexity(gpu, scene.camera.view, scene.camera.projection(1.0f), w, h);
+  ASSERT_GE(c.max, 9u) << "the scene must need more than the smallest array";
+  const std::vector<uint64_t> histogram = list_length_histogram(c);
+  const uint32_t largest = std::max<uint32_t>(8, std::bit_ceil(c.max));
+  const auto group = [&](uint32_t length) {
+    uint32_t size = 8;
+    while (size < length) size *= 2;
+    return size;
+  };
+  uint64_t short_groups = 0, avoided = 0;
+  for (uint32_t length = 0; length < histogram.size(); ++length) {
+    const uint64_t used = length <= 1 ? 0 : odd_even_merge_sort(group(length)).size();
+    if (length >= 2 && group(length) < largest) short_groups += histogram[length];
+    avoided += histogram[length] * (odd_even_merge_sort(largest).size() - used);
+  }
+  EXPECT_GT(histogram[1], 0u);
+  EXPECT_EQ(work_saved(r, "fragments_not_sorted"), double(histogram[1]));
+  EXPECT_EQ(work_saved(r, "pixels_in_short_groups"), double(short_groups));
+  EXPECT_EQ(work_saved(r, "compare_exchanges_avoided"), double(avoided));
+}
+
+TEST(LinkedList, UnknownPoolSizingIsAnErrorNamingTheParameter) {
+  RunSpec spec;
+  spec.technique = "linked_list";
+  spec.params = {{"pool_sizing", "guess"}};
+  spec.width = 8;
+  spec.height = 8;
+  const RunResult r = test::harness().run(spec);
+  EXPECT_EQ(r.status, RunStatus::error);
+  EXPECT_NE(r.message.find("pool_sizing"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("guess"), std::string::npos) << r.message;
 }
 
 }  // namespace
