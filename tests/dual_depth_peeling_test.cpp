@@ -52,6 +52,14 @@ float largest_difference(const std::vector<float>& a, const std::vector<float>& 
   return largest;
 }
 
+double passes_avoided(const RunResult& r) {
+  EXPECT_EQ(r.counters.work_saved.size(), 1u);
+  for (const auto& [name, value] : r.counters.work_saved)
+    if (name == "passes_avoided") return value;
+  ADD_FAILURE() << "no passes_avoided in work_saved";
+  return -1.0;
+}
+
 RunSpec spec_of(const RawParams& params, const std::string& scene, const RawParams& scene_params, int size,
                 const std::string& order = "original") {
   RunSpec spec;
@@ -185,6 +193,28 @@ TEST(DualDepthPeeling, WithoutEarlyExitRunsExactlyMaxPasses) {
     EXPECT_EQ(all.counters.fragments_stored, 8u * kPixels);
     EXPECT_EQ(all.counters.fragments_dropped, 0u);
     EXPECT_EQ(all.image.rgba, early.image.rgba);
+    // Early exit ran ceil(8/2) + extra of the default 64 passes; without it nothing is avoided.
+    EXPECT_EQ(passes_avoided(early), double(64 - 4 - tie.extra_passes));
+    EXPECT_EQ(passes_avoided(all), 0.0);
+    // A cap below ceil(d/2) + extra: early exit never fires.
+    const RunResult capped = run_ok(spec_of({{"tie_break", tie.name}, {"max_passes", "3"}}, "quads",
+                                            {{"layers", "8"}}, kSize));
+    EXPECT_EQ(capped.counters.passes, 3u);
+    EXPECT_EQ(passes_avoided(capped), 0.0);
+  }
+}
+
+TEST(DualDepthPeeling, PassesAvoidedOnThirtyTwoLayersAndUnevenDepth) {
+  for (const TieBreak& tie : kTieBreaks) {
+    SCOPED_TRACE(tie.name);
+    const RunResult quads = run_ok(spec_of({{"tie_break", tie.name}}, "quads", kQuads32, 64));
+    EXPECT_LT(quads.error->max_abs, 1e-5);
+    EXPECT_EQ(passes_avoided(quads), double(64 - 16 - tie.extra_passes));
+    // Uneven depth: the deepest pixel decides the passes, ceil(d / 2) + extra.
+    const RunResult spheres = run_ok(spec_of({{"tie_break", tie.name}}, "spheres", {}, 64));
+    EXPECT_LT(spheres.error->max_abs, 1e-5);
+    EXPECT_EQ(passes_avoided(spheres),
+              double(64 - (spheres.max_depth_complexity + 1) / 2 - tie.extra_passes));
   }
 }
 

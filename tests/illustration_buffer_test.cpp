@@ -1,7 +1,8 @@
 // illustration_buffer: plain compositing against the reference, neighbour
 // precision/recall against the parametric ground truth, the boundary
 // conditions and eq. 9 against a closed-form image, pool regrowth, the
-// truncation counter and parameter errors.
+// truncation counter, parameter errors, and the work modulation=none and
+// the 0/1-list sort shortcut save.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,7 +10,9 @@
 #include <deque>
 #include <stdexcept>
 
+#include "core/complexity.h"
 #include "gl_fixture.h"
+#include "scene_library.h"
 #include "stacked_quads.h"
 
 namespace oit {
@@ -242,6 +245,63 @@ TEST(IllustrationBuffer, ListsLongerThanTheSortArrayAreCounted) {
   EXPECT_EQ(r.counters.fragments_dropped, 7u * w * h);
   EXPECT_EQ(r.counters.fragments_stored, 5u * w * h);
   EXPECT_GT(r.error->max_abs, 0.0);
+}
+
+double work_saved(const RunResult& r, const std::string& name) {
+  for (const auto& [key, value] : r.counters.work_saved)
+    if (key == name) return value;
+  ADD_FAILURE() << "no work_saved figure '" << name << "'";
+  return -1.0;
+}
+
+TEST(IllustrationBuffer, WithoutModulationNeighboursAndStylizeAreNotDispatched) {
+  const RunResult plain = test::render_once("illustration_buffer", {{"modulation", "none"}, {"iterations", "5"}},
+                                            "spheres", {}, 32, 32);
+  EXPECT_EQ(plain.stage("neighbors", "wall"), nullptr);
+  EXPECT_EQ(plain.stage("stylize", "wall"), nullptr);
+  // The neighbour search, the stylize init and 5 diffusion iterations.
+  EXPECT_EQ(work_saved(plain, "passes_skipped"), 7.0);
+  EXPECT_EQ(extra(plain, "neighbor_passes"), 0.0);
+  EXPECT_EQ(extra(plain, "stylize_passes"), 0.0);
+  const RunResult styled = test::render_once("illustration_buffer", {{"iterations", "5"}}, "spheres", {}, 32, 32);
+  EXPECT_NE(styled.stage("neighbors", "wall"), nullptr);
+  EXPECT_NE(styled.stage("stylize", "wall"), nullptr);
+  EXPECT_EQ(work_saved(styled, "passes_skipped"), 0.0);
+  EXPECT_EQ(extra(styled, "stylize_passes"), 6.0);
+}
+
+TEST(IllustrationBuffer, SingleFragmentListsSkipTheSortAndMatchTheReference) {
+  const int w = 64, h = 64;
+  // One layer: every list has one fragment.
+  const RunResult one = test::render_once("illustration_buffer", {{"modulation", "none"}}, "quads", {{"layers", "1"}}, w, h);
+  EXPECT_LT(one.error->max_abs, kFloatTolerance);
+  EXPECT_EQ(work_saved(one, "fragments_not_sorted"), double(w * h));
+  const RunResult full =
+      test::render_once("illustration_buffer", {{"modulation", "none"}}, "quads", {{"layers", "32"}}, w, h);
+  EXPECT_LT(full.error->max_abs, kFloatTolerance);
+  EXPECT_EQ(work_saved(full, "fragments_not_sorted"), 0.0);
+  // Truncated to one fragment per list: those lists were walked, so they count as sorted.
+  const RunResult truncated = test::render_once("illustration_buffer", {{"modulation", "none"}, {"max_per_pixel", "1"}},
+                                                "quads", {{"layers", "2"}}, 16, 16);
+  EXPECT_EQ(truncated.counters.fragments_stored, 256u);
+  EXPECT_EQ(work_saved(truncated, "fragments_not_sorted"), 0.0);
+  // Uneven depth complexity (0 to 10 fragments per pixel), plain and stylized:
+  // the shortcut and the sort feed the same records to the later stages.
+  const RawParams uneven = {{"count", "64"}, {"size", "0.3"}};
+  test::gl_context();
+  const Scene scene = load_scene("random_quads", uneven);
+  const SceneGpu gpu(scene);
+  const std::vector<uint64_t> histogram =
+      list_length_histogram(measure_depth_complexity(gpu, scene.camera.view, scene.camera.projection(1.0f), w, h));
+  ASSERT_GT(histogram.at(0), 0u);
+  ASSERT_GT(histogram.at(1), 0u);
+  const RunResult plain = test::render_once("illustration_buffer", {{"modulation", "none"}}, "random_quads", uneven, w, h);
+  EXPECT_LT(plain.error->max_abs, kFloatTolerance);
+  EXPECT_EQ(plain.counters.fragments_stored, plain.scene_fragments);
+  EXPECT_EQ(work_saved(plain, "fragments_not_sorted"), double(histogram[1]));
+  const RunResult styled = test::render_once("illustration_buffer", {}, "random_quads", uneven, w, h);
+  EXPECT_EQ(work_saved(styled, "fragments_not_sorted"), double(histogram[1]));
+  EXPECT_EQ(styled.counters.fragments_stored, styled.scene_fragments);
 }
 
 TEST(IllustrationBuffer, InvalidParametersAreErrorsNamingTheParameter) {

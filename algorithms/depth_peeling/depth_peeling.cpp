@@ -155,6 +155,8 @@ class DepthPeelingBySubmission final : public Technique {
     TechniqueCounters c;
     c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * kBytesPerPixel + kCounterBytes;
     c.passes = passes_;
+    // Geometry passes early exit did not run (without it all max_passes run).
+    c.work_saved = {{"passes_avoided", early_exit_ ? double(uint64_t(max_passes_) - passes_) : 0.0}};
     // Read lazily, so no frame waits for them.
     uint64_t peeled = 0, peeled_by_last_pass = 0;
     for (int pass = 1; pass <= blended_passes_; ++pass) {

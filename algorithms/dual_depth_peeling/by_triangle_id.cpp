@@ -159,6 +159,8 @@ class DualDepthPeelingByTriangleId final : public Technique {
     TechniqueCounters c;
     c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * kBytesPerPixel;
     c.passes = passes_;
+    // Geometry passes early exit did not run (without it all max_passes run).
+    c.work_saved = {{"passes_avoided", early_exit_ ? double(uint64_t(max_passes_) - passes_) : 0.0}};
     // Read lazily, so no frame waits for them. Pass p's selections are
     // composited by pass p + 1: passes 2 .. passes - 1 count.
     GLuint fragments = 0;

@@ -138,6 +138,8 @@ class DualDepthPeelingBySubmission final : public Technique {
     TechniqueCounters c;
     c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * kBytesPerPixel + kCounterBytes;
     c.passes = passes_;
+    // Geometry passes early exit did not run (without it all max_passes run).
+    c.work_saved = {{"passes_avoided", early_exit_ ? double(uint64_t(max_passes_) - passes_) : 0.0}};
     // Read lazily, so no frame waits for them.
     GLuint fragments = 0, left_unpeeled = 0;
     if (passes_ > 0) glGetQueryObjectuiv(fragments_query_.id(), GL_QUERY_RESULT, &fragments);

@@ -4,7 +4,8 @@
 // contiguous range of fragData2/fragData3 with one atomic add (the range's
 // first index and length replace pixelHead and pixelCount) and copies the
 // records there in order. Lists longer than IB_ARRAY keep their IB_ARRAY
-// nearest fragments (the fill counted the rest as dropped).
+// nearest fragments (the fill counted the rest as dropped). Lists of 0 or 1
+// fragments skip the walk and the sort.
 //
 // The list is walked by ONE flat loop: each iteration either takes the next
 // node or moves the pending node's insertion hole one step nearer. Mesa 22.3
@@ -24,9 +25,27 @@ uvec3 items[IB_ARRAY];
 
 bool precedes(uvec3 a, uvec3 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
 
+// Copies fill record `node` of `pixel` to sorted position `to`.
+void copy_record(uint to, uint node, uint pixel) {
+  const vec4 color = uintBitsToFloat(texelFetch(ib_fragment_view, int(node * 3u)));
+  const uvec4 key = texelFetch(ib_fragment_view, int(node * 3u + 1u));
+  const uvec4 slopes = texelFetch(ib_fragment_view, int(node * 3u + 2u));
+  ib_search[to] = IbSortedSearch(uvec4(key.xyz, pixel), uvec4(key.w, slopes.x, slopes.y, node));
+  ib_shade[to] = IbSortedShade(color, uvec4(IB_NONE));
+}
+
 void main() {
   if (gl_GlobalInvocationID.x >= uint(u_width) || gl_GlobalInvocationID.y >= uint(u_height)) return;
   const uint pixel = gl_GlobalInvocationID.y * uint(u_width) + gl_GlobalInvocationID.x;
+  // Lists of 0 or 1 fragments (the fill's count) have nothing to sort: no
+  // local array, no list walk; the one record is copied as it is.
+  const uint length = ib_count[pixel];
+  if (length <= 1u) {
+    const uint only = length == 0u ? 0u : atomicAdd(ib_allocated, 1u);
+    if (length == 1u) copy_record(only, ib_head[pixel], pixel);
+    ib_head[pixel] = only;
+    return;
+  }
   uint cursor = ib_head[pixel];
   uint kept = 0u;
   int hole = -1;  // where `pending` goes; -1: nothing being inserted
@@ -55,12 +74,5 @@ void main() {
   const uint first = atomicAdd(ib_allocated, kept);
   ib_head[pixel] = first;
   ib_count[pixel] = kept;
-  for (uint i = 0u; i < kept; ++i) {
-    const uint node = items[i].z;
-    const vec4 color = uintBitsToFloat(texelFetch(ib_fragment_view, int(node * 3u)));
-    const uvec4 key = texelFetch(ib_fragment_view, int(node * 3u + 1u));
-    const uvec4 slopes = texelFetch(ib_fragment_view, int(node * 3u + 2u));
-    ib_search[first + i] = IbSortedSearch(uvec4(key.xyz, pixel), uvec4(key.w, slopes.x, slopes.y, node));
-    ib_shade[first + i] = IbSortedShade(color, uvec4(IB_NONE));
-  }
+  for (uint i = 0u; i < kept; ++i) copy_record(first + i, items[i].z, pixel);
 }

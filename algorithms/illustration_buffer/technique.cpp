@@ -182,6 +182,7 @@ class IllustrationBuffer final : public Technique {
     if (modulated() && s_.neighbors == NeighborSearch::triangle_index)
       c.extra.push_back({"isolated_triangles", double(isolated_triangles_)});
     if (modulated()) append_neighbor_statistics(c);
+    work_saved(c);
     return c;
   }
 
@@ -317,6 +318,7 @@ class IllustrationBuffer final : public Technique {
   }
 
   void append_neighbor_statistics(TechniqueCounters& c) const;
+  void work_saved(TechniqueCounters& c) const;
   // The last frame's per-pixel ranges and sorted records (read back).
   void read_lists(std::vector<uint32_t>& first, std::vector<uint32_t>& count, std::vector<SortedRecord>& sorted) const;
 
@@ -371,6 +373,24 @@ void IllustrationBuffer::append_neighbor_statistics(TechniqueCounters& c) const 
     c.extra.push_back({"neighbor_precision", stats.precision});
     c.extra.push_back({"neighbor_recall", stats.recall});
   }
+}
+
+// passes_skipped: the dispatches modulation=none does not run (the
+// neighbour search, the stylize init and its iterations); the modulated path
+// issues them whenever the frame stored a fragment. fragments_not_sorted:
+// fragments of 1-fragment lists, which the sort copies without walking or
+// sorting (read back from the per-pixel counts, outside the frame).
+void IllustrationBuffer::work_saved(TechniqueCounters& c) const {
+  const double skipped = !modulated() && stored_ > 0 ? double(2 + s_.iterations) : 0.0;
+  std::vector<uint32_t> count(size_t(width_) * size_t(height_));
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  if (!count.empty()) glGetNamedBufferSubData(count_.id(), 0, GLsizeiptr(count.size() * 4), count.data());
+  gl_check("illustration_buffer: reading back the list lengths");
+  // After the sort a count is the kept length: with max_per_pixel = 1 the
+  // truncated lists also keep 1, but they were walked.
+  const uint64_t single = uint64_t(std::count(count.begin(), count.end(), 1u));
+  const uint64_t walked = s_.max_per_pixel == 1 ? truncated_lists_ : 0;
+  c.work_saved = {{"passes_skipped", skipped}, {"fragments_not_sorted", double(single - walked)}};
 }
 
 // Neighbour links of each pixel's front fragment (the nearest of its sorted
