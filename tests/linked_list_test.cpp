@@ -217,6 +217,8 @@ const std::vector<std::string> kPoolSizings = {"previous_frame", "count", "worst
 // pixels, 216 single fragments, 101 lists longer than 8).
 const RawParams kUnevenScene = {{"count", "64"}, {"size", "0.3"}};
 
+const RawParams kGrouped = {{"group_by_length", "true"}};
+
 double work_saved(const RunResult& r, const std::string& name) {
   for (const auto& [key, value] : r.counters.work_saved)
     if (key == name) return value;
@@ -235,8 +237,8 @@ TEST(LinkedListAdaptive, EveryPoolSizingAndGroupingMatchesTheReference) {
                                                                  {"random_quads", kUnevenScene}};
   for (const auto& [scene, scene_params] : scenes) {
     for (const std::string& sizing : kPoolSizings) {
-      const RunResult grouped =
-          test::render_once("linked_list", {{"pool_sizing", sizing}}, scene, scene_params, 64, 64);
+      const RunResult grouped = test::render_once(
+          "linked_list", {{"pool_sizing", sizing}, {"group_by_length", "true"}}, scene, scene_params, 64, 64);
       const RunResult single = test::render_once(
           "linked_list", {{"pool_sizing", sizing}, {"group_by_length", "false"}}, scene, scene_params, 64, 64);
       for (const RunResult* r : {&grouped, &single}) {
@@ -292,33 +294,33 @@ TEST(LinkedListAdaptive, WorkSavedByGroupingOnScenesCountedByHand) {
   const int w = 32, h = 32;
   // One layer: every pixel has one fragment, none is sorted; the ungrouped
   // resolve would run the 8-element network (19 compare-exchanges) on each.
-  const RunResult one = test::render_once("linked_list", {}, "quads", {{"layers", "1"}}, w, h);
+  const RunResult one = test::render_once("linked_list", kGrouped, "quads", {{"layers", "1"}}, w, h);
   EXPECT_LT(one.error->max_abs, kFloatTolerance);
   EXPECT_EQ(work_saved(one, "fragments_not_sorted"), double(w * h));
   EXPECT_EQ(work_saved(one, "pixels_in_short_groups"), 0.0);
   EXPECT_EQ(odd_even_merge_sort(8).size(), 19u);
   EXPECT_EQ(work_saved(one, "compare_exchanges_avoided"), 19.0 * w * h);
   // 32 layers everywhere: every pixel needs the largest array, nothing is saved.
-  const RunResult full = test::render_once("linked_list", {}, "quads", {{"layers", "32"}}, w, h);
+  const RunResult full = test::render_once("linked_list", kGrouped, "quads", {{"layers", "32"}}, w, h);
   EXPECT_EQ(work_saved(full, "fragments_not_sorted"), 0.0);
   EXPECT_EQ(work_saved(full, "pixels_in_short_groups"), 0.0);
   EXPECT_EQ(work_saved(full, "compare_exchanges_avoided"), 0.0);
   // 12 layers: the frame's array is 16; groups 8 and 16 exist but all lists go to 16.
-  const RunResult twelve = test::render_once("linked_list", {}, "quads", {{"layers", "12"}}, w, h);
+  const RunResult twelve = test::render_once("linked_list", kGrouped, "quads", {{"layers", "12"}}, w, h);
   EXPECT_EQ(work_saved(twelve, "pixels_in_short_groups"), 0.0);
   // The ungrouped path saves nothing by definition; insertion sort reports no network figure.
-  const RunResult single =
-      test::render_once("linked_list", {{"group_by_length", "false"}}, "quads", {{"layers", "1"}}, w, h);
+  // Off by default (slower on llvmpipe, see the README).
+  const RunResult single = test::render_once("linked_list", {}, "quads", {{"layers", "1"}}, w, h);
   EXPECT_EQ(work_saved(single, "fragments_not_sorted"), 0.0);
   EXPECT_EQ(work_saved(single, "compare_exchanges_avoided"), 0.0);
-  const RunResult insertion = test::render_once("linked_list", {{"sort", "insertion"}}, "quads", {{"layers", "1"}}, w, h);
+  const RunResult insertion = test::render_once("linked_list", {{"sort", "insertion"}, {"group_by_length", "true"}}, "quads", {{"layers", "1"}}, w, h);
   EXPECT_EQ(work_saved(insertion, "fragments_not_sorted"), double(w * h));
   for (const auto& [key, value] : insertion.counters.work_saved) EXPECT_NE(key, "compare_exchanges_avoided");
 }
 
 TEST(LinkedListAdaptive, WorkSavedByGroupingMatchesTheMeasuredListLengths) {
   const int w = 64, h = 64;
-  const RunResult r = test::render_once("linked_list", {}, "random_quads", kUnevenScene, w, h);
+  const RunResult r = test::render_once("linked_list", kGrouped, "random_quads", kUnevenScene, w, h);
   // The harness's own per-pixel count (a separate counting shader).
   test::gl_context();
   const Scene scene = load_scene("random_quads", kUnevenScene);

@@ -347,7 +347,7 @@ void register_technique_linked_list(TechniqueRegistry& registry) {
                         "node pool: previous_frame (1.25 x the last frame's fragments, grown with a re-render "
                         "on overflow), count (a counting pass first, then exactly that many nodes; never "
                         "overflows) or worst_case (W x H x max_per_pixel nodes, allocated once)"),
-      ParamSpec::boolean("group_by_length", true,
+      ParamSpec::boolean("group_by_length", false,
                          "resolve lists of 0 or 1 fragments without sorting and every other list with the "
                          "smallest power-of-two array that holds it (one draw per size); false: one draw "
                          "sorts every pixel in the array of the frame's longest list")};
