@@ -14,7 +14,7 @@ packages=(
   cmake ninja-build g++ pkg-config git curl ca-certificates
   libglfw3-dev libegl-dev libgl-dev libepoxy-dev libglm-dev
   libbenchmark-dev libgtest-dev libgmock-dev
-  libtinygltf-dev libopenmesh-dev libstb-dev nlohmann-json3-dev libcli11-dev libgsl-dev libimgui-dev
+  libtinygltf-dev libopenmesh-dev libstb-dev nlohmann-json3-dev libcli11-dev libgsl-dev libimgui-dev libcsv-dev
   libegl-mesa0 libgl1-mesa-dri mesa-utils xvfb xauth
   python3-matplotlib python3-pandas python3-numpy
   glmark2-data assimp-testmodels

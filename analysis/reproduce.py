@@ -153,7 +153,9 @@ def tokens(text):
 
 
 def finished(point, rows):
-    """Whether the CSV rows already hold this run (ok or skipped; an error is retried)."""
+    """Whether the CSV rows already hold this run (ok or skipped; an error is retried).
+    The key of `oitbench bench --resume`; filtering here as well means a group
+    whose runs are all finished starts no process (context, scene, reference)."""
     for row in rows:
         if (row.get("status") in ("ok", "skipped") and row.get("technique") == point.technique
                 and row.get("scene") == point.scene and row.get("camera") == point.camera

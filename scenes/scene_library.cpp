@@ -173,6 +173,12 @@ const std::vector<SceneDescriptor>& scene_library() {
   return library;
 }
 
+std::string canonical_scene_params(const std::string& spec, const RawParams& params) {
+  for (const auto& descriptor : scene_library())
+    if (descriptor.id == spec) return ParamSet(descriptor.params, params, "scene '" + spec + "'").canonical();
+  return "";
+}
+
 Scene load_scene(const std::string& spec, const RawParams& params) {
   for (const auto& descriptor : scene_library()) {
     if (descriptor.id != spec) continue;

@@ -25,6 +25,11 @@ const std::vector<SceneDescriptor>& scene_library();
 // is an error.
 Scene load_scene(const std::string& spec, const RawParams& params);
 
+// The canonical parameters load_scene gives the scene (`Scene::params`:
+// defaults filled in; "" for a file) without building or reading anything;
+// throws like load_scene on an invalid value.
+std::string canonical_scene_params(const std::string& spec, const RawParams& params);
+
 // The typed parameters of the `stress_layers` scene (for its closed form).
 StressLayersParams stress_layers_params(const ParamSet& values);
 

@@ -14,6 +14,7 @@
 #include "core/image.h"
 #include "core/results_csv.h"
 #include "core/technique.h"
+#include "scene_library.h"
 #include "stacked_quads.h"
 
 namespace oit {
@@ -148,6 +149,78 @@ TEST(Cli, BenchKeepsGoingPastAFailingRunAndRecordsIt) {
   text << in.rdbuf();
   EXPECT_NE(text.str().find(",ok,"), std::string::npos) << text.str();
   EXPECT_NE(text.str().find("missing_scene.gltf' does not exist"), std::string::npos) << text.str();
+}
+
+std::vector<std::vector<std::string>> rows_of(const std::string& csv, const std::string& technique) {
+  std::vector<std::vector<std::string>> rows;
+  const auto records = read_csv(csv);
+  const size_t column = size_t(std::find(csv_columns().begin(), csv_columns().end(), "technique") -
+                               csv_columns().begin());
+  for (size_t i = 1; i < records.size(); ++i)
+    if (records[i][column] == technique) rows.push_back(records[i]);
+  return rows;
+}
+
+TEST(Cli, BenchResumeRunsNothingTwiceAndMatchesCanonicalParameters) {
+  const std::string csv = kOut + "/resume.csv";
+  std::filesystem::remove(csv);
+  const std::string sweep = "bench --technique unsorted --technique kbuffer --scene quads --scene-set layers=4 "
+                            "--size 16x16 --warmup 0 --frames 1 --resume --csv " + csv;
+  const Outcome first = run_oitbench(sweep);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_NE(first.output.find("runs: 2 done (2 ok, 0 error), 0 resumed"), std::string::npos) << first.output;
+  const size_t rows = read_csv(csv).size();
+  ASSERT_GT(rows, 3u);
+  // k=16 is kbuffer's default and seed=1 the scene's: the rows written without them are the same runs.
+  const Outcome second = run_oitbench(sweep + " --set kbuffer.k=16 --scene-set seed=1");
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_NE(second.output.find("[1/2] unsorted on quads 16x16 ... already in " + csv + ", not run again"),
+            std::string::npos) << second.output;
+  EXPECT_NE(second.output.find("[2/2] kbuffer k=16 on quads 16x16 ... already in " + csv + ", not run again"),
+            std::string::npos) << second.output;
+  EXPECT_NE(second.output.find("runs: 0 done (0 ok, 0 error), 2 resumed"), std::string::npos) << second.output;
+  EXPECT_EQ(read_csv(csv).size(), rows);
+  // Without --resume the same sweep runs again.
+  const Outcome again = run_oitbench("bench --technique unsorted --scene quads --scene-set layers=4 --size 16x16 "
+                                     "--warmup 0 --frames 1 --csv " + csv);
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_GT(read_csv(csv).size(), rows);
+}
+
+TEST(Cli, BenchResumeRunsErrorRowsAgainAndKeepsSkippedOnes) {
+  const std::string csv = kOut + "/resume_error.csv";
+  std::filesystem::remove(csv);
+  {
+    // Written as an earlier invocation would have: unsorted failed, kbuffer was skipped
+    // (quoted messages with commas, quotes and a newline).
+    CsvWriter writer(csv);
+    const RunContext context{"llvmpipe", "4.5", "egl-surfaceless", "abc1234", "2026-11-22T09:00:00Z"};
+    RunResult failed;
+    failed.spec.technique = "unsorted";
+    failed.spec.scene = "quads";
+    failed.spec.width = failed.spec.height = 16;
+    failed.scene_params = canonical_scene_params("quads", {{"layers", "4"}});
+    failed.status = RunStatus::error;
+    failed.message = "out of memory, \"really\"\nsecond line";
+    writer.write(failed, context);
+    RunResult skipped = failed;
+    skipped.spec.technique = "kbuffer";
+    skipped.technique_params = "k=16 tail=drop";
+    skipped.status = RunStatus::skipped;
+    skipped.message = "needs something, \"else\"";
+    writer.write(skipped, context);
+  }
+  const Outcome o = run_oitbench("bench --technique unsorted --technique kbuffer --scene quads --scene-set layers=4 "
+                                 "--size 16x16 --warmup 0 --frames 1 --resume --csv " + csv);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("[2/2] kbuffer on quads 16x16 ... already in"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("runs: 1 done (1 ok, 0 error), 1 resumed"), std::string::npos) << o.output;
+  EXPECT_EQ(rows_of(csv, "kbuffer").size(), 1u);  // only the old skipped row
+  const auto unsorted = rows_of(csv, "unsorted");
+  ASSERT_GT(unsorted.size(), 1u);
+  const size_t status = size_t(std::find(csv_columns().begin(), csv_columns().end(), "status") - csv_columns().begin());
+  EXPECT_EQ(unsorted.front()[status], "error");
+  EXPECT_EQ(unsorted.back()[status], "ok");
 }
 
 TEST(Cli, GoogleBenchmarkBinaryReportsManualTimeAndCounters) {

@@ -128,6 +128,53 @@ TEST(ResultsCsv, WriterAppendsUnderOneHeaderAndRefusesAForeignFile) {
   }
 }
 
+TEST(ResultsCsv, ReaderReturnsWhatTheWriterWroteAndFinishedRunsLeaveErrorsOut) {
+  const std::string path = std::string(OIT_BINARY_DIR) + "/test_output/results_csv_resume.csv";
+  std::filesystem::remove(path);
+  EXPECT_TRUE(finished_runs(path).empty());  // no file yet: nothing finished
+  RunResult ok = finished_run();
+  ok.counters.extra = {{"a", 1.0}};
+  RunResult failed = finished_run();
+  failed.spec.technique = "linked_list";
+  failed.status = RunStatus::error;
+  failed.message = "pool, \"full\"\nsecond line";  // comma, quotes and a newline: all quoted
+  RunResult skipped = finished_run();
+  skipped.spec.camera = "default";
+  skipped.status = RunStatus::skipped;
+  skipped.message = " leading and trailing spaces ";
+  {
+    CsvWriter writer(path);
+    for (const RunResult* r : {&ok, &failed, &skipped}) writer.write(*r, context());
+  }
+  const auto records = read_csv(path);
+  ASSERT_EQ(records.size(), 1u + 6u + 1u + 1u);
+  EXPECT_EQ(records[0], csv_columns());
+  EXPECT_EQ(records[1], csv_rows(ok, context())[0]);
+  EXPECT_EQ(records[7], csv_rows(failed, context())[0]);
+  EXPECT_EQ(records[7][column("message")], "pool, \"full\"\nsecond line");
+  EXPECT_EQ(records[8][column("message")], " leading and trailing spaces ");
+
+  const std::set<RunKey> finished = finished_runs(path);
+  const std::set<RunKey> expected = {
+      {"kbuffer", "k=16 tail=drop", "quads", "layers=32", "random:4:7@2", 64, 32},
+      {"kbuffer", "k=16 tail=drop", "quads", "layers=32", "default", 64, 32}};
+  EXPECT_EQ(finished, expected);  // the linked_list error row is not finished
+
+  // A row cut short by a crash while writing is no run; the rows before it still count.
+  std::ofstream(path, std::ios::app) << "2026-11-22T09:00:00Z,abc1234,\"llvmpipe";
+  EXPECT_EQ(finished_runs(path), expected);
+
+  const std::string foreign = std::string(OIT_BINARY_DIR) + "/test_output/foreign_resume.csv";
+  std::ofstream(foreign) << "a,b,c\n1,2,3\n";
+  try {
+    finished_runs(foreign);
+    FAIL() << "a CSV with other columns was read as ours";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("foreign_resume.csv' exists with different columns"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ResultsCsv, LargeExtraCountsAreWrittenExactly) {
   RunResult r = finished_run();
   r.counters.extra = {{"scene_triangles", 1234567.0}, {"scene_vertices", 98765432.0}};

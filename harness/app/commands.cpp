@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <set>
 
 #include "core/heatmap.h"
 #include "cameras.h"
@@ -128,13 +129,16 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
   auto context = open_context(common);
   Harness harness(*context, builtin_techniques());
   const std::vector<RunSpec> runs = expand_sweep(options.sweep, builtin_techniques());
+  // Read before appending: only what earlier invocations wrote counts.
+  const std::set<RunKey> finished = options.resume ? finished_runs(options.csv) : std::set<RunKey>{};
   CsvWriter csv(options.csv);
   const RunContext ctx = run_context(harness.device());
-  std::fprintf(stderr, "oitbench bench: %zu runs on %s, clock %s -> %s\n", runs.size(),
+  std::fprintf(stderr, "oitbench bench: %zu runs on %s, clock %s -> %s%s\n", runs.size(),
                harness.device().renderer.c_str(),
                options.sweep.clock == "auto" ? to_string(harness.default_clock()).c_str() : options.sweep.clock.c_str(),
-               options.csv.c_str());
+               options.csv.c_str(), options.resume ? " (resuming: runs already there are not run again)" : "");
   std::vector<RunResult> results;
+  size_t resumed = 0;
   for (size_t i = 0; i < runs.size(); ++i) {
     const RunSpec& spec = runs[i];
     std::string params;
@@ -142,6 +146,11 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
     std::fprintf(stderr, "[%zu/%zu] %s%s on %s %dx%d%s ... ", i + 1, runs.size(), spec.technique.c_str(),
                  params.c_str(), spec.scene.c_str(), spec.width, spec.height,
                  spec.camera == "default" ? "" : (" camera " + spec.camera).c_str());
+    if (const auto key = resume_key(spec, builtin_techniques()); key && finished.count(*key)) {
+      std::fprintf(stderr, "already in %s, not run again\n", options.csv.c_str());
+      ++resumed;
+      continue;
+    }
     RunResult result = harness.run(spec);
     csv.write(result, ctx);
     if (result.status == RunStatus::ok) {
@@ -168,10 +177,18 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
     result.image = {};
     results.push_back(std::move(result));
   }
-  print_summary(results, options.baseline);
+  size_t ok = 0, skipped = 0, failed = 0;
+  for (const auto& r : results)
+    (r.status == RunStatus::ok ? ok : r.status == RunStatus::skipped ? skipped : failed) += 1;
+  if (!results.empty()) print_summary(results, options.baseline);
+  if (resumed > 0)
+    std::printf("(%zu run%s already in %s from an earlier invocation: not in this table)\n", resumed,
+                resumed == 1 ? "" : "s", options.csv.c_str());
   std::printf("\ndevice: %s | clock: %s | rows appended to %s\n", harness.device().renderer.c_str(),
               options.sweep.clock == "auto" ? to_string(harness.default_clock()).c_str() : options.sweep.clock.c_str(),
               options.csv.c_str());
+  std::printf("runs: %zu done (%zu ok, %zu error), %zu resumed (already in the CSV), %zu skipped\n", ok + failed, ok,
+              failed, resumed, skipped);
   return 0;
 }
 

@@ -38,6 +38,8 @@ struct BenchOptions {
   std::string csv;
   std::string images_dir;  // one PNG per run when set
   std::string baseline = "unsorted";  // the summary's speed ratios are against this technique
+  // Leave out every run that already has an ok or skipped row in `csv`.
+  bool resume = false;
 };
 
 int run_list(const CommonOptions& common);

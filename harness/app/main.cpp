@@ -53,6 +53,8 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--images", bench.images_dir, "directory for one PNG per run");
   bench_cmd->add_option("--baseline", bench.baseline,
                         "technique whose median total the summary divides by (default unsorted)");
+  bench_cmd->add_flag("--resume", bench.resume,
+                      "leave out runs that already have an ok or skipped row in the CSV (error rows run again)");
 
   // pareto: the bench options, with each technique's quality knobs swept.
   oit::BenchOptions pareto;
@@ -70,6 +72,8 @@ int main(int argc, char** argv) {
   pareto_cmd->add_option("--warmup", pareto.sweep.warmup, "untimed frames first")->check(CLI::Range(0, 1000));
   pareto_cmd->add_option("--csv", pareto.csv, "CSV file to append to")->required();
   pareto_cmd->add_option("--images", pareto.images_dir, "directory for one PNG per run");
+  pareto_cmd->add_flag("--resume", pareto.resume,
+                       "leave out runs that already have an ok or skipped row in the CSV (error rows run again)");
 
   oit::StressOptions stress;
   auto* stress_cmd = app.add_subcommand("stress", "numerical and robustness stress cases on every technique: "

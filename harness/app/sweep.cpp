@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "cameras.h"
+#include "scene_library.h"
 
 namespace oit {
 namespace {
@@ -153,6 +154,21 @@ std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRe
     }
   }
   return runs;
+}
+
+std::optional<RunKey> resume_key(const RunSpec& spec, const TechniqueRegistry& registry) {
+  try {
+    const TechniqueDescriptor& technique = registry.get(spec.technique);
+    return RunKey{spec.technique,
+                  ParamSet(technique.params, spec.params, "technique '" + spec.technique + "'").canonical(),
+                  spec.scene,
+                  canonical_scene_params(spec.scene, spec.scene_params),
+                  spec.camera,
+                  spec.width,
+                  spec.height};
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
 }
 
 std::string run_label(const RunResult& result) {

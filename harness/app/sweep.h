@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/results_csv.h"
 #include "core/runner.h"
 
 namespace oit {
@@ -25,6 +26,11 @@ struct SweepOptions {
 };
 
 std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRegistry& registry);
+
+// The key the run's CSV rows will carry (parameters canonical, defaults
+// filled in, as the harness writes them), for `bench --resume`; nullopt when
+// a parameter is invalid (that run is an error row, never finished).
+std::optional<RunKey> resume_key(const RunSpec& spec, const TechniqueRegistry& registry);
 
 void parse_size(const std::string& text, int& width, int& height);
 glm::vec3 parse_background(const std::string& text);

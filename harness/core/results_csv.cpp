@@ -1,5 +1,8 @@
 #include "core/results_csv.h"
 
+#include <csv.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -64,6 +67,27 @@ std::string header_line() {
   return line;
 }
 
+std::runtime_error foreign_header(const std::string& path) {
+  return std::runtime_error("CSV '" + path + "' exists with different columns; choose another --csv file");
+}
+
+// libcsv callbacks: a field ends, a record ends.
+struct Records {
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> current;
+};
+void end_field(void* text, size_t length, void* data) {
+  auto& current = static_cast<Records*>(data)->current;
+  current.push_back(length ? std::string(static_cast<const char*>(text), length) : std::string());
+}
+void end_record(int, void* data) {
+  auto* records = static_cast<Records*>(data);
+  records->rows.push_back(std::move(records->current));
+  records->current.clear();
+}
+// Spaces around an unquoted field are data (libcsv trims them by default).
+int no_space(unsigned char) { return 0; }
+
 }  // namespace
 
 std::vector<std::vector<std::string>> csv_rows(const RunResult& r, const RunContext& context) {
@@ -106,9 +130,7 @@ CsvWriter::CsvWriter(const std::string& path) : path_(path) {
     std::ifstream existing(path);
     std::string first;
     std::getline(existing, first);
-    if (first != header_line()) {
-      throw std::runtime_error("CSV '" + path + "' exists with different columns; choose another --csv file");
-    }
+    if (first != header_line()) throw foreign_header(path);
     write_header = false;
   }
   out_.open(path, std::ios::app);
@@ -124,6 +146,53 @@ void CsvWriter::write(const RunResult& result, const RunContext& context) {
   }
   out_.flush();
   if (!out_) throw std::runtime_error("failed writing CSV '" + path_ + "'");
+}
+
+std::vector<std::vector<std::string>> read_csv(const std::string& path) {
+  if (!std::filesystem::exists(path) || std::filesystem::file_size(path) == 0) return {};
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read CSV '" + path + "'");
+  csv_parser parser;
+  if (csv_init(&parser, 0) != 0) throw std::runtime_error("cannot read CSV '" + path + "': libcsv init failed");
+  csv_set_space_func(&parser, no_space);
+  Records records;
+  char block[1 << 16];
+  bool failed = false;
+  while (!failed && in) {
+    in.read(block, sizeof block);
+    const size_t got = static_cast<size_t>(in.gcount());
+    failed = csv_parse(&parser, block, got, end_field, end_record, &records) != got;
+  }
+  failed = failed || csv_fini(&parser, end_field, end_record, &records) != 0;
+  const std::string why = failed ? csv_strerror(csv_error(&parser)) : "";
+  csv_free(&parser);
+  if (failed) throw std::runtime_error("cannot read CSV '" + path + "': " + why);
+  return records.rows;
+}
+
+std::set<RunKey> finished_runs(const std::string& path) {
+  const auto rows = read_csv(path);
+  std::set<RunKey> finished;
+  if (rows.empty()) return finished;
+  if (rows.front() != csv_columns()) throw foreign_header(path);
+  auto at = [](const std::string& name) {
+    const auto& columns = csv_columns();
+    return size_t(std::find(columns.begin(), columns.end(), name) - columns.begin());
+  };
+  const size_t technique = at("technique"), params = at("params"), scene = at("scene"),
+               scene_params = at("scene_params"), camera = at("camera"), width = at("width"), height = at("height"),
+               status = at("status");
+  for (size_t i = 1; i < rows.size(); ++i) {
+    const auto& row = rows[i];
+    if (row.size() != csv_columns().size() || (row[status] != "ok" && row[status] != "skipped")) continue;
+    try {
+      finished.insert({row[technique], row[params], row[scene], row[scene_params], row[camera], std::stoi(row[width]),
+                       std::stoi(row[height])});
+    } catch (const std::exception&) {
+      // A size that is not a number is no row of ours: nothing to resume.
+    }
+  }
+  return finished;
 }
 
 }  // namespace oit

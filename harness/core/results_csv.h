@@ -2,6 +2,7 @@
 // Long-form CSV: one row per run x stage x clock, plus per-run columns
 // repeated on each row so that every row stands alone in pandas.
 #include <fstream>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -35,5 +36,25 @@ class CsvWriter {
 std::vector<std::vector<std::string>> csv_rows(const RunResult& result, const RunContext& context);
 std::string csv_escape(const std::string& field);
 std::string utc_timestamp();
+
+// Every record of a CSV file, header first, read with Debian's libcsv
+// (RFC 4180: quoted fields may hold commas, doubled quotes and newlines;
+// no trimming). A missing or empty file has none. Throws naming the path.
+std::vector<std::vector<std::string>> read_csv(const std::string& path);
+
+// What tells runs apart across invocations of a sweep: technique, canonical
+// parameters, scene, canonical scene parameters, camera, size (the key of
+// analysis/reproduce.py's resume too).
+struct RunKey {
+  std::string technique, params, scene, scene_params, camera;
+  int width = 0, height = 0;
+  auto operator<=>(const RunKey&) const = default;
+};
+
+// The runs that have an `ok` or `skipped` row in a results CSV (an `error`
+// run is not finished: it is run again). None when the file is missing or
+// empty; throws like CsvWriter when its header is not ours. Rows cut short
+// (a crash while writing) are ignored.
+std::set<RunKey> finished_runs(const std::string& path);
 
 }  // namespace oit

@@ -146,6 +146,9 @@ RunResult Harness::run(const RunSpec& spec) {
                                   " is outside 1x1 .. 16384x16384");
     }
     if (spec.frames < 1 || spec.warmup < 0) throw std::invalid_argument("frames must be >= 1 and warmup >= 0");
+    // Known before the scene loads, so a skipped row (a model not
+    // installed) carries it too and `bench --resume` can find it.
+    result.scene_params = canonical_scene_params(spec.scene, spec.scene_params);
     LoadedScene& loaded = scene(spec.scene, spec.scene_params, spec.submission_order, spec.camera);
     result.scene_params = loaded.scene.params;
     const SceneFacts facts{loaded.scene.triangle_count(), loaded.scene.object_count, true};
