@@ -7,6 +7,7 @@
 #include "core/heatmap.h"
 #include "cameras.h"
 #include "core/results_csv.h"
+#include "gl/program_cache.h"
 #include "scene_library.h"
 
 namespace oit {
@@ -189,6 +190,10 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
               options.csv.c_str());
   std::printf("runs: %zu done (%zu ok, %zu error), %zu resumed (already in the CSV), %zu skipped\n", ok + failed, ok,
               failed, resumed, skipped);
+  const ProgramCacheStats programs = ProgramCache::instance().stats();
+  std::printf("GL programs: %llu compiled, %llu from the in-process binary cache%s\n",
+              static_cast<unsigned long long>(programs.compiled), static_cast<unsigned long long>(programs.reused),
+              ProgramCache::instance().enabled() ? "" : " (OIT_PROGRAM_CACHE=off)");
   return 0;
 }
 

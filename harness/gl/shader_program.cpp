@@ -1,12 +1,14 @@
 #include "gl/shader_program.h"
 
 #include <algorithm>
+#include <optional>
 #include <regex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
 #include "gl/embedded_shaders.h"
+#include "gl/program_cache.h"
 
 namespace oit {
 namespace {
@@ -78,8 +80,7 @@ const char* stage_name(GLenum stage) {
   }
 }
 
-Shader compile(const ShaderStageSource& stage, const ShaderDefines& defines) {
-  PreprocessedShader pre = preprocess_shader(stage.path, defines);
+Shader compile(const ShaderStageSource& stage, const PreprocessedShader& pre) {
   Shader shader(glCreateShader(stage.stage));
   const char* text = pre.text.c_str();
   glShaderSource(shader.id(), 1, &text, nullptr);
@@ -95,6 +96,22 @@ Shader compile(const ShaderStageSource& stage, const ShaderDefines& defines) {
                       "':\n" + translate_shader_log(log, pre.files));
   }
   return shader;
+}
+
+std::vector<PreprocessedShader> preprocess_stages(const std::vector<ShaderStageSource>& stages,
+                                                  const ShaderDefines& defines) {
+  std::vector<PreprocessedShader> sources;
+  for (const auto& stage : stages) sources.push_back(preprocess_shader(stage.path, defines));
+  return sources;
+}
+
+// Every stage's type and full text (the defines are in it): equal keys,
+// equal programs.
+std::string cache_key(const std::vector<ShaderStageSource>& stages, const std::vector<PreprocessedShader>& sources) {
+  std::string text;
+  for (size_t i = 0; i < stages.size(); ++i)
+    text += "stage " + std::to_string(stages[i].stage) + "\n" + sources[i].text + '\0';
+  return ProgramCache::instance().key(text);
 }
 
 }  // namespace
@@ -122,10 +139,22 @@ std::string translate_shader_log(const std::string& log, const std::vector<std::
   return result;
 }
 
+std::string program_cache_key(const std::vector<ShaderStageSource>& stages, const ShaderDefines& defines) {
+  return cache_key(stages, preprocess_stages(stages, defines));
+}
+
 Program build_program(const std::vector<ShaderStageSource>& stages, const ShaderDefines& defines) {
+  const std::vector<PreprocessedShader> sources = preprocess_stages(stages, defines);
+  ProgramCache& cache = ProgramCache::instance();
+  const std::string key = cache.enabled() ? cache_key(stages, sources) : "";
+  if (!key.empty())
+    if (std::optional<Program> program = cache.load(key)) return std::move(*program);
+
   std::vector<Shader> shaders;
-  for (const auto& stage : stages) shaders.push_back(compile(stage, defines));
+  for (size_t i = 0; i < stages.size(); ++i) shaders.push_back(compile(stages[i], sources[i]));
   Program program(glCreateProgram());
+  // Some drivers only keep a retrievable binary when told before linking.
+  if (!key.empty()) glProgramParameteri(program.id(), GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
   for (const auto& shader : shaders) glAttachShader(program.id(), shader.id());
   glLinkProgram(program.id());
   GLint ok = GL_FALSE;
@@ -140,6 +169,8 @@ Program build_program(const std::vector<ShaderStageSource>& stages, const Shader
     throw ShaderError("failed to link program (" + names + "):\n" + log);
   }
   for (const auto& shader : shaders) glDetachShader(program.id(), shader.id());
+  cache.count_compiled();
+  if (!key.empty()) cache.store(key, program);
   return program;
 }
 

@@ -36,7 +36,11 @@ PreprocessedShader preprocess_shader(const std::string& path, const ShaderDefine
 // Rewrites driver diagnostics "N:LINE(COL)" / "N(LINE)" into "file:LINE".
 std::string translate_shader_log(const std::string& log, const std::vector<std::string>& files);
 
+// Compiles and links the stages, or creates the program from the binary of
+// an identical one built earlier in this process (gl/program_cache.h).
 Program build_program(const std::vector<ShaderStageSource>& stages, const ShaderDefines& defines = {});
+// The key under which build_program caches that program on the current context.
+std::string program_cache_key(const std::vector<ShaderStageSource>& stages, const ShaderDefines& defines = {});
 
 // Convenience: shared geometry vertex shader + a technique's fragment shader.
 Program build_geometry_program(const std::string& fragment_path, const ShaderDefines& defines = {});
