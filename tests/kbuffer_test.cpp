@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/error_metrics.h"
 #include "gl_fixture.h"
 
 namespace oit {
@@ -39,6 +40,13 @@ RunResult run_ok(const RunSpec& spec) {
   EXPECT_EQ(r.status, RunStatus::ok) << r.message;
   EXPECT_TRUE(r.error.has_value());
   return r;
+}
+
+double named(const std::vector<std::pair<std::string, double>>& values, const std::string& name) {
+  for (const auto& [key, value] : values)
+    if (key == name) return value;
+  ADD_FAILURE() << "no counter '" << name << "'";
+  return NAN;
 }
 
 bool identical(const Image& a, const Image& b) { return a.width == b.width && a.height == b.height && a.rgba == b.rgba; }
@@ -197,7 +205,7 @@ TEST(KBuffer, TailBlendIsExactWhenThereIsNoTail) {
 }
 
 TEST(KBuffer, RejectsKOutsideOneToSixtyFour) {
-  for (const char* k : {"0", "65"}) {
+  for (const char* k : {"0", "65", "automatic"}) {
     const RunResult r = test::harness().run(spec_of({{"k", k}}, "quads", {{"layers", "2"}}, 8));
     EXPECT_EQ(r.status, RunStatus::error) << "k=" << k;
     EXPECT_NE(r.message.find("'k'"), std::string::npos) << r.message;
@@ -206,6 +214,65 @@ TEST(KBuffer, RejectsKOutsideOneToSixtyFour) {
   const RunResult r = test::harness().run(spec_of({{"tail", "keep"}}, "quads", {{"layers", "2"}}, 8));
   EXPECT_EQ(r.status, RunStatus::error);
   EXPECT_NE(r.message.find("'tail'"), std::string::npos) << r.message;
+}
+
+// k=auto: a counting pass sizes k from the view's longest list, so on the
+// 32-layer quads it is exact, equals the worst-case k=64 image and allocates
+// a third of its memory (plus 4 bytes per pixel of counters).
+TEST(KBuffer, AutoKIsTheViewsDepthComplexityAndMatchesTheWorstCaseK) {
+  constexpr int size = 64;
+  const uint64_t pixels = size * size;
+  RunSpec spec = spec_of({{"k", "auto"}}, "quads", kQuads32, size);
+  spec.frames = 2;  // the second frame reuses the storage of the first
+  const RunResult automatic = run_ok(spec);
+  const RunResult worst_case = run_ok(spec_of({{"k", "64"}}, "quads", kQuads32, size));
+  ASSERT_TRUE(automatic.error.has_value());
+  EXPECT_EQ(named(automatic.counters.extra, "k_used"), 32.0);
+  EXPECT_EQ(named(automatic.counters.extra, "longest_list"), 32.0);
+  EXPECT_EQ(named(automatic.counters.extra, "k_capped"), 0.0);
+  EXPECT_LT(automatic.error->max_abs, 1e-5);
+  EXPECT_LE(compare_images(automatic.image, worst_case.image).max_abs, 1e-5);
+  EXPECT_EQ(automatic.counters.fragments_stored, 32u * pixels);
+  EXPECT_EQ(automatic.counters.fragments_dropped, 0u);
+  EXPECT_EQ(automatic.counters.passes, 3u);  // count + fill + store
+  EXPECT_NE(automatic.stage("count", "wall"), nullptr);
+  EXPECT_EQ(automatic.counters.bytes_allocated, pixels * 32u * 24u + 8u + pixels * 4u);
+  EXPECT_EQ(worst_case.counters.bytes_allocated, pixels * 64u * 24u + 8u);
+  EXPECT_EQ(named(automatic.counters.work_saved, "bytes_not_allocated"),
+            double(worst_case.counters.bytes_allocated) - double(automatic.counters.bytes_allocated));
+  EXPECT_EQ(named(automatic.counters.work_saved, "slots_not_cleared"), double(32u * pixels));
+  EXPECT_TRUE(worst_case.counters.work_saved.empty());  // nothing adapts with a fixed k
+
+  const RunResult four = run_ok(spec_of({{"k", "auto"}}, "quads", {{"layers", "4"}}, size));
+  ASSERT_TRUE(four.error.has_value());
+  EXPECT_EQ(named(four.counters.extra, "k_used"), 4.0);
+  EXPECT_LT(four.error->max_abs, 1e-5);
+  EXPECT_EQ(four.counters.bytes_allocated, pixels * 4u * 24u + 8u + pixels * 4u);
+}
+
+TEST(KBuffer, AutoKIsCappedByItsMemoryBudgetAndCountsWhatItDrops) {
+  // 1 MiB of slots at 64x64 (24 bytes each) holds 10 per pixel, fewer than
+  // the 32 layers: k=auto then behaves exactly like k=10.
+  constexpr int size = 64;
+  const uint64_t pixels = size * size;
+  const RunResult capped = run_ok(spec_of({{"k", "auto"}, {"auto_k_memory_mb", "1"}}, "quads", kQuads32, size));
+  const RunResult fixed = run_ok(spec_of({{"k", "10"}}, "quads", kQuads32, size));
+  EXPECT_EQ(named(capped.counters.extra, "k_used"), 10.0);
+  EXPECT_EQ(named(capped.counters.extra, "k_cap"), 10.0);
+  EXPECT_EQ(named(capped.counters.extra, "longest_list"), 32.0);
+  EXPECT_EQ(named(capped.counters.extra, "k_capped"), 1.0);
+  EXPECT_EQ(capped.counters.fragments_stored, 10u * pixels);
+  EXPECT_EQ(capped.counters.fragments_dropped, 22u * pixels);
+  EXPECT_TRUE(identical(capped.image, fixed.image));
+  EXPECT_LE(capped.counters.bytes_allocated - pixels * 4u, uint64_t(1) << 20);
+}
+
+TEST(KBuffer, DeclaresTheAutoKSwitch) {
+  const auto& switches = builtin_techniques().get("kbuffer").adaptive_switches;
+  ASSERT_EQ(switches.size(), 1u);
+  EXPECT_EQ(switches[0].feature, "k_auto");
+  EXPECT_EQ(switches[0].on, (RawParams{{"k", "auto"}}));
+  EXPECT_EQ(switches[0].off, (RawParams{{"k", "64"}}));
 }
 
 }  // namespace

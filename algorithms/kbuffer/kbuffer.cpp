@@ -5,9 +5,13 @@
 // its key; compose blends the slots front to back. Fragments beyond the K
 // nearest are dropped (counted) or blended, unsorted, behind them (`tail`).
 // Exact whenever K >= the depth complexity of every pixel.
+#include <algorithm>
+#include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
+#include "core/list_length_pass.h"
 #include "core/technique.h"
 #include "gl/check.h"
 #include "gl/shader_program.h"
@@ -27,32 +31,45 @@ constexpr GLuint kEmpty = 0xffffffffu;
 
 // Per slot: 4 (depth key) + 4 (owner triangle id) + 16 (RGBA32F colour).
 constexpr uint64_t kKeyBytes = 4, kOwnerBytes = 4, kColorBytes = 16;
+constexpr uint64_t kSlotBytes = kKeyBytes + kOwnerBytes + kColorBytes;
+constexpr int kMaxK = 64;  // the parameter's maximum: the worst-case constant k=auto is compared with
 // Per pixel when tail=blend: RGBA16F accumulation + R16F revealage.
 constexpr uint64_t kTailBytesPerPixel = 8 + 2;
 constexpr uint64_t kCounterBytes = 8;
 constexpr GLuint kZeroCounters[2] = {0, 0};  // stored, dropped: 0 until the first frame
 
+// The shaders take K as a compile-time define (see README, "k=auto"): one
+// set of programs per k, built on first use.
+struct KPrograms {
+  Program fill, store, compose;
+};
+
 class KBuffer final : public Technique {
  public:
   explicit KBuffer(const ParamSet& params)
-      : k_(int(params.integer("k"))),
+      : auto_k_(params.is_auto("k")),
+        k_parameter_(auto_k_ ? 0 : int(params.integer("k"))),
+        memory_cap_bytes_(uint64_t(params.integer("auto_k_memory_mb")) << 20),
         tail_blend_(params.choice("tail") == "blend"),
-        fill_(build_geometry_program("algorithms/kbuffer/fill.frag", {{"K", std::to_string(k_)}})),
-        store_(build_geometry_program("algorithms/kbuffer/store.frag", tail_defines())),
-        compose_(build_fullscreen_program("algorithms/kbuffer/compose.frag", tail_defines())),
-        counters_(make_buffer(kCounterBytes, kZeroCounters)) {}
+        counters_(make_buffer(kCounterBytes, kZeroCounters)) {
+    if (auto_k_) count_pass_.emplace();
+    else programs_for(k_parameter_);  // compile errors surface at construction
+  }
 
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
-    const uint64_t slots = uint64_t(width) * uint64_t(height) * uint64_t(k_);
-    check_fits(slots * kColorBytes);
-    keys_ = make_buffer(GLsizeiptr(slots * kKeyBytes));
-    owners_ = make_buffer(GLsizeiptr(slots * kOwnerBytes));
-    colors_ = make_buffer(GLsizeiptr(slots * kColorBytes));
-    gl_check("allocating the k-buffer of " + std::to_string(width) + "x" + std::to_string(height) + "x" +
-             std::to_string(k_));
-    for (const Program* program : {&fill_, &store_, &compose_}) glProgramUniform1i(program->id(), kWidthLocation, width);
+    if (auto_k_) {
+      count_pass_->resize(width, height);
+      k_cap_ = auto_k_cap();
+      // The slots are allocated by the first frame, once its count is known.
+      keys_ = Buffer();
+      owners_ = Buffer();
+      colors_ = Buffer();
+      allocated_k_ = 0;
+    } else {
+      allocate_slots(k_parameter_);
+    }
 
     // The fill pass (and store without a tail) writes no colour: an
     // attachment-less framebuffer of the right size rasterises it.
@@ -73,8 +90,16 @@ class KBuffer final : public Technique {
   }
 
   void render(const Frame& frame) override {
+    int k = k_parameter_;
+    if (auto_k_) {
+      auto count = frame.clock.stage("count");
+      longest_list_ = count_pass_->longest_list(frame);
+      k = std::clamp(int(std::min<uint32_t>(longest_list_, kMaxK)), 1, k_cap_);
+    }
+    const KPrograms& programs = programs_for(k);
     {
       auto clear = frame.clock.stage("clear");
+      if (k != allocated_k_) allocate_slots(k);  // k=auto: storage follows the view
       const GLuint empty = kEmpty, zero = 0;
       glClearNamedBufferData(keys_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
       glClearNamedBufferData(owners_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
@@ -90,8 +115,8 @@ class KBuffer final : public Technique {
       auto fill = frame.clock.stage("fill");
       glBindFramebuffer(GL_FRAMEBUFFER, no_attachments_.id());
       glViewport(0, 0, width_, height_);
-      glUseProgram(fill_.id());
-      frame.set_shared_uniforms(fill_.id());
+      glUseProgram(programs.fill.id());
+      frame.set_shared_uniforms(programs.fill.id());
       frame.scene.draw();
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -105,8 +130,8 @@ class KBuffer final : public Technique {
         glBlendFunci(0, GL_ONE, GL_ONE);
         glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
       }
-      glUseProgram(store_.id());
-      frame.set_shared_uniforms(store_.id());
+      glUseProgram(programs.store.id());
+      frame.set_shared_uniforms(programs.store.id());
       frame.scene.draw();
       glDisable(GL_BLEND);
     }
@@ -118,8 +143,8 @@ class KBuffer final : public Technique {
         glBindTextureUnit(kTailAccumulationUnit, tail_accumulation_.id());
         glBindTextureUnit(kTailRevealageUnit, tail_revealage_.id());
       }
-      glUseProgram(compose_.id());
-      frame.set_shared_uniforms(compose_.id());
+      glUseProgram(programs.compose.id());
+      frame.set_shared_uniforms(programs.compose.id());
       glDrawArrays(GL_TRIANGLES, 0, 3);
     }
   }
@@ -128,29 +153,87 @@ class KBuffer final : public Technique {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     GLuint counts[2] = {0, 0};  // stored, dropped
     glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
-    const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
     TechniqueCounters c;
-    c.bytes_allocated = pixels * uint64_t(k_) * (kKeyBytes + kOwnerBytes + kColorBytes) +
-                        (tail_blend_ ? pixels * kTailBytesPerPixel : 0) + kCounterBytes;
+    c.bytes_allocated = bytes_for(allocated_k_) + (auto_k_ ? count_pass_->bytes_allocated() : 0);
     c.fragments_stored = counts[0];
     c.fragments_dropped = counts[1];
-    c.passes = 2;
+    c.passes = auto_k_ ? 3 : 2;
+    c.extra = {{"k_used", double(allocated_k_)}};
+    if (auto_k_) {
+      // k_capped = 1: the view needed more slots than the cap allows, so
+      // fragments beyond k_used were dropped (or blended) as with a fixed k.
+      c.extra.push_back({"longest_list", double(longest_list_)});
+      c.extra.push_back({"k_cap", double(k_cap_)});
+      c.extra.push_back({"k_capped", longest_list_ > uint32_t(k_cap_) ? 1.0 : 0.0});
+      // Against the worst-case constant k = 64 (the parameter's maximum).
+      const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
+      c.work_saved = {{"bytes_not_allocated", double(bytes_for(kMaxK)) - double(c.bytes_allocated)},
+                      {"slots_not_cleared", double(pixels * uint64_t(kMaxK - allocated_k_))}};
+    }
     return c;
   }
 
  private:
-  // The fill pass is the same for both tails (one shader-cache entry).
-  ShaderDefines tail_defines() const {
-    ShaderDefines d = {{"K", std::to_string(k_)}};
+  // Slot storage, tail targets and counters for k slots per pixel.
+  uint64_t bytes_for(int k) const {
+    const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
+    return pixels * uint64_t(k) * kSlotBytes + (tail_blend_ ? pixels * kTailBytesPerPixel : 0) + kCounterBytes;
+  }
+
+  // k=auto: the most slots per pixel that fit both the memory cap and the
+  // device's largest storage block (the colour buffer is the biggest), at
+  // least 1 and at most the parameter's maximum.
+  int auto_k_cap() const {
+    const uint64_t pixels = std::max<uint64_t>(uint64_t(width_) * uint64_t(height_), 1);
+    uint64_t cap = memory_cap_bytes_ / (pixels * kSlotBytes);
+    GLint64 max_block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    if (max_block > 0) cap = std::min(cap, uint64_t(max_block) / (pixels * kColorBytes));
+    return int(std::clamp<uint64_t>(cap, 1, kMaxK));
+  }
+
+  const KPrograms& programs_for(int k) {
+    auto it = programs_.find(k);
+    if (it == programs_.end()) {
+      const ShaderDefines defines = tail_defines(k);
+      // The fill pass is the same for both tails (one shader-cache entry).
+      KPrograms p{build_geometry_program("algorithms/kbuffer/fill.frag", {{"K", std::to_string(k)}}),
+                  build_geometry_program("algorithms/kbuffer/store.frag", defines),
+                  build_fullscreen_program("algorithms/kbuffer/compose.frag", defines)};
+      it = programs_.emplace(k, std::move(p)).first;
+      if (width_ > 0) set_width(it->second);
+    }
+    return it->second;
+  }
+
+  void set_width(const KPrograms& p) const {
+    for (const Program* program : {&p.fill, &p.store, &p.compose})
+      glProgramUniform1i(program->id(), kWidthLocation, width_);
+  }
+
+  ShaderDefines tail_defines(int k) const {
+    ShaderDefines d = {{"K", std::to_string(k)}};
     if (tail_blend_) d.push_back({"TAIL_BLEND", "1"});
     return d;
   }
 
-  void check_fits(uint64_t largest_buffer_bytes) const {
+  void allocate_slots(int k) {
+    const uint64_t slots = uint64_t(width_) * uint64_t(height_) * uint64_t(k);
+    check_fits(k, slots * kColorBytes);
+    keys_ = make_buffer(GLsizeiptr(slots * kKeyBytes));
+    owners_ = make_buffer(GLsizeiptr(slots * kOwnerBytes));
+    colors_ = make_buffer(GLsizeiptr(slots * kColorBytes));
+    gl_check("allocating the k-buffer of " + std::to_string(width_) + "x" + std::to_string(height_) + "x" +
+             std::to_string(k));
+    allocated_k_ = k;
+    for (const auto& [program_k, programs] : programs_) set_width(programs);
+  }
+
+  void check_fits(int k, uint64_t largest_buffer_bytes) const {
     GLint64 max_block = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
     if (max_block > 0 && largest_buffer_bytes > uint64_t(max_block)) {
-      throw std::runtime_error("kbuffer: k=" + std::to_string(k_) + " at " + std::to_string(width_) + "x" +
+      throw std::runtime_error("kbuffer: k=" + std::to_string(k) + " at " + std::to_string(width_) + "x" +
                                std::to_string(height_) + " needs a " + std::to_string(largest_buffer_bytes >> 20) +
                                " MiB colour buffer, more than the device's largest storage block (" +
                                std::to_string(max_block >> 20) + " MiB); lower k or the size");
@@ -164,13 +247,18 @@ class KBuffer final : public Technique {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountersBinding, counters_.id());
   }
 
-  int k_;
+  bool auto_k_;
+  int k_parameter_;  // 0 with k=auto
+  uint64_t memory_cap_bytes_;
   bool tail_blend_;
-  Program fill_, store_, compose_;
+  std::map<int, KPrograms> programs_;
+  std::optional<ListLengthPass> count_pass_;  // k=auto only
   Buffer counters_, keys_, owners_, colors_;
   Texture tail_accumulation_, tail_revealage_;
   Framebuffer no_attachments_, tail_framebuffer_;
   int width_ = 0, height_ = 0;
+  int allocated_k_ = 0, k_cap_ = kMaxK;
+  uint32_t longest_list_ = 0;
 };
 
 }  // namespace
@@ -180,12 +268,19 @@ void register_technique_kbuffer(TechniqueRegistry& registry) {
   d.id = "kbuffer";
   d.display_name = "Dual-pass k-buffer";
   d.paper = "Kubisch 2014, Order independent transparency in OpenGL 4.x (GTC 2014); murray2016 section 4";
-  d.params = {ParamSpec::integer("k", 16, 1, 64, "slots per pixel: the K nearest fragments are sorted exactly"),
+  d.params = {ParamSpec::integer_or_auto("k", "16", 1, kMaxK,
+                                         "slots per pixel: the K nearest fragments are sorted exactly; auto = the "
+                                         "view's depth complexity, counted every frame (capped by auto_k_memory_mb)"),
               ParamSpec::choice("tail", "drop", {"drop", "blend"},
-                                "fragments beyond the K nearest: drop (counted) or blend unsorted behind them")};
-  d.stages = {"clear", "fill", "store", "compose"};
+                                "fragments beyond the K nearest: drop (counted) or blend unsorted behind them"),
+              ParamSpec::integer("auto_k_memory_mb", 1024, 1, 1 << 20,
+                                 "k=auto only: most MiB of slot storage (24 bytes per slot); k is capped to fit")};
+  d.stages = {"count", "clear", "fill", "store", "compose"};  // count: only with k=auto
   d.exactness = Exactness::exact;
   d.quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32"}}, {"tail", {"drop", "blend"}}};
+  d.adaptive_switches = {{"k_auto", "sizes k from the view's depth complexity (a counting pass) instead of the "
+                                    "worst-case constant 64",
+                          {{"k", "auto"}}, {{"k", "64"}}}};
   d.create = [](const ParamSet& params) { return std::make_unique<KBuffer>(params); };
   registry.add(std::move(d));
 }

@@ -1,0 +1,35 @@
+#pragma once
+// A cheap counting pass for techniques that size per-pixel storage from the
+// view they are about to render (k=auto): one geometry pass with no depth
+// test counts every pixel's fragments; the longest list of the frame sizes
+// the storage. Technique-independent; the technique times it (stage `count`).
+#include <cstdint>
+#include <vector>
+
+#include "core/technique.h"
+#include "gl/handles.h"
+
+namespace oit {
+
+class ListLengthPass {
+ public:
+  ListLengthPass();
+  // The per-pixel count target for this size.
+  void resize(int width, int height);
+  // Draws frame.scene with the frame's camera and returns the longest
+  // per-pixel fragment list (0 for an empty view). Reads the counts back,
+  // so it waits for the pass: the caller needs the number before going on.
+  // Leaves another framebuffer and program bound.
+  uint32_t longest_list(const Frame& frame);
+  // The R32F count target (4 bytes per pixel).
+  uint64_t bytes_allocated() const;
+
+ private:
+  Program program_;
+  Texture counts_;
+  Framebuffer framebuffer_;
+  std::vector<float> readback_;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace oit
