@@ -31,7 +31,7 @@ void main() {
   uint count = 0u;
   bool tied = false;
   uint previous_key = KBUFFER_EMPTY;
-  for (uint i = 0u; i < uint(K); ++i) {
+  for (uint i = 0u; i < uint(u_k); ++i) {
     const uint key = kbuffer_keys[first + i];
     if (key == KBUFFER_EMPTY) break;
     if (kbuffer_owners[first + i] == KBUFFER_EMPTY) continue;  // a key whose fragment went to the tail
@@ -46,7 +46,7 @@ void main() {
     // keys by triangle id with an insertion sort (keys are sorted, so only
     // ties move) and blend again in that deterministic order.
     uint gathered = 0u;
-    for (uint i = 0u; i < uint(K); ++i) {
+    for (uint i = 0u; i < uint(u_k); ++i) {
       const uint key = kbuffer_keys[first + i];
       if (key == KBUFFER_EMPTY) break;
       const uint owner = kbuffer_owners[first + i];

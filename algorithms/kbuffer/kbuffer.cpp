@@ -27,6 +27,7 @@ constexpr GLuint kCountersBinding = OIT_FIRST_TECHNIQUE_BINDING + 3;
 constexpr GLuint kTailAccumulationUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
 constexpr GLuint kTailRevealageUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
 constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
+constexpr GLint kSlotsLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;  // u_k
 constexpr GLuint kEmpty = 0xffffffffu;
 
 // Per slot: 4 (depth key) + 4 (owner triangle id) + 16 (RGBA32F colour).
@@ -38,12 +39,6 @@ constexpr uint64_t kTailBytesPerPixel = 8 + 2;
 constexpr uint64_t kCounterBytes = 8;
 constexpr GLuint kZeroCounters[2] = {0, 0};  // stored, dropped: 0 until the first frame
 
-// The shaders take K as a compile-time define (see README, "k=auto"): one
-// set of programs per k, built on first use.
-struct KPrograms {
-  Program fill, store, compose;
-};
-
 class KBuffer final : public Technique {
  public:
   explicit KBuffer(const ParamSet& params)
@@ -51,14 +46,18 @@ class KBuffer final : public Technique {
         k_parameter_(auto_k_ ? 0 : int(params.integer("k"))),
         memory_cap_bytes_(uint64_t(params.integer("auto_k_memory_mb")) << 20),
         tail_blend_(params.choice("tail") == "blend"),
+        fill_(build_geometry_program("algorithms/kbuffer/fill.frag")),
+        store_(build_geometry_program("algorithms/kbuffer/store.frag", tail_defines())),
         counters_(make_buffer(kCounterBytes, kZeroCounters)) {
     if (auto_k_) count_pass_.emplace();
-    else programs_for(k_parameter_);  // compile errors surface at construction
+    else compose_for(k_parameter_);  // compile errors surface at construction
   }
 
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
+    for (const Program* program : {&fill_, &store_}) glProgramUniform1i(program->id(), kWidthLocation, width);
+    for (const auto& [capacity, compose] : composes_) glProgramUniform1i(compose.id(), kWidthLocation, width);
     if (auto_k_) {
       count_pass_->resize(width, height);
       k_cap_ = auto_k_cap();
@@ -96,7 +95,8 @@ class KBuffer final : public Technique {
       longest_list_ = count_pass_->longest_list(frame);
       k = std::clamp(int(std::min<uint32_t>(longest_list_, kMaxK)), 1, k_cap_);
     }
-    const KPrograms& programs = programs_for(k);
+    const Program& compose = compose_for(k);
+    for (GLuint program : {fill_.id(), store_.id(), compose.id()}) glProgramUniform1i(program, kSlotsLocation, k);
     {
       auto clear = frame.clock.stage("clear");
       if (k != allocated_k_) allocate_slots(k);  // k=auto: storage follows the view
@@ -115,8 +115,8 @@ class KBuffer final : public Technique {
       auto fill = frame.clock.stage("fill");
       glBindFramebuffer(GL_FRAMEBUFFER, no_attachments_.id());
       glViewport(0, 0, width_, height_);
-      glUseProgram(programs.fill.id());
-      frame.set_shared_uniforms(programs.fill.id());
+      glUseProgram(fill_.id());
+      frame.set_shared_uniforms(fill_.id());
       frame.scene.draw();
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -130,21 +130,21 @@ class KBuffer final : public Technique {
         glBlendFunci(0, GL_ONE, GL_ONE);
         glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
       }
-      glUseProgram(programs.store.id());
-      frame.set_shared_uniforms(programs.store.id());
+      glUseProgram(store_.id());
+      frame.set_shared_uniforms(store_.id());
       frame.scene.draw();
       glDisable(GL_BLEND);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     {
-      auto compose = frame.clock.stage("compose");
+      auto stage = frame.clock.stage("compose");
       frame.bind_target();
       if (tail_blend_) {
         glBindTextureUnit(kTailAccumulationUnit, tail_accumulation_.id());
         glBindTextureUnit(kTailRevealageUnit, tail_revealage_.id());
       }
-      glUseProgram(programs.compose.id());
-      frame.set_shared_uniforms(programs.compose.id());
+      glUseProgram(compose.id());
+      frame.set_shared_uniforms(compose.id());
       glDrawArrays(GL_TRIANGLES, 0, 3);
     }
   }
@@ -192,29 +192,29 @@ class KBuffer final : public Technique {
     return int(std::clamp<uint64_t>(cap, 1, kMaxK));
   }
 
-  const KPrograms& programs_for(int k) {
-    auto it = programs_.find(k);
-    if (it == programs_.end()) {
-      const ShaderDefines defines = tail_defines(k);
-      // The fill pass is the same for both tails (one shader-cache entry).
-      KPrograms p{build_geometry_program("algorithms/kbuffer/fill.frag", {{"K", std::to_string(k)}}),
-                  build_geometry_program("algorithms/kbuffer/store.frag", defines),
-                  build_fullscreen_program("algorithms/kbuffer/compose.frag", defines)};
-      it = programs_.emplace(k, std::move(p)).first;
-      if (width_ > 0) set_width(it->second);
+  // The compose program for k slots. Only compose depends on the define K
+  // (the size of its local arrays, K >= u_k): a fixed k compiles K = k;
+  // k=auto compiles K = the next power of two, so at most 7 programs serve
+  // every view (README, "k=auto").
+  const Program& compose_for(int k) {
+    int capacity = k;
+    if (auto_k_) {
+      capacity = 1;
+      while (capacity < k) capacity *= 2;
+    }
+    auto it = composes_.find(capacity);
+    if (it == composes_.end()) {
+      ShaderDefines defines = tail_defines();
+      defines.push_back({"K", std::to_string(capacity)});
+      it = composes_.emplace(capacity, build_fullscreen_program("algorithms/kbuffer/compose.frag", defines)).first;
+      glProgramUniform1i(it->second.id(), kWidthLocation, width_);
     }
     return it->second;
   }
 
-  void set_width(const KPrograms& p) const {
-    for (const Program* program : {&p.fill, &p.store, &p.compose})
-      glProgramUniform1i(program->id(), kWidthLocation, width_);
-  }
-
-  ShaderDefines tail_defines(int k) const {
-    ShaderDefines d = {{"K", std::to_string(k)}};
-    if (tail_blend_) d.push_back({"TAIL_BLEND", "1"});
-    return d;
+  ShaderDefines tail_defines() const {
+    if (tail_blend_) return {{"TAIL_BLEND", "1"}};
+    return {};
   }
 
   void allocate_slots(int k) {
@@ -226,7 +226,6 @@ class KBuffer final : public Technique {
     gl_check("allocating the k-buffer of " + std::to_string(width_) + "x" + std::to_string(height_) + "x" +
              std::to_string(k));
     allocated_k_ = k;
-    for (const auto& [program_k, programs] : programs_) set_width(programs);
   }
 
   void check_fits(int k, uint64_t largest_buffer_bytes) const {
@@ -251,7 +250,8 @@ class KBuffer final : public Technique {
   int k_parameter_;  // 0 with k=auto
   uint64_t memory_cap_bytes_;
   bool tail_blend_;
-  std::map<int, KPrograms> programs_;
+  Program fill_, store_;
+  std::map<int, Program> composes_;  // by K
   std::optional<ListLengthPass> count_pass_;  // k=auto only
   Buffer counters_, keys_, owners_, colors_;
   Texture tail_accumulation_, tail_revealage_;

@@ -22,14 +22,14 @@ void main() {
   const uint first = kbuffer_first_slot();
   const uint key = kbuffer_depth_key(oit_view_depth());
   const vec4 color = oit_shade();
-  uint low = 0u, high = uint(K);
+  uint low = 0u, high = uint(u_k);
   while (low < high) {
     const uint middle = (low + high) >> 1;
     if (kbuffer_keys[first + middle] < key) low = middle + 1u;
     else high = middle;
   }
   const uint owner = oit_triangle_id();
-  for (uint i = low; i < uint(K) && kbuffer_keys[first + i] == key; ++i) {
+  for (uint i = low; i < uint(u_k) && kbuffer_keys[first + i] == key; ++i) {
     if (atomicCompSwap(kbuffer_owners[first + i], KBUFFER_EMPTY, owner) == KBUFFER_EMPTY) {
       kbuffer_colors[first + i] = color;
 #ifdef TAIL_BLEND
