@@ -255,9 +255,74 @@ TEST(BucketedKBuffer, TransferFunctionsStylizeFlatInteriorAndImageBorder) {
   }
 }
 
+double saved(const RunResult& r, const std::string& name) {
+  for (const auto& [key, value] : r.counters.work_saved)
+    if (key == name) return value;
+  ADD_FAILURE() << "no work_saved counter '" << name << "'";
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+// k=auto sizes k from a counting pass over the view: on the 32-layer quads
+// it keeps every layer, so with identity transfer functions it equals the
+// reference within the RGBA8 packing bound, like a fixed k >= 32, and the
+// worst-case k=64 image within the same bound, from half the memory.
+TEST(BucketedKBuffer, AutoKIsTheViewsDepthComplexityAndMatchesTheWorstCaseK) {
+  constexpr int size = 64;
+  const uint64_t pixels = size * size;
+  const RunResult automatic = run(unstylized({{"k", "auto"}}), "quads", {{"layers", "32"}}, size);
+  const RunResult worst_case = run(unstylized({{"k", "64"}}), "quads", {{"layers", "32"}}, size);
+  ASSERT_TRUE(automatic.error.has_value());
+  EXPECT_EQ(extra(automatic, "k_used"), 32.0);
+  EXPECT_EQ(extra(automatic, "longest_list"), 32.0);
+  EXPECT_EQ(extra(automatic, "k_capped"), 0.0);
+  EXPECT_EQ(extra(worst_case, "k_used"), 64.0);
+  EXPECT_LE(automatic.error->max_abs, packing_bound(0.3, 32));
+  // Both store the same 32 fragments per pixel in RGBA8 and compose them in
+  // the same order: the storage bound covers their difference.
+  EXPECT_LE(compare_images(automatic.image, worst_case.image).max_abs, packing_bound(0.3, 32));
+  EXPECT_EQ(automatic.counters.fragments_stored, 32u * pixels);
+  EXPECT_EQ(automatic.counters.fragments_dropped, 0u);
+  EXPECT_EQ(automatic.counters.passes, 3u);  // count + fill + store
+  EXPECT_NE(automatic.stage("count", "wall"), nullptr);
+  EXPECT_EQ(automatic.counters.bytes_allocated, pixels * 32u * 20u + 4u + pixels * 4u);
+  EXPECT_EQ(worst_case.counters.bytes_allocated, pixels * 64u * 20u + 4u);
+  EXPECT_EQ(saved(automatic, "bytes_not_allocated"),
+            double(worst_case.counters.bytes_allocated) - double(automatic.counters.bytes_allocated));
+  EXPECT_EQ(saved(automatic, "slots_not_cleared"), double(32u * pixels));
+  EXPECT_TRUE(worst_case.counters.work_saved.empty());
+
+  const RunResult four = run(unstylized({{"k", "auto"}}), "quads", {{"layers", "4"}}, size);
+  ASSERT_TRUE(four.error.has_value());
+  EXPECT_EQ(extra(four, "k_used"), 4.0);
+  EXPECT_LE(four.error->max_abs, packing_bound(0.3, 4));
+  EXPECT_EQ(four.counters.fragments_dropped, 0u);
+}
+
+TEST(BucketedKBuffer, AutoKIsCappedByItsMemoryBudgetAndCountsWhatItDrops) {
+  // 1 MiB at 64x64 and 20 bytes per slot holds 12 slots per pixel, fewer
+  // than the 32 layers: k=auto then behaves like k=12.
+  constexpr int size = 64;
+  const uint64_t pixels = size * size;
+  const RunResult capped = run(unstylized({{"k", "auto"}, {"auto_k_memory_mb", "1"}}), "quads", {{"layers", "32"}}, size);
+  const RunResult fixed = run(unstylized({{"k", "12"}}), "quads", {{"layers", "32"}}, size);
+  EXPECT_EQ(extra(capped, "k_used"), 12.0);
+  EXPECT_EQ(extra(capped, "k_cap"), 12.0);
+  EXPECT_EQ(extra(capped, "k_capped"), 1.0);
+  EXPECT_EQ(capped.counters.fragments_stored, 12u * pixels);
+  EXPECT_EQ(capped.counters.fragments_dropped, 20u * pixels);
+  EXPECT_EQ(compare_images(capped.image, fixed.image).max_abs, 0.0);
+  const auto& switches = builtin_techniques().get(kId).adaptive_switches;
+  const auto k_auto = std::find_if(switches.begin(), switches.end(), [](const auto& s) { return s.feature == "k_auto"; });
+  ASSERT_NE(k_auto, switches.end());
+  EXPECT_EQ(k_auto->on, (RawParams{{"k", "auto"}}));
+  EXPECT_EQ(k_auto->off, (RawParams{{"k", "64"}}));
+}
+
 TEST(BucketedKBuffer, InvalidParametersAreErrorsNamingTheParameter) {
   const RawParams invalid[] = {{{"k", "65"}},
                                {{"k", "0"}},
+                               {{"k", "automatic"}},
+                               {{"auto_k_memory_mb", "0"}},
                                {{"buckets", "sometimes"}},
                                {{"color_transfer", "rainbow"}},
                                {{"opacity_transfer", "paper"}},

@@ -11,9 +11,12 @@
 #include <cstdint>
 #include <limits>
 #include <cmath>
+#include <map>
+#include <optional>
 #include <stdexcept>
 
 #include "accuracy.h"
+#include "core/list_length_pass.h"
 #include "core/technique.h"
 #include "gl/check.h"
 #include "gl/shader_program.h"
@@ -26,11 +29,21 @@ namespace {
 constexpr GLuint kBinding = OIT_FIRST_TECHNIQUE_BINDING;  // + 0..9, see bkb_common.glsl
 constexpr GLint kUniform = OIT_FIRST_TECHNIQUE_UNIFORM;   // + 0..5
 enum class BucketMode { automatic, on, off };
+constexpr int kMaxK = 64;  // the parameter's maximum: the worst case k=auto is compared with
+
+// Every pass takes K as a compile-time define (local arrays, the hash
+// table's size): one set of programs per k, built on first use (README,
+// "k=auto").
+struct KPrograms {
+  Program fill, sort, bucket, store, compose, stylize, neighbors_bucketed, neighbors_brute_force;
+};
 
 class BucketedKBuffer final : public Technique {
  public:
   explicit BucketedKBuffer(const ParamSet& params)
-      : k_(int(params.integer("k"))),
+      : auto_k_(params.is_auto("k")),
+        k_parameter_(auto_k_ ? 0 : int(params.integer("k"))),
+        memory_cap_bytes_(uint64_t(params.integer("auto_k_memory_mb")) << 20),
         depth_bits_(params.choice("depth_bits") == "24" ? 24 : 16),
         color_function_(bkb::color_transfer_from_name(params.choice("color_transfer"))),
         opacity_function_(bkb::opacity_transfer_from_name(params.choice("opacity_transfer"))),
@@ -40,17 +53,10 @@ class BucketedKBuffer final : public Technique {
         curvature_scale_(params.real("curvature_scale")) {
     const std::string& buckets = params.choice("buckets");
     mode_ = buckets == "on" ? BucketMode::on : buckets == "off" ? BucketMode::off : BucketMode::automatic;
-    fill_ = build_geometry_program("algorithms/bucketed_kbuffer/fill.frag", defines());
-    sort_ = build_fullscreen_program("algorithms/bucketed_kbuffer/sort.frag", defines());
-    bucket_ = build_fullscreen_program("algorithms/bucketed_kbuffer/bucket.frag", defines());
-    store_ = build_geometry_program("algorithms/bucketed_kbuffer/store.frag", store_defines());
-    compose_ = build_fullscreen_program("algorithms/bucketed_kbuffer/compose.frag", defines());
     counter_ = make_buffer(sizeof(GLuint));
+    if (auto_k_) count_pass_.emplace();
+    else programs_for(k_parameter_);  // compile errors surface at construction
     if (!identity_) {
-      ShaderDefines d = defines();
-      d.push_back({"COLOR_TRANSFER", color_function_ == bkb::ColorTransfer::identity ? "0" : "1"});
-      d.push_back({"OPACITY_TRANSFER", opacity_function_ == bkb::OpacityTransfer::identity ? "0" : "1"});
-      stylize_ = build_fullscreen_program("algorithms/bucketed_kbuffer/stylize.frag", d);
       if (color_function_ != bkb::ColorTransfer::identity) color_transfer_ = bkb::make_color_texture(color_function_);
       if (opacity_function_ != bkb::OpacityTransfer::identity)
         opacity_transfer_ = bkb::make_opacity_texture(opacity_function_);
@@ -61,12 +67,29 @@ class BucketedKBuffer final : public Technique {
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
-    const GLsizeiptr slots = GLsizeiptr(width) * height * k_;
+    no_attachments_ = make_framebuffer();
+    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
+    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+    if (auto_k_) {
+      count_pass_->resize(width, height);
+      k_cap_ = auto_k_cap();
+      // The slots are allocated by the first frame, once its count is known.
+      for (Buffer* b : {&z_, &buckets_, &colors_, &normals_, &features_, &links_, &expected_, &estimated_, &truth_})
+        *b = Buffer();
+      allocated_k_ = 0;
+    } else {
+      allocate_slots(k_parameter_);
+    }
+  }
+
+  // Per-slot arrays for k slots per pixel.
+  void allocate_slots(int k) {
+    const GLsizeiptr slots = GLsizeiptr(width_) * height_ * k;
     GLint64 max_block = 0;  // each per-slot array is one storage block
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
     if (max_block > 0 && slots * 4 > max_block)
-      throw std::runtime_error("bucketed_kbuffer: k=" + std::to_string(k_) + " at " + std::to_string(width) + "x" +
-                               std::to_string(height) + " needs " + std::to_string((slots * 4) >> 20) +
+      throw std::runtime_error("bucketed_kbuffer: k=" + std::to_string(k) + " at " + std::to_string(width_) + "x" +
+                               std::to_string(height_) + " needs " + std::to_string((slots * 4) >> 20) +
                                " MiB per slot array, above the device's largest storage block (" +
                                std::to_string(max_block >> 20) + " MiB); lower k or the size");
     z_ = make_buffer(slots * 4);
@@ -80,16 +103,37 @@ class BucketedKBuffer final : public Technique {
       estimated_ = make_buffer(slots * 4);
       truth_ = make_buffer(slots * 16);
     }
-    no_attachments_ = make_framebuffer();
-    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
-    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
     gl_check("bucketed_kbuffer: allocating " + std::to_string(slots) + " slots");
+    allocated_k_ = k;
   }
 
+  // k=auto: the most slots per pixel that fit both the memory cap and the
+  // device's largest storage block, at least 1 and at most the maximum.
+  int auto_k_cap() const {
+    const uint64_t pixels = std::max<uint64_t>(uint64_t(width_) * uint64_t(height_), 1);
+    uint64_t cap = memory_cap_bytes_ / (pixels * bytes_per_slot());
+    GLint64 max_block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    if (max_block > 0) cap = std::min(cap, uint64_t(max_block) / (pixels * (measure_ ? 16u : 4u)));
+    return int(std::clamp<uint64_t>(cap, 1, kMaxK));
+  }
+
+  // Z + B + colour + normal + features (+ links, expected, estimated, truth)
+  uint64_t bytes_per_slot() const { return measure_ ? 48 : 20; }
+
   void render(const Frame& frame) override {
+    int k = k_parameter_;
+    if (auto_k_) {
+      auto count = frame.clock.stage("count");
+      longest_list_ = count_pass_->longest_list(frame);
+      k = std::clamp(int(std::min<uint32_t>(longest_list_, kMaxK)), 1, k_cap_);
+    }
+    programs_ = &programs_for(k);
+    programs_k_ = k;
     prepare_frame(frame);
     {
       auto clear = frame.clock.stage("clear");
+      if (k != allocated_k_) allocate_slots(k);  // k=auto: storage follows the view
       const GLuint empty = 0xffffffffu, zero = 0u;
       glClearNamedBufferData(z_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
       glClearNamedBufferData(counter_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -97,10 +141,10 @@ class BucketedKBuffer final : public Technique {
     bind_storage();
     glBindFramebuffer(GL_FRAMEBUFFER, no_attachments_.id());
     glViewport(0, 0, width_, height_);
-    geometry_pass(frame, "fill", fill_);
-    fullscreen_pass(frame, "sort", sort_.id());
-    fullscreen_pass(frame, "bucket", bucket_.id());
-    geometry_pass(frame, "store", store_);
+    geometry_pass(frame, "fill", programs_->fill);
+    fullscreen_pass(frame, "sort", programs_->sort.id());
+    fullscreen_pass(frame, "bucket", programs_->bucket.id());
+    geometry_pass(frame, "store", programs_->store);
     fullscreen_pass(frame, "neighbors", neighbors_program());
     {
       // Both identity: colour and alpha stay as stored; the stage does no work.
@@ -108,23 +152,24 @@ class BucketedKBuffer final : public Technique {
       if (!identity_) {
         if (color_transfer_) glBindTextureUnit(0, color_transfer_.id());
         if (opacity_transfer_) glBindTextureUnit(1, opacity_transfer_.id());
-        run_fullscreen(frame, stylize_.id());
+        run_fullscreen(frame, programs_->stylize.id());
       }
     }
     auto compose = frame.clock.stage("compose");
     frame.bind_target();
-    run_fullscreen(frame, compose_.id());
+    run_fullscreen(frame, programs_->compose.id());
   }
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
-    c.passes = 2;
-    const size_t slots = size_t(width_) * size_t(height_) * size_t(k_);
-    // Z + B + colour + normal + features (+ links, expected, estimated, truth)
-    const uint64_t bytes_per_slot = measure_ ? 48 : 20;
-    c.bytes_allocated = slots * bytes_per_slot + sizeof(GLuint) +
-                        (color_transfer_ ? sizeof(float) * 4 * bkb::kColorTransferSize : 0) +
-                        (opacity_transfer_ ? sizeof(float) * bkb::kOpacityTransferSize * bkb::kOpacityTransferSize : 0);
+    c.passes = auto_k_ ? 3 : 2;
+    const size_t k = size_t(allocated_k_), slots = size_t(width_) * size_t(height_) * k;
+    c.bytes_allocated = bytes_for(allocated_k_) + (auto_k_ ? count_pass_->bytes_allocated() : 0);
+    if (auto_k_) {
+      // Against the worst-case constant k = 64 (the parameter's maximum).
+      c.work_saved = {{"bytes_not_allocated", double(bytes_for(kMaxK)) - double(c.bytes_allocated)},
+                      {"slots_not_cleared", double(size_t(width_) * size_t(height_) * size_t(kMaxK - allocated_k_))}};
+    }
     if (slots == 0) return c;
     bkb::SlotReadback r;
     r.keys = read_uints(z_, slots);
@@ -133,10 +178,10 @@ class BucketedKBuffer final : public Technique {
     if (measure_) r.links = read_uints(links_, slots);
     GLuint dropped = 0;
     glGetNamedBufferSubData(counter_.id(), 0, sizeof dropped, &dropped);
-    const bkb::SlotStatistics s = bkb::slot_statistics(r, k_, depth_bits_ == 24 ? 8 : 16);
+    const bkb::SlotStatistics s = bkb::slot_statistics(r, int(k), depth_bits_ == 24 ? 8 : 16);
     c.fragments_stored = s.stored;
     c.fragments_dropped = dropped + s.store_misses;
-    c.extra = {{"bits_per_fragment", double(bytes_per_slot * 8)},
+    c.extra = {{"bits_per_fragment", double(bytes_per_slot() * 8)},
                {"buckets_used", buckets_used_ ? 1.0 : 0.0},
                // 1 bucket per pixel (a single object): a bucket is the whole
                // list and buckets=on can only add the hash look-up's cost.
@@ -148,10 +193,18 @@ class BucketedKBuffer final : public Technique {
                {"depth_near", depth_near_},
                {"depth_far", depth_far_},
                {"depth_step", (depth_far_ - depth_near_) / double((1u << depth_bits_) - 2u)}};
+    c.extra.push_back({"k_used", double(allocated_k_)});
+    if (auto_k_) {
+      // k_capped = 1: the view needed more slots than the cap allows, so the
+      // fragments beyond k_used were dropped (and counted) as with a fixed k.
+      c.extra.push_back({"longest_list", double(longest_list_)});
+      c.extra.push_back({"k_cap", double(k_cap_)});
+      c.extra.push_back({"k_capped", longest_list_ > uint32_t(k_cap_) ? 1.0 : 0.0});
+    }
     if (measure_) {
       c.extra.push_back({"link_checksum", double(s.link_checksum)});
       r.truth = read_uints(truth_, slots * 4);
-      const bkb::LinkAccuracy links = bkb::link_accuracy(r, width_, height_, k_, bkb::kLinkFootprints);
+      const bkb::LinkAccuracy links = bkb::link_accuracy(r, width_, height_, int(k), bkb::kLinkFootprints);
       c.extra.push_back({"neighbor_precision", links.precision});
       c.extra.push_back({"neighbor_recall", links.recall});
       c.extra.push_back({"neighbor_correct_links", double(links.correct_links)});
@@ -173,7 +226,7 @@ class BucketedKBuffer final : public Technique {
   // Per pixel, the front (nearest kept and stored) fragment's kappa and
   // found-neighbour count, from the Z, normal and feature buffers.
   std::vector<DiagnosticImage> diagnostic_images() const override {
-    const size_t pixels = size_t(width_) * size_t(height_), k = size_t(k_);
+    const size_t pixels = size_t(width_) * size_t(height_), k = size_t(allocated_k_);
     if (pixels == 0) return {};
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     const std::vector<uint32_t> keys = read_uints(z_, pixels * k), normals = read_uints(normals_, pixels * k),
@@ -202,16 +255,43 @@ class BucketedKBuffer final : public Technique {
 
  private:
   // Only the defines a shader uses, so that variants share Mesa's shader cache.
-  ShaderDefines defines() const { return {{"K", std::to_string(k_)}, {"DEPTH_BITS", std::to_string(depth_bits_)}}; }
-  ShaderDefines store_defines() const {
-    ShaderDefines d = defines();
+  ShaderDefines defines(int k) const { return {{"K", std::to_string(k)}, {"DEPTH_BITS", std::to_string(depth_bits_)}}; }
+  ShaderDefines store_defines(int k) const {
+    ShaderDefines d = defines(k);
     d.push_back({"MEASURE_ACCURACY", measure_ ? "1" : "0"});
     return d;
   }
-  ShaderDefines neighbors_defines(bool bucketed) const {
-    ShaderDefines d = store_defines();
+  ShaderDefines neighbors_defines(int k, bool bucketed) const {
+    ShaderDefines d = store_defines(k);
     d.push_back({"BUCKETED", bucketed ? "1" : "0"});
     return d;
+  }
+
+  // The programs for k slots per pixel; the neighbour programs are built by
+  // neighbors_program() when a frame needs them.
+  KPrograms& programs_for(int k) {
+    auto it = programs_by_k_.find(k);
+    if (it != programs_by_k_.end()) return it->second;
+    KPrograms p;
+    p.fill = build_geometry_program("algorithms/bucketed_kbuffer/fill.frag", defines(k));
+    p.sort = build_fullscreen_program("algorithms/bucketed_kbuffer/sort.frag", defines(k));
+    p.bucket = build_fullscreen_program("algorithms/bucketed_kbuffer/bucket.frag", defines(k));
+    p.store = build_geometry_program("algorithms/bucketed_kbuffer/store.frag", store_defines(k));
+    p.compose = build_fullscreen_program("algorithms/bucketed_kbuffer/compose.frag", defines(k));
+    if (!identity_) {
+      ShaderDefines d = defines(k);
+      d.push_back({"COLOR_TRANSFER", color_function_ == bkb::ColorTransfer::identity ? "0" : "1"});
+      d.push_back({"OPACITY_TRANSFER", opacity_function_ == bkb::OpacityTransfer::identity ? "0" : "1"});
+      p.stylize = build_fullscreen_program("algorithms/bucketed_kbuffer/stylize.frag", d);
+    }
+    return programs_by_k_.emplace(k, std::move(p)).first->second;
+  }
+
+  // Slot arrays, counter and transfer textures for k slots per pixel.
+  uint64_t bytes_for(int k) const {
+    return uint64_t(width_) * uint64_t(height_) * uint64_t(k) * bytes_per_slot() + sizeof(GLuint) +
+           (color_transfer_ ? sizeof(float) * 4 * bkb::kColorTransferSize : 0) +
+           (opacity_transfer_ ? sizeof(float) * bkb::kOpacityTransferSize * bkb::kOpacityTransferSize : 0);
   }
 
   // Per frame: the depth quantisation range, the bucket decision and the
@@ -232,8 +312,9 @@ class BucketedKBuffer final : public Technique {
     depth_near_ = std::max(centre - radius, 0.0f);
     depth_far_ = std::max(centre + radius, depth_near_ + 1e-6f * std::max(1.0f, depth_near_));
     const glm::mat4 inverse_projection = glm::inverse(frame.projection);
-    for (GLuint program : {fill_.id(), sort_.id(), bucket_.id(), store_.id(), neighbors_program(), stylize_.id(),
-                           compose_.id()}) {
+    const KPrograms& p = *programs_;
+    for (GLuint program : {p.fill.id(), p.sort.id(), p.bucket.id(), p.store.id(), neighbors_program(), p.stylize.id(),
+                           p.compose.id()}) {
       if (program == 0) continue;
       frame.set_shared_uniforms(program);
       if (active(program, "u_width")) glProgramUniform1i(program, kUniform + 0, width_);
@@ -251,10 +332,10 @@ class BucketedKBuffer final : public Technique {
   }
 
   GLuint neighbors_program() {
-    Program& program = buckets_used_ ? neighbors_bucketed_ : neighbors_brute_force_;
+    Program& program = buckets_used_ ? programs_->neighbors_bucketed : programs_->neighbors_brute_force;
     if (!program) {
       program = build_fullscreen_program("algorithms/bucketed_kbuffer/neighbors.frag",
-                                         neighbors_defines(buckets_used_));
+                                         neighbors_defines(programs_k_, buckets_used_));
     }
     return program.id();
   }
@@ -295,13 +376,21 @@ class BucketedKBuffer final : public Technique {
     return values;
   }
 
-  int k_, depth_bits_;
+  bool auto_k_;
+  int k_parameter_;  // 0 with k=auto
+  uint64_t memory_cap_bytes_;
+  int depth_bits_;
   bkb::ColorTransfer color_function_;
   bkb::OpacityTransfer opacity_function_;
   bool identity_, measure_;
   double curvature_scale_;
   BucketMode mode_ = BucketMode::automatic;
-  Program fill_, sort_, bucket_, store_, neighbors_bucketed_, neighbors_brute_force_, stylize_, compose_;
+  std::map<int, KPrograms> programs_by_k_;
+  KPrograms* programs_ = nullptr;  // this frame's
+  int programs_k_ = 0;
+  std::optional<ListLengthPass> count_pass_;  // k=auto only
+  int allocated_k_ = 0, k_cap_ = kMaxK;
+  uint32_t longest_list_ = 0;
   Buffer z_, buckets_, colors_, normals_, features_, counter_, links_, expected_, estimated_, truth_;
   Texture color_transfer_, opacity_transfer_;
   Framebuffer no_attachments_;

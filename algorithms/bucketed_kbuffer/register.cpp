@@ -13,7 +13,9 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
   d.display_name = "Bucketed k-buffer (mean curvature transparency)";
   d.paper = "Murray, Baril, Granier 2016, Shape depiction for transparent objects with bucketed k-buffer";
   d.params = {
-      ParamSpec::integer("k", 16, 1, 64, "slots per pixel: the k nearest fragments are kept"),
+      ParamSpec::integer_or_auto("k", "16", 1, 64,
+                                 "slots per pixel: the k nearest fragments are kept; auto = the view's depth "
+                                 "complexity, counted every frame (capped by auto_k_memory_mb)"),
       ParamSpec::choice("buckets", "auto", {"auto", "on", "off"},
                         "neighbour query in one bucket (on), over all fragments (off, brute force), "
                         "or on unless the scene has a single object (auto)"),
@@ -29,12 +31,18 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
                       "kappa = tanh(curvature_scale * (k1 + k2)), curvatures in 1 / scene units"),
       ParamSpec::boolean("measure_accuracy", false,
                          "keep links, curvatures and surface id/uv for counters(): link checksum, link "
-                         "precision/recall, kappa error on analytic scenes")};
-  d.stages = {"clear", "fill", "sort", "bucket", "store", "neighbors", "stylize", "compose"};
+                         "precision/recall, kappa error on analytic scenes"),
+      ParamSpec::integer("auto_k_memory_mb", 1024, 1, 1 << 20,
+                         "k=auto only: most MiB of slot storage (20 bytes per slot, 48 with measure_accuracy); "
+                         "k is capped to fit")};
+  d.stages = {"count", "clear", "fill", "sort", "bucket", "store", "neighbors", "stylize", "compose"};
   d.exactness = Exactness::approximate;
   d.quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32", "64"}}};
   d.adaptive_switches = {{"buckets_auto", "runs the brute-force neighbour search when the scene has one object, where buckets cannot help",
-                          {{"buckets", "auto"}}, {{"buckets", "on"}}}};
+                          {{"buckets", "auto"}}, {{"buckets", "on"}}},
+                         {"k_auto", "sizes k from the view's depth complexity (a counting pass) instead of the "
+                                    "worst-case constant 64",
+                          {{"k", "auto"}}, {{"k", "64"}}}};
   d.extra_support_check = [](const ParamSet& params, const SceneFacts& scene) -> std::string {
     const bool wide = params.choice("depth_bits") == "24";
     const uint32_t limit = wide ? 256u : 65536u;
