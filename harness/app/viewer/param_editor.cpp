@@ -43,12 +43,31 @@ bool edit_one(const ParamSpec& spec, RawParams& values) {
   const std::string& text = current_text(spec, values);
   switch (spec.type) {
     case ParamType::integer: {
-      int64_t v = parse_integer(text, spec.default_value);
+      // A number the slider can show: the default, or the range's low end
+      // when the default is "auto".
+      const std::string number =
+          spec.default_value == "auto" ? std::to_string(int64_t(spec.min)) : spec.default_value;
+      bool is_auto = spec.accepts_auto && text == "auto";
+      bool changed = false;
+      if (spec.accepts_auto) {
+        // Checked: the value is "auto" (the slider greys out); unchecked:
+        // back to a number.
+        if (ImGui::Checkbox(("auto##" + spec.name).c_str(), &is_auto)) {
+          store(spec, is_auto ? "auto" : number, values);
+          changed = true;
+        }
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s = auto: %s", spec.name.c_str(), spec.description.c_str());
+        ImGui::SameLine();
+      }
+      int64_t v = parse_integer(is_auto ? number : text, number);
       const int64_t lo = int64_t(spec.min), hi = int64_t(spec.max);
-      if (!ImGui::SliderScalar(spec.name.c_str(), ImGuiDataType_S64, &v, &lo, &hi, "%lld", slider_flags(spec)))
-        return false;
-      store(spec, std::to_string(v), values);
-      return true;
+      ImGui::BeginDisabled(is_auto);
+      if (ImGui::SliderScalar(spec.name.c_str(), ImGuiDataType_S64, &v, &lo, &hi, "%lld", slider_flags(spec))) {
+        store(spec, std::to_string(v), values);
+        changed = true;
+      }
+      ImGui::EndDisabled();
+      return changed;
     }
     case ParamType::real: {
       double v = parse_real(text, spec.default_value);
