@@ -1,6 +1,10 @@
 // Parameter schemas: defaults, parsing, ranges and the error messages users see.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include "core/params.h"
@@ -104,6 +108,48 @@ TEST(Params, IntegerOrAutoAcceptsAutoAndNumbersInRange) {
   }
   // A plain integer parameter still refuses "auto".
   EXPECT_THROW(ParamSet(kSchema, {{"k", "auto"}}, "t"), std::invalid_argument);
+}
+
+TEST(Params, PathIsEmptyOrAReadableFileWithoutSeparators) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("oit_params_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string file = (dir / "table.txt").string();
+  std::ofstream(file) << "1\n";
+  const ParamSchema schema = {ParamSpec::path("table", "", "a table")};
+  const ParamSet unset(schema, {}, "t");
+  EXPECT_EQ(unset.path("table"), "");
+  EXPECT_EQ(unset.canonical(), "table=");
+  const ParamSet set(schema, {{"table", file}}, "t");
+  EXPECT_EQ(set.path("table"), file);
+  EXPECT_EQ(set.canonical(), "table=" + file);
+  // The canonical text reads back through the same assignment parser.
+  RawParams again;
+  parse_assignment(set.canonical(), again);
+  EXPECT_EQ(ParamSet(schema, again, "t").path("table"), file);
+
+  auto message = [&](const std::string& path) {
+    try {
+      ParamSet bad(schema, {{"table", path}}, "technique 'x'");
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string missing = (dir / "missing.txt").string();
+  for (const auto& [path, why] : {std::pair{missing, "does not exist"},
+                                  std::pair{std::string("missing.txt"), "relative to"},
+                                  std::pair{dir.string(), "is a directory"},
+                                  std::pair{(dir / "a b.txt").string(), "whitespace"},
+                                  std::pair{(dir / "a,b.txt").string(), "','"},
+                                  std::pair{(dir / "a=b.txt").string(), "'='"}}) {
+    const std::string text = message(path);
+    EXPECT_NE(text.find("'table'"), std::string::npos) << text;
+    EXPECT_NE(text.find(path), std::string::npos) << text;
+    EXPECT_NE(text.find(why), std::string::npos) << text;
+  }
+  fs::remove_all(dir);
+  EXPECT_NE(schema[0].range_text().find("path"), std::string::npos);
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -48,6 +50,24 @@ ParamValue parse_value(const ParamSpec& spec, const std::string& text, const std
       for (const auto& choice : spec.choices)
         if (choice == text) return text;
       throw fail("is not a valid choice");
+    case ParamType::path: {
+      if (text.empty()) return text;
+      for (char c : text)
+        if (static_cast<unsigned char>(c) <= ' ' || c == ',' || c == '=' || c == 0x7f)
+          throw fail("contains whitespace, a control character, ',' or '=' (they separate parameters and list "
+                     "values in canonical text and --set); rename the file or link it under a plain name");
+      std::error_code ec;
+      const auto status = std::filesystem::status(text, ec);
+      if (!std::filesystem::exists(status)) {
+        const std::filesystem::path given(text);
+        throw fail(given.is_relative() ? "does not exist (relative to " +
+                                             std::filesystem::current_path(ec).string() + ")"
+                                       : "does not exist");
+      }
+      if (std::filesystem::is_directory(status)) throw fail("is a directory, not a file");
+      if (!std::ifstream(text, std::ios::binary)) throw fail("cannot be opened for reading");
+      return text;
+    }
   }
   throw fail("has an unknown type");
 }
@@ -78,6 +98,10 @@ ParamSpec ParamSpec::choice(std::string name, std::string default_value, std::ve
           std::move(description)};
 }
 
+ParamSpec ParamSpec::path(std::string name, std::string default_value, std::string description) {
+  return {std::move(name), ParamType::path, std::move(default_value), 0, 0, {}, std::move(description)};
+}
+
 std::string ParamSpec::range_text() const {
   switch (type) {
     case ParamType::integer:
@@ -90,6 +114,7 @@ std::string ParamSpec::range_text() const {
       for (size_t i = 0; i < choices.size(); ++i) text += (i ? ", " : "") + choices[i];
       return text + "}";
     }
+    case ParamType::path: return "path of a readable file without spaces, ',' or '=' (empty: none)";
   }
   return "";
 }
@@ -130,6 +155,7 @@ bool ParamSet::is_auto(const std::string& name) const {
 double ParamSet::real(const std::string& name) const { return std::get<double>(find(name)); }
 bool ParamSet::boolean(const std::string& name) const { return std::get<bool>(find(name)); }
 const std::string& ParamSet::choice(const std::string& name) const { return std::get<std::string>(find(name)); }
+const std::string& ParamSet::path(const std::string& name) const { return std::get<std::string>(find(name)); }
 
 std::string to_string(const ParamValue& value) {
   return std::visit(

@@ -10,7 +10,7 @@
 
 namespace oit {
 
-enum class ParamType { integer, real, boolean, choice };
+enum class ParamType { integer, real, boolean, choice, path };
 
 struct ParamSpec {
   std::string name;
@@ -19,6 +19,12 @@ struct ParamSpec {
   double min = 0.0;                  // inclusive range for integer/real
   double max = 0.0;
   std::vector<std::string> choices;  // for choice
+  // path: a file the owner reads. Empty means "no file"; otherwise it must
+  // exist and be readable when the ParamSet is built. Paths with whitespace,
+  // control characters, ',' or '=' are refused rather than escaped: canonical
+  // text separates parameters by spaces and keys from values by '=', and
+  // `bench --set key=v1,v2` splits lists at ','; a refused name can be
+  // linked or renamed, whereas escaping would leak into every CSV reader.
   std::string description;
   // Integer parameters only: the value may also be "auto", which the owner
   // resolves itself (e.g. k from the view's depth complexity).
@@ -31,7 +37,8 @@ struct ParamSpec {
   static ParamSpec boolean(std::string name, bool default_value, std::string description);
   static ParamSpec choice(std::string name, std::string default_value, std::vector<std::string> choices,
                           std::string description);
-  std::string range_text() const;    // "[1, 64]", "{drop, blend}", "{true, false}"
+  static ParamSpec path(std::string name, std::string default_value, std::string description);
+  std::string range_text() const;    // "[1, 64]", "{drop, blend}", "{true, false}", "path ..."
 };
 
 using ParamSchema = std::vector<ParamSpec>;
@@ -51,6 +58,9 @@ class ParamSet {
   double real(const std::string& name) const;
   bool boolean(const std::string& name) const;
   const std::string& choice(const std::string& name) const;
+  // A path parameter as given ("" when unset); it existed and was readable
+  // when this set was built.
+  const std::string& path(const std::string& name) const;
   // "k=16 tail=drop" in schema order: the canonical text for CSV and cache keys.
   std::string canonical() const;
   const std::vector<std::pair<std::string, ParamValue>>& values() const { return values_; }

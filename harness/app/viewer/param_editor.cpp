@@ -1,6 +1,7 @@
 #include "app/viewer/param_editor.h"
 
 #include <imgui.h>
+#include <imgui_stdlib.h>
 
 #include <cstdint>
 #include <cstdio>
@@ -96,6 +97,14 @@ bool edit_one(const ParamSpec& spec, RawParams& values) {
       }
       return changed;
     }
+    case ParamType::path: {
+      // Applied on Enter, not per keystroke: a half-typed path does not
+      // exist, and every change rebuilds the technique.
+      std::string edited = text;
+      if (!ImGui::InputText(spec.name.c_str(), &edited, ImGuiInputTextFlags_EnterReturnsTrue)) return false;
+      store(spec, edited, values);
+      return true;
+    }
   }
   return false;
 }
@@ -117,8 +126,9 @@ bool edit_params(const std::string& scope, const ParamSchema& schema, RawParams&
   for (const auto& spec : schema) {
     changed |= edit_one(spec, values);
     if (ImGui::IsItemHovered()) {
-      ImGui::SetTooltip("%s\nrange %s, default %s\nCtrl+click a slider to type a value", spec.description.c_str(),
-                        spec.range_text().c_str(), spec.default_value.c_str());
+      ImGui::SetTooltip("%s\nrange %s, default %s\n%s", spec.description.c_str(), spec.range_text().c_str(),
+                        spec.default_value.empty() ? "(none)" : spec.default_value.c_str(),
+                        spec.type == ParamType::path ? "press Enter to apply" : "Ctrl+click a slider to type a value");
     }
   }
   ImGui::PopID();

@@ -2,7 +2,8 @@
 // Dear ImGui widgets generated from a parameter schema (core/params.h):
 // integer and real parameters get sliders over their range (integers that
 // accept "auto" also an "auto" checkbox beside it), booleans a checkbox,
-// choices a combo box. Nothing here knows any technique or scene.
+// choices a combo box, paths a text field applied on Enter. Nothing here
+// knows any technique or scene.
 #include <string>
 
 #include "core/params.h"
