@@ -45,10 +45,10 @@ class BucketedKBuffer final : public Technique {
         k_parameter_(auto_k_ ? 0 : int(params.integer("k"))),
         memory_cap_bytes_(uint64_t(params.integer("auto_k_memory_mb")) << 20),
         depth_bits_(params.choice("depth_bits") == "24" ? 24 : 16),
-        color_function_(bkb::color_transfer_from_name(params.choice("color_transfer"))),
-        opacity_function_(bkb::opacity_transfer_from_name(params.choice("opacity_transfer"))),
-        identity_(color_function_ == bkb::ColorTransfer::identity &&
-                  opacity_function_ == bkb::OpacityTransfer::identity),
+        color_texels_(bkb::color_transfer_texels(params.choice("color_transfer"), params.path("color_transfer_file"))),
+        opacity_texels_(
+            bkb::opacity_transfer_texels(params.choice("opacity_transfer"), params.path("opacity_transfer_file"))),
+        identity_(color_texels_.empty() && opacity_texels_.empty()),
         measure_(params.boolean("measure_accuracy")),
         curvature_scale_(params.real("curvature_scale")) {
     const std::string& buckets = params.choice("buckets");
@@ -57,9 +57,8 @@ class BucketedKBuffer final : public Technique {
     if (auto_k_) count_pass_.emplace();
     else programs_for(k_parameter_);  // compile errors surface at construction
     if (!identity_) {
-      if (color_function_ != bkb::ColorTransfer::identity) color_transfer_ = bkb::make_color_texture(color_function_);
-      if (opacity_function_ != bkb::OpacityTransfer::identity)
-        opacity_transfer_ = bkb::make_opacity_texture(opacity_function_);
+      if (!color_texels_.empty()) color_transfer_ = bkb::make_color_texture(color_texels_);
+      if (!opacity_texels_.empty()) opacity_transfer_ = bkb::make_opacity_texture(opacity_texels_);
     }
     gl_check("bucketed_kbuffer: creating programs and transfer functions");
   }
@@ -280,8 +279,8 @@ class BucketedKBuffer final : public Technique {
     p.compose = build_fullscreen_program("algorithms/bucketed_kbuffer/compose.frag", defines(k));
     if (!identity_) {
       ShaderDefines d = defines(k);
-      d.push_back({"COLOR_TRANSFER", color_function_ == bkb::ColorTransfer::identity ? "0" : "1"});
-      d.push_back({"OPACITY_TRANSFER", opacity_function_ == bkb::OpacityTransfer::identity ? "0" : "1"});
+      d.push_back({"COLOR_TRANSFER", color_texels_.empty() ? "0" : "1"});
+      d.push_back({"OPACITY_TRANSFER", opacity_texels_.empty() ? "0" : "1"});
       p.stylize = build_fullscreen_program("algorithms/bucketed_kbuffer/stylize.frag", d);
     }
     return programs_by_k_.emplace(k, std::move(p)).first->second;
@@ -380,8 +379,7 @@ class BucketedKBuffer final : public Technique {
   int k_parameter_;  // 0 with k=auto
   uint64_t memory_cap_bytes_;
   int depth_bits_;
-  bkb::ColorTransfer color_function_;
-  bkb::OpacityTransfer opacity_function_;
+  std::vector<float> color_texels_, opacity_texels_;  // empty: identity (built-in choice, no file)
   bool identity_, measure_;
   double curvature_scale_;
   BucketMode mode_ = BucketMode::automatic;

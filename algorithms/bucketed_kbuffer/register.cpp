@@ -25,6 +25,12 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
       ParamSpec::choice("opacity_transfer", "front_focus", {"front_focus", "depth_range", "identity"},
                         "2D opacity transfer function of |kappa| and depth: murray2016 Figure 7/8(a), 7/8(b), "
                         "or alpha unchanged"),
+      ParamSpec::path("color_transfer_file", "",
+                      "colour transfer function from a file, overriding color_transfer: text (m, r g b, kappa m "
+                      "or kappa r g b per line) or PNG (first row, kappa -1 .. 1); see the technique README"),
+      ParamSpec::path("opacity_transfer_file", "",
+                      "opacity transfer function from a file, overriding opacity_transfer: text grid or PNG, "
+                      "rows = depth (first/top = near), columns = |kappa| (first/left = 0); see the technique README"),
       ParamSpec::choice("depth_bits", "16", {"16", "24"},
                         "depth bits of the 32-bit key; the shape id gets the rest (24: at most 256 objects)"),
       ParamSpec::real("curvature_scale", 1.0, 1e-3, 1e3,

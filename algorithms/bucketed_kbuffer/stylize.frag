@@ -2,9 +2,10 @@
 // Stylization (murray2016 5.2): the shaded colour is multiplied by a 1D
 // transfer function indexed by kappa in [-1, 1]; the opacity is replaced by
 // a 2D transfer function indexed by |kappa| and the normalised depth. Both
-// are textures (built by transfer_functions.cpp) sampled at texel centres
-// so that the end points of each axis are exact. COLOR_TRANSFER = 0 or
-// OPACITY_TRANSFER = 0 (the identity choices) leave that part unchanged;
+// are textures (built-in shapes from transfer_functions.cpp, or files read
+// by transfer_files.cpp) sampled at texel centres so that the end points of
+// each axis are exact. COLOR_TRANSFER = 0 or OPACITY_TRANSFER = 0 (the
+// identity choices, no file) leave that part unchanged;
 // with both 0 the pass does not run at all.
 #include "algorithms/bucketed_kbuffer/bkb_common.glsl"
 

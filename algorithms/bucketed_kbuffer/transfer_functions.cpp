@@ -89,20 +89,36 @@ std::vector<float> opacity_texels(OpacityTransfer function) {
   return texels;
 }
 
-Texture make_color_texture(ColorTransfer function) {
+std::vector<float> color_transfer_texels(const std::string& choice, const std::string& file) {
+  if (!file.empty()) return load_color_transfer_file(file);
+  const ColorTransfer function = color_transfer_from_name(choice);
+  return function == ColorTransfer::identity ? std::vector<float>{} : color_texels(function);
+}
+
+std::vector<float> opacity_transfer_texels(const std::string& choice, const std::string& file) {
+  if (!file.empty()) return load_opacity_transfer_file(file);
+  const OpacityTransfer function = opacity_transfer_from_name(choice);
+  return function == OpacityTransfer::identity ? std::vector<float>{} : opacity_texels(function);
+}
+
+Texture make_color_texture(const std::vector<float>& texels) {
+  if (texels.size() != size_t(kColorTransferSize) * 4)
+    throw std::logic_error("bucketed_kbuffer: colour transfer texels of the wrong size");
   GLuint id = 0;
   glCreateTextures(GL_TEXTURE_1D, 1, &id);
   Texture texture(id);
   glTextureStorage1D(id, 1, GL_RGBA32F, kColorTransferSize);
-  glTextureSubImage1D(id, 0, 0, kColorTransferSize, GL_RGBA, GL_FLOAT, color_texels(function).data());
+  glTextureSubImage1D(id, 0, 0, kColorTransferSize, GL_RGBA, GL_FLOAT, texels.data());
   use_linear_clamped_filtering(id);
   return texture;
 }
 
-Texture make_opacity_texture(OpacityTransfer function) {
+Texture make_opacity_texture(const std::vector<float>& texels) {
+  if (texels.size() != size_t(kOpacityTransferSize) * kOpacityTransferSize)
+    throw std::logic_error("bucketed_kbuffer: opacity transfer texels of the wrong size");
   Texture texture = make_texture_2d(GL_R32F, kOpacityTransferSize, kOpacityTransferSize);
   glTextureSubImage2D(texture.id(), 0, 0, 0, kOpacityTransferSize, kOpacityTransferSize, GL_RED, GL_FLOAT,
-                      opacity_texels(function).data());
+                      texels.data());
   use_linear_clamped_filtering(texture.id());
   return texture;
 }

@@ -8,11 +8,9 @@
 #include <vector>
 
 #include "gl/handles.h"
+#include "transfer_files.h"  // kColorTransferSize, kOpacityTransferSize
 
 namespace oit::bkb {
-
-constexpr int kColorTransferSize = 256;   // texels of the 1D colour function over kappa in [-1, 1]
-constexpr int kOpacityTransferSize = 64;  // texels per axis of the 2D opacity function
 
 enum class ColorTransfer {
   identity,                // the shaded colour unchanged
@@ -40,8 +38,16 @@ float opacity(OpacityTransfer function, float abs_kappa, float depth);
 std::vector<float> color_texels(ColorTransfer function);
 std::vector<float> opacity_texels(OpacityTransfer function);
 
-// The textures the stylize pass samples (linear filtering, clamped).
-Texture make_color_texture(ColorTransfer function);      // GL_TEXTURE_1D, RGBA32F
-Texture make_opacity_texture(OpacityTransfer function);  // GL_TEXTURE_2D, R32F
+// The texels for the parameters: those of the file when one is named (it
+// overrides the choice; transfer_files.h), else of the built-in the choice
+// names; empty for the identity choice without a file (no texture: the
+// stylize pass leaves that part alone).
+std::vector<float> color_transfer_texels(const std::string& choice, const std::string& file);
+std::vector<float> opacity_transfer_texels(const std::string& choice, const std::string& file);
+
+// The textures the stylize pass samples (linear filtering, clamped), from
+// texels laid out as color_texels() / opacity_texels().
+Texture make_color_texture(const std::vector<float>& texels);    // GL_TEXTURE_1D, RGBA32F
+Texture make_opacity_texture(const std::vector<float>& texels);  // GL_TEXTURE_2D, R32F
 
 }  // namespace oit::bkb

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang into BUILD_DIR and runs each loader
+# (and bucketed_kbuffer's transfer-function text parser, transfer_text)
 # for SECONDS seconds from a copy of the seed corpus (libFuzzer adds the
 # inputs it finds to its corpus directory; the committed seeds stay as they
 # are). Exit code non-zero on any finding; the crashing input is left in
@@ -15,7 +16,7 @@ cmake -S "$here" -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD
 ninja -C "$build" >/dev/null
 rm -rf "$build/findings"
 mkdir -p "$build/findings"
-for format in obj off ply stl gltf glb; do
+for format in obj off ply stl gltf glb transfer_text; do
   corpus="$build/corpus/$format"
   rm -rf "$corpus"
   mkdir -p "$corpus"
