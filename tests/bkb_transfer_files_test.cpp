@@ -22,13 +22,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// One directory per test process, removed when the process ends.
 const fs::path& scratch() {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("oit_bkb_transfer_" + std::to_string(getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
+  struct Directory {
+    fs::path path = fs::temp_directory_path() / ("oit_bkb_transfer_" + std::to_string(getpid()));
+    Directory() { fs::create_directories(path); }
+    ~Directory() {
+      std::error_code ignored;
+      fs::remove_all(path, ignored);
+    }
+  };
+  static const Directory dir;
+  return dir.path;
 }
 
 std::string write_text(const std::string& name, const std::string& text) {
