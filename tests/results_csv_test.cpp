@@ -63,10 +63,14 @@ TEST(ResultsCsv, OneRowPerStageAndClockWithPerRunColumnsRepeated) {
     EXPECT_EQ(row[column("work_saved")], "passes_avoided=30");
     EXPECT_EQ(row[column("camera")], "random:4:7@2");
     EXPECT_EQ(row[column("psi")], "0.25");
+    EXPECT_EQ(row[column("scene_rect")], "on");
   }
   EXPECT_EQ(rows[0][column("clock")], "gl");
   EXPECT_EQ(rows[5][column("clock")], "wall");
   EXPECT_EQ(rows[5][column("stage")], "total");
+  RunResult full_screen = finished_run();
+  full_screen.spec.scene_rect = false;
+  EXPECT_EQ(csv_rows(full_screen, context())[0][column("scene_rect")], "off");
 }
 
 TEST(ResultsCsv, SkippedAndFailedRunsAreOneRowWithTheReason) {

@@ -69,6 +69,16 @@ TEST(ViewerSweepLine, QuotesWhatTheShellWouldSplit) {
             "--size 64x32 --camera random:4:7@2 --background 0,0,0 --csv out.csv");
 }
 
+TEST(ViewerSweepLine, SceneRectangleOffIsOnTheLine) {
+  ViewConfig c;
+  c.technique = "unsorted";
+  c.scene = "quads";
+  c.width = c.height = 8;
+  EXPECT_EQ(bench_command_line(c, "o.csv").find("--scene-rect"), std::string::npos);  // on is the default
+  c.scene_rect = false;
+  EXPECT_NE(bench_command_line(c, "o.csv").find(" --scene-rect off "), std::string::npos);
+}
+
 TEST(ViewerSweepLine, RealParametersReadBackExactly) {
   for (double v : {0.1, 1.0 / 3.0, 2.5e-7, 100.0}) EXPECT_EQ(std::strtod(real_text(v).c_str(), nullptr), v);
 }

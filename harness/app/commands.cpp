@@ -38,28 +38,36 @@ double median_total(const RunResult& r) {
 // same machine: the only speed comparison worth quoting).
 void print_summary(const std::vector<RunResult>& results, const std::string& baseline) {
   std::printf("\n%-18s %-46s %-8s %10s %10s %7s %10s %9s  %s\n", "technique", "params", "status", "total ms",
-              ("x " + baseline).c_str(), "passes", "max error", "dropped", "scene");
+              ("x " + baseline).c_str(), "passes", "max error", "dropped", "scene | work saved");
   for (const auto& r : results) {
     double base = 0.0;
     for (const auto& b : results)
       if (b.spec.technique == baseline && b.status == RunStatus::ok && b.spec.scene == r.spec.scene &&
           b.scene_params == r.scene_params && b.spec.camera == r.spec.camera && b.spec.width == r.spec.width &&
-          b.spec.height == r.spec.height)
+          b.spec.height == r.spec.height && b.spec.scene_rect == r.spec.scene_rect)
         base = median_total(b);
     const bool ok = r.status == RunStatus::ok;
     char ratio[32] = "";
     if (ok && base > 0.0) std::snprintf(ratio, sizeof ratio, "%.1f", median_total(r) / base);
-    const std::string camera = r.spec.camera == "default" ? "" : " camera " + r.spec.camera;
+    const std::string camera = (r.spec.camera == "default" ? "" : " camera " + r.spec.camera) +
+                               (r.spec.scene_rect ? "" : " scene_rect off");
     // A scene swept over its parameters (model name=..., quads objects=...)
     // needs them on the line to tell its rows apart.
     bool swept = false;
     for (const auto& o : results) swept |= o.spec.scene == r.spec.scene && o.scene_params != r.scene_params;
     const std::string scene = swept ? r.spec.scene + " " + r.scene_params : r.spec.scene;
-    std::printf("%-18s %-46s %-8s %10.2f %10s %7llu %10.3g %9llu  %s %dx%d%s\n", r.spec.technique.c_str(),
+    std::string saved;
+    for (const auto& [name, value] : r.counters.work_saved) {
+      char pair[96];
+      std::snprintf(pair, sizeof pair, " %s=%.10g", name.c_str(), value);
+      saved += pair;
+    }
+    if (!saved.empty()) saved = " |" + saved;
+    std::printf("%-18s %-46s %-8s %10.2f %10s %7llu %10.3g %9llu  %s %dx%d%s%s\n", r.spec.technique.c_str(),
                 r.technique_params.c_str(), to_string(r.status).c_str(), ok ? median_total(r) : 0.0, ratio,
                 static_cast<unsigned long long>(r.counters.passes), r.error ? r.error->max_abs : 0.0,
                 static_cast<unsigned long long>(r.counters.fragments_dropped), scene.c_str(), r.spec.width,
-                r.spec.height, camera.c_str());
+                r.spec.height, camera.c_str(), saved.c_str());
   }
 }
 
@@ -108,6 +116,7 @@ int run_render(const CommonOptions& common, const RenderOptions& options) {
     spec.camera = cameras[view];
     parse_size(options.size, spec.width, spec.height);
     spec.background = parse_background(options.background);
+    spec.scene_rect = parse_on_off("--scene-rect", options.scene_rect);
     spec.warmup = 0;
     spec.frames = 1;
     RunResult result = harness.run(spec);
@@ -144,9 +153,10 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
     const RunSpec& spec = runs[i];
     std::string params;
     for (const auto& [key, value] : spec.params) params += " " + key + "=" + value;
-    std::fprintf(stderr, "[%zu/%zu] %s%s on %s %dx%d%s ... ", i + 1, runs.size(), spec.technique.c_str(),
+    std::fprintf(stderr, "[%zu/%zu] %s%s on %s %dx%d%s%s ... ", i + 1, runs.size(), spec.technique.c_str(),
                  params.c_str(), spec.scene.c_str(), spec.width, spec.height,
-                 spec.camera == "default" ? "" : (" camera " + spec.camera).c_str());
+                 spec.camera == "default" ? "" : (" camera " + spec.camera).c_str(),
+                 spec.scene_rect ? "" : " scene_rect off");
     if (const auto key = resume_key(spec, builtin_techniques()); key && finished.count(*key)) {
       std::fprintf(stderr, "already in %s, not run again\n", options.csv.c_str());
       ++resumed;

@@ -22,6 +22,7 @@ struct RenderOptions {
   // One camera spec; a random:N:SEED set writes one image per viewpoint
   // (OUT with _camI before the extension).
   std::string camera = "default";
+  std::string scene_rect = "on";  // RunSpec::scene_rect
 };
 
 // `oitbench stats`: the fragment statistics of one scene view (stats_command.cpp).

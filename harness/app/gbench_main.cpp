@@ -19,6 +19,7 @@ std::string benchmark_name(const oit::RunSpec& spec) {
   name += "/scene:" + spec.scene;
   for (const auto& [key, value] : spec.scene_params) name += "/" + key + ":" + value;
   name += "/" + std::to_string(spec.width) + "x" + std::to_string(spec.height);
+  if (!spec.scene_rect) name += "/scene_rect:off";
   return name;
 }
 
@@ -58,6 +59,9 @@ int main(int argc, char** argv) {
   app.add_option("--scene-set", sweep.scene_sets, "scene key=v1,v2");
   app.add_option("--size", sweep.sizes, "WIDTHxHEIGHT");
   app.add_option("--warmup", sweep.warmup, "untimed frames");
+  app.add_option("--scene-rect", sweep.scene_rects, "on, off or on,off (the harness's scene rectangle)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"on", "off"}));
   app.add_option("--clock", sweep.clock, "auto, gl or wall")->check(CLI::IsMember({"auto", "gl", "wall"}));
   app.add_option("--device", device, "auto, gpu or software");
   CLI11_PARSE(app, argc, argv);

@@ -32,6 +32,9 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--out,-o", render.out, "output .png or .pfm")->required();
   render_cmd->add_option("--camera", render.camera,
                          "default, random:N:SEED (one image per view, _camI), random:N:SEED@I or max_list[:N:SEED]");
+  render_cmd->add_option("--scene-rect", render.scene_rect,
+                         "on (default): confine the technique to the scene's projected rectangle; off: full image")
+      ->check(CLI::IsMember({"on", "off"}));
 
   oit::BenchOptions bench;
   auto* bench_cmd = app.add_subcommand("bench", "time every combination and append long-form CSV rows");
@@ -49,6 +52,10 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--clock", bench.sweep.clock, "auto, gl, wall or both")
       ->check(CLI::IsMember({"auto", "gl", "wall", "both"}));
   bench_cmd->add_option("--background", bench.sweep.background, "r,g,b");
+  bench_cmd->add_option("--scene-rect", bench.sweep.scene_rects,
+                        "on (default), off or on,off: confine techniques to the scene's projected rectangle")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"on", "off"}));
   bench_cmd->add_option("--csv", bench.csv, "CSV file to append to")->required();
   bench_cmd->add_option("--images", bench.images_dir, "directory for one PNG per run");
   bench_cmd->add_option("--baseline", bench.baseline,

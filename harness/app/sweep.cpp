@@ -92,6 +92,12 @@ glm::vec3 parse_background(const std::string& text) {
   return color;
 }
 
+bool parse_on_off(const std::string& option, const std::string& text) {
+  if (text == "on") return true;
+  if (text == "off") return false;
+  throw std::invalid_argument(option + " '" + text + "' must be on or off");
+}
+
 std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRegistry& registry) {
   std::vector<const TechniqueDescriptor*> techniques;
   for (const auto& id : options.techniques) {
@@ -122,6 +128,9 @@ std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRe
   for (const auto& text : options.cameras)
     for (const auto& view : expand_camera_spec(text)) cameras.push_back(view);
 
+  std::vector<bool> scene_rects;
+  for (const auto& text : options.scene_rects) scene_rects.push_back(parse_on_off("--scene-rect", text));
+
   std::vector<RunSpec> runs;
   for (const auto& scene : options.scenes) {
     for (const auto& scene_params : combinations(scene_assignments)) {
@@ -134,19 +143,22 @@ std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRe
             for (const auto& a : technique_assignments)
               if ((a.scope.empty() || a.scope == t->id) && has_param(*t, a.key)) own.push_back(a);
             for (const auto& params : combinations(own)) {
-              RunSpec spec;
-              spec.technique = t->id;
-              spec.params = params;
-              spec.scene = scene;
-              spec.scene_params = scene_params;
-              spec.camera = camera;
-              spec.width = width;
-              spec.height = height;
-              spec.frames = options.frames;
-              spec.warmup = options.warmup;
-              spec.clock = clock;
-              spec.background = background;
-              runs.push_back(spec);
+              for (const bool scene_rect : scene_rects) {
+                RunSpec spec;
+                spec.technique = t->id;
+                spec.params = params;
+                spec.scene = scene;
+                spec.scene_params = scene_params;
+                spec.camera = camera;
+                spec.width = width;
+                spec.height = height;
+                spec.frames = options.frames;
+                spec.warmup = options.warmup;
+                spec.clock = clock;
+                spec.background = background;
+                spec.scene_rect = scene_rect;
+                runs.push_back(spec);
+              }
             }
           }
         }
@@ -165,7 +177,8 @@ std::optional<RunKey> resume_key(const RunSpec& spec, const TechniqueRegistry& r
                   canonical_scene_params(spec.scene, spec.scene_params),
                   spec.camera,
                   spec.width,
-                  spec.height};
+                  spec.height,
+                  spec.scene_rect};
   } catch (const std::exception&) {
     return std::nullopt;
   }
@@ -175,6 +188,7 @@ std::string run_label(const RunResult& result) {
   std::string label = result.spec.technique;
   for (const auto& [key, value] : result.spec.params) label += "_" + key + "-" + value;
   if (result.spec.camera != "default") label += "_camera-" + result.spec.camera;
+  if (!result.spec.scene_rect) label += "_scene-rect-off";
   for (char& c : label)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-' && c != '.') c = '-';
   return label;

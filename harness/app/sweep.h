@@ -19,6 +19,8 @@ struct SweepOptions {
   std::vector<std::string> sizes{"256x256"};
   // Camera specs (scenes/cameras.h); a random:N:SEED set becomes N runs.
   std::vector<std::string> cameras{"default"};
+  // The harness's scene rectangle (RunSpec::scene_rect): "on", "off" or both.
+  std::vector<std::string> scene_rects{"on"};
   int frames = 10;
   int warmup = 2;
   std::string clock = "auto";
@@ -34,6 +36,8 @@ std::optional<RunKey> resume_key(const RunSpec& spec, const TechniqueRegistry& r
 
 void parse_size(const std::string& text, int& width, int& height);
 glm::vec3 parse_background(const std::string& text);
+// "on" -> true, "off" -> false; throws naming the text otherwise.
+bool parse_on_off(const std::string& option, const std::string& text);
 // Short label for file names: "kbuffer_k-16_tail-drop" (plus "_camera-..."
 // when the run's camera is not the default).
 std::string run_label(const RunResult& result);

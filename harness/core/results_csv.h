@@ -44,10 +44,12 @@ std::vector<std::vector<std::string>> read_csv(const std::string& path);
 
 // What tells runs apart across invocations of a sweep: technique, canonical
 // parameters, scene, canonical scene parameters, camera, size (the key of
-// analysis/reproduce.py's resume too).
+// analysis/reproduce.py's resume too, which never turns the scene rectangle
+// off), and whether the harness's scene rectangle was on.
 struct RunKey {
   std::string technique, params, scene, scene_params, camera;
   int width = 0, height = 0;
+  bool scene_rect = true;
   auto operator<=>(const RunKey&) const = default;
 };
 

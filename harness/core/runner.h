@@ -13,6 +13,7 @@
 #include "core/error_metrics.h"
 #include "core/image.h"
 #include "core/reference_cache.h"
+#include "core/scene_rect.h"
 #include "core/statistics.h"
 #include "core/technique.h"
 
@@ -37,6 +38,10 @@ struct RunSpec {
   int frames = 10;
   std::optional<ClockKind> clock;  // default: wall on software GL, gl on GPUs
   glm::vec3 background{0.0f};
+  // Scissor the technique's frame to the scene's projected rectangle
+  // (render_frame); off renders every pass over the full image. The image
+  // is the same either way; the CSV's scene_rect column records it.
+  bool scene_rect = true;
 };
 
 enum class RunStatus { ok, skipped, error };
@@ -79,11 +84,19 @@ struct RenderTarget {
   RenderTarget(int width, int height);  // throws GlError when incomplete
 };
 
-// One frame exactly as Harness::run renders it: default GL state, the target
-// cleared to the background (alpha 0), the `total` stage around the
-// technique's render. Shared with the interactive viewer so that it has no
-// rendering path of its own. `record` = false: a warm-up frame.
-void render_frame(Technique& technique, const Frame& frame, bool record);
+// One frame exactly as Harness::run renders it: default GL state, the whole
+// target cleared to the background (alpha 0), then, with `scene_rect`, the
+// scissor test enabled on the scene's projected rectangle (scene_rect.h)
+// while the technique renders inside the `total` stage. Scissoring limits
+// draws, glClear*/glClearNamedFramebuffer* and blits, not compute
+// dispatches, glClearTexImage or buffer clears; no fragment falls outside
+// the rectangle, so the image is the same. Shared with the interactive
+// viewer so that it has no rendering path of its own. `record` = false: a
+// warm-up frame. Returns the rectangle the technique was confined to (the
+// full image without `scene_rect`).
+ScreenRect render_frame(Technique& technique, const Frame& frame, bool record, bool scene_rect = true);
+// The scene's projected rectangle for this frame's camera and size.
+ScreenRect scene_rect_of(const Frame& frame);
 
 class Harness {
  public:

@@ -1,5 +1,6 @@
 #include "core/scene_gpu.h"
 
+#include <cmath>
 #include <cstddef>
 
 #include "../../shaders/bindings.h"
@@ -16,6 +17,16 @@ SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
   vertices_ = upload(scene.vertices.size() * sizeof(Vertex), scene.vertices.data());
   indices_ = upload(scene.indices.size() * sizeof(uint32_t), scene.indices.data());
   triangle_ids_ = upload(scene.triangle_ids.size() * sizeof(uint32_t), scene.triangle_ids.data());
+  bool finite = true;
+  for (const auto& v : scene.vertices) {
+    finite &= std::isfinite(v.position.x) && std::isfinite(v.position.y) && std::isfinite(v.position.z);
+    box_.lo = box_.empty ? v.position : glm::min(box_.lo, v.position);
+    box_.hi = box_.empty ? v.position : glm::max(box_.hi, v.position);
+    box_.empty = false;
+  }
+  // A non-finite vertex bounds nothing: the infinite box makes the scene
+  // rectangle the full image.
+  if (!finite) box_ = {glm::vec3(-INFINITY), glm::vec3(INFINITY), false};
   bytes_ = scene.vertices.size() * sizeof(Vertex) + (scene.indices.size() + scene.triangle_ids.size()) * 4;
 
   vertex_array_ = make_vertex_array();

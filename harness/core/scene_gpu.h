@@ -1,4 +1,5 @@
 #pragma once
+#include "core/scene_rect.h"
 #include "gl/handles.h"
 #include "scene.h"
 
@@ -15,12 +16,15 @@ class SceneGpu {
   // One draw call over every triangle, so gl_PrimitiveID = triangle index.
   void draw() const;
   size_t bytes() const { return bytes_; }
+  // Of every vertex, computed once here (the harness's scene rectangle).
+  const BoundingBox& bounding_box() const { return box_; }
 
  private:
   const Scene& scene_;
   Buffer vertices_, indices_, triangle_ids_;
   VertexArray vertex_array_;
   size_t bytes_ = 0;
+  BoundingBox box_;
 };
 
 }  // namespace oit

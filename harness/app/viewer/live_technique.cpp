@@ -42,7 +42,7 @@ void LiveTechnique::render(const SceneGpu& scene, const glm::mat4& view, const g
                            const glm::vec3& background) {
   if (!technique_) return;
   const Frame frame{scene, view, projection, width_, height_, background, target_->framebuffer.id(), *clock_};
-  render_frame(*technique_, frame, true);
+  render_frame(*technique_, frame, true, scene_rect_);
   gl_check("a viewer frame of " + id_);
   // The very first frame closes a window at once, so timings show up
   // without waiting (and a short --frames run has them too).

@@ -45,6 +45,9 @@ class LiveTechnique {
   // Per-stage timings of the last complete window (empty before the first).
   const std::vector<StageTiming>& timings() const { return timings_; }
   ClockKind clock_kind() const { return clock_kind_; }
+  // render_frame's scene rectangle, for every later frame (default on).
+  void set_scene_rect(bool on) { scene_rect_ = on; }
+  bool scene_rect() const { return scene_rect_; }
 
  private:
   // Frames per timing window: medians over a few frames are steadier than
@@ -63,6 +66,7 @@ class LiveTechnique {
   std::string id_, canonical_;
   RawParams params_;
   int width_ = 0, height_ = 0;
+  bool scene_rect_ = true;
 };
 
 }  // namespace oit

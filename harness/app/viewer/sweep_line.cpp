@@ -27,6 +27,7 @@ std::string bench_command_line(const ViewConfig& config, const std::string& csv)
   line += " --size " + std::to_string(config.width) + "x" + std::to_string(config.height);
   line += " --camera " + shell_word(config.camera);
   line += " --background " + shell_word(config.background);
+  if (!config.scene_rect) line += " --scene-rect off";
   line += " --csv " + shell_word(csv);
   return line;
 }

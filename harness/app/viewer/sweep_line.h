@@ -17,6 +17,7 @@ struct ViewConfig {
   int width = 0, height = 0;
   std::string camera = "default";  // a preset spec (scenes/cameras.h)
   std::string background = "0,0,0";
+  bool scene_rect = true;  // the harness's scene rectangle (--scene-rect)
 };
 
 // `oitbench bench --technique ... --csv CSV`; words that need it are quoted

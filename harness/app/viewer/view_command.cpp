@@ -32,6 +32,9 @@ CLI::App* add_view_command(CLI::App& app, ViewOptions& o) {
       ->check(CLI::Range(0, 1000000));
   view->add_option("--screenshot", o.screenshot, "PNG of the window written after the last frame");
   view->add_option("--sweep-file", o.sweep_file, "text file that 'Add to sweep file' appends bench command lines to");
+  view->add_option("--scene-rect", o.scene_rect,
+                   "on (default): confine techniques A and B to the scene's projected rectangle; off: full image")
+      ->check(CLI::IsMember({"on", "off"}));
   view->add_option("--sweep-csv", o.sweep_csv, "the --csv of the appended bench command lines");
   return view;
 }

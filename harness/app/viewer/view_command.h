@@ -29,6 +29,7 @@ struct ViewOptions {
   std::string screenshot;           // PNG of the window after the last frame
   std::string sweep_file = "oitbench_sweep.txt";
   std::string sweep_csv = "results/sweep.csv";
+  std::string scene_rect = "on";    // RunSpec::scene_rect of techniques A and B
 };
 
 // Registers the subcommand and its options on `app`; returns it.

@@ -67,6 +67,12 @@ Viewer::Viewer(GlfwWindowContext& window, const ViewOptions& options)
   a_ = std::make_unique<Slot>(LiveTechnique(registry_, window_.device(), clock));
   b_ = std::make_unique<Slot>(LiveTechnique(registry_, window_.device(), clock));
   reference_ = std::make_unique<LiveTechnique>(registry_, window_.device(), ClockKind::wall);
+  // As in bench: techniques under test use the scene rectangle as asked,
+  // the reference never.
+  const bool scene_rect = parse_on_off("--scene-rect", options.scene_rect);
+  a_->live.set_scene_rect(scene_rect);
+  b_->live.set_scene_rect(scene_rect);
+  reference_->set_scene_rect(false);
   a_->wanted_id = options.technique;
   for (const auto& s : options.sets) parse_assignment(s, a_->wanted_params);
   configure(*a_);
@@ -301,6 +307,7 @@ ViewConfig Viewer::config_of(const Slot& slot) const {
   c.height = height_;
   c.camera = preset_spec();
   c.background = background_text(background_);
+  c.scene_rect = slot.live.scene_rect();
   return c;
 }
 
