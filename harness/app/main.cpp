@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "app/adaptive.h"
 #include "app/check_order.h"
 #include "app/commands.h"
 #include "app/pareto.h"
@@ -82,6 +83,24 @@ int main(int argc, char** argv) {
   pareto_cmd->add_flag("--resume", pareto.resume,
                        "leave out runs that already have an ok or skipped row in the CSV (error rows run again)");
 
+  oit::AdaptiveOptions adaptive;
+  auto* adaptive_cmd = app.add_subcommand(
+      "adaptive", "every adaptive feature (each technique's switches and the harness's scene rectangle) on and off "
+                  "on the same scenes: time and memory ratios, image difference, work saved");
+  adaptive_cmd->add_option("--technique,-t", adaptive.techniques,
+                           "technique ids or 'all' (repeatable; default: those that declare adaptive switches)");
+  adaptive_cmd->add_option("--feature", adaptive.features, "only these features, e.g. early_exit, scene_rect (repeatable)");
+  adaptive_cmd->add_option("--scene,-s", adaptive.scenes,
+                           "ID or ID:key=value,key=value (repeatable; default quads:layers=4, quads:layers=32, "
+                           "model:name=engine, torus)");
+  adaptive_cmd->add_option("--size", adaptive.size, "WIDTHxHEIGHT (default 256x256)");
+  adaptive_cmd->add_option("--frames", adaptive.frames, "timed frames per run (default 5)")->check(CLI::Range(1, 100000));
+  adaptive_cmd->add_option("--warmup", adaptive.warmup, "untimed frames first (default 1)")->check(CLI::Range(0, 1000));
+  adaptive_cmd->add_option("--repeats", adaptive.repeats, "on/off pairs per feature and scene, order alternating (default 2)")
+      ->check(CLI::Range(1, 1000));
+  adaptive_cmd->add_option("--background", adaptive.background, "r,g,b");
+  adaptive_cmd->add_option("--csv", adaptive.csv, "CSV file to append every run to (the columns of bench)");
+
   oit::StressOptions stress;
   auto* stress_cmd = app.add_subcommand("stress", "numerical and robustness stress cases on every technique: "
                                                    "pass/fail/skip table (each run in its own process)");
@@ -119,6 +138,7 @@ int main(int argc, char** argv) {
     if (*render_cmd) return oit::run_render(common, render);
     if (*bench_cmd) return oit::run_bench(common, bench);
     if (*stress_cmd) return oit::run_stress(common, stress);
+    if (*adaptive_cmd) return oit::run_adaptive(common, adaptive);
     if (*pareto_cmd) return oit::run_pareto(common, pareto);
     if (*order_cmd) return oit::run_check_order(common, order);
     if (*stats_cmd) return oit::run_stats(common, stats);

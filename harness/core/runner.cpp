@@ -231,7 +231,7 @@ void Harness::execute(const RunSpec& spec, RunResult& result) {
   result.counters = technique->counters();
   // The harness's own adaptive path: pixels every full-screen pass skipped.
   if (spec.scene_rect) {
-    result.counters.work_saved.emplace_back("pixels_outside_scene_rect",
+    result.counters.work_saved.emplace_back(kPixelsOutsideSceneRect,
                                             double(uint64_t(spec.width) * uint64_t(spec.height) - rect.pixels()));
   }
   result.image = read_texture_rgba32f(target.color.id(), spec.width, spec.height);

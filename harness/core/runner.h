@@ -44,6 +44,10 @@ struct RunSpec {
   bool scene_rect = true;
 };
 
+// The work_saved entry of a run with RunSpec::scene_rect: pixels outside the
+// scene's rectangle, which every scissored pass skipped.
+inline constexpr const char* kPixelsOutsideSceneRect = "pixels_outside_scene_rect";
+
 enum class RunStatus { ok, skipped, error };
 std::string to_string(RunStatus status);
 
