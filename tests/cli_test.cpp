@@ -2,6 +2,7 @@
 // equals the closed form, `oitbench bench --clock both` writes a row per
 // stage and clock of every technique, bad input exits non-zero with the key.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -30,7 +31,8 @@ struct Outcome {
 
 Outcome run_oitbench(const std::string& arguments) {
   std::filesystem::create_directories(kOut);
-  const std::string log = kOut + "/last_command.txt";
+  // One log per test process: CTest runs the tests of this file in parallel.
+  const std::string log = kOut + "/last_command_" + std::to_string(::getpid()) + ".txt";
   const int status = std::system((kOitbench + " " + arguments + " > " + log + " 2>&1").c_str());
   std::ifstream in(log);
   std::stringstream text;
