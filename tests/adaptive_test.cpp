@@ -12,40 +12,18 @@
 
 #include "app/adaptive.h"
 #include "core/results_csv.h"
+#include "oitbench_process.h"
 
 namespace oit {
 namespace {
 
-const std::string kOitbench = std::string(OIT_BINARY_DIR) + "/harness/oitbench";
+using test::Outcome;
+using test::split_csv_line;
+
 const std::string kOut = std::string(OIT_BINARY_DIR) + "/test_output/adaptive";
 
-struct Outcome {
-  int exit_code;
-  std::string output;  // stdout and stderr
-};
-
 Outcome run_oitbench(const std::string& environment, const std::string& arguments) {
-  std::filesystem::create_directories(kOut);
-  const std::string log = kOut + "/last_command.txt";
-  const int status = std::system((environment + " " + kOitbench + " " + arguments + " > " + log + " 2>&1").c_str());
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
-
-std::vector<std::string> split_csv_line(const std::string& line) {
-  // The fields checked here hold no quotes; quoted fields are kept whole.
-  std::vector<std::string> fields;
-  std::string field;
-  bool quoted = false;
-  for (char c : line) {
-    if (c == '"') quoted = !quoted;
-    else if (c == ',' && !quoted) fields.push_back(std::exchange(field, ""));
-    else field += c;
-  }
-  fields.push_back(field);
-  return fields;
+  return test::run_oitbench(kOut, arguments, environment);
 }
 
 std::vector<std::string> split(const std::string& text, char separator) {

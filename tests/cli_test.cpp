@@ -2,7 +2,6 @@
 // equals the closed form, `oitbench bench --clock both` writes a row per
 // stage and clock of every technique, bad input exits non-zero with the key.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -13,6 +12,7 @@
 #include <sstream>
 
 #include "core/image.h"
+#include "oitbench_process.h"
 #include "core/results_csv.h"
 #include "core/technique.h"
 #include "scene_library.h"
@@ -21,38 +21,13 @@
 namespace oit {
 namespace {
 
-const std::string kOitbench = std::string(OIT_BINARY_DIR) + "/harness/oitbench";
+using test::Outcome;
+using test::split_csv_line;
+
 const std::string kOut = std::string(OIT_BINARY_DIR) + "/test_output/cli";
 
-struct Outcome {
-  int exit_code;
-  std::string output;  // stdout and stderr
-};
+Outcome run_oitbench(const std::string& arguments) { return test::run_oitbench(kOut, arguments); }
 
-Outcome run_oitbench(const std::string& arguments) {
-  std::filesystem::create_directories(kOut);
-  // One log per test process: CTest runs the tests of this file in parallel.
-  const std::string log = kOut + "/last_command_" + std::to_string(::getpid()) + ".txt";
-  const int status = std::system((kOitbench + " " + arguments + " > " + log + " 2>&1").c_str());
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
-
-std::vector<std::string> split_csv_line(const std::string& line) {
-  // The fields checked here hold no quotes; quoted fields are kept whole.
-  std::vector<std::string> fields;
-  std::string field;
-  bool quoted = false;
-  for (char c : line) {
-    if (c == '"') quoted = !quoted;
-    else if (c == ',' && !quoted) fields.push_back(std::exchange(field, ""));
-    else field += c;
-  }
-  fields.push_back(field);
-  return fields;
-}
 
 TEST(Cli, RenderOfTheReferenceEqualsTheClosedFormExactly) {
   const std::string out = kOut + "/reference_quads.pfm";
