@@ -2,7 +2,7 @@
 // variant against the exact reference (quads, spheres, shuffled submission),
 // pool overflow and regrowth, counted truncation, parameter errors, and the
 // adaptive paths: pool_sizing (previous_frame, count, worst_case) and
-// group_by_length, with their exact work_saved figures.
+// length_classes, with their exact work_saved figures.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +11,7 @@
 #include <numeric>
 #include <random>
 
+#include "../algorithms/linked_list/length_classes.h"
 #include "../algorithms/linked_list/sorting_network.h"
 #include "core/complexity.h"
 #include "gl_fixture.h"
@@ -55,6 +56,53 @@ TEST(LinkedListNetwork, SortsRandomPermutationsOfLargeAndOddSizes) {
   // Batcher's comparator counts for powers of two: (p^2 - p + 4) 2^(p-2) - 1.
   EXPECT_EQ(odd_even_merge_sort(32).size(), 191u);
   EXPECT_EQ(odd_even_merge_sort(64).size(), 543u);
+}
+
+TEST(LinkedListNetwork, LengthClassesArePowersOfTwoUpToTheArraySize) {
+  using linked_list::class_sizes;
+  EXPECT_EQ(class_sizes(8, 64), (std::vector<uint32_t>{8, 16, 32, 64}));
+  EXPECT_EQ(class_sizes(8, 100), (std::vector<uint32_t>{8, 16, 32, 64, 100}));
+  EXPECT_EQ(class_sizes(8, 128).size(), 5u);
+  EXPECT_EQ(class_sizes(8, 12), (std::vector<uint32_t>{8, 12}));
+  EXPECT_EQ(class_sizes(8, 8), (std::vector<uint32_t>{8}));
+  EXPECT_EQ(class_sizes(1, 1), (std::vector<uint32_t>{1}));
+  using linked_list::class_index;
+  const std::vector<uint32_t> sizes = {1, 8, 16, 32};
+  EXPECT_EQ(class_index(sizes, 0), 0u);
+  EXPECT_EQ(class_index(sizes, 1), 0u);
+  EXPECT_EQ(class_index(sizes, 2), 1u);
+  EXPECT_EQ(class_index(sizes, 16), 2u);
+  EXPECT_EQ(class_index(sizes, 17), 3u);
+  EXPECT_EQ(class_index(sizes, 40), 3u) << "truncated lists: the last class";
+  // A 5x5 image: tiles 2x2, the edge tiles partial.
+  std::vector<uint32_t> lengths(25, 0u);
+  lengths[0] = 3;           // tile 0
+  lengths[4] = 7;           // (4,0): tile 1
+  lengths[4 * 5 + 0] = 2;   // (0,4): tile 2
+  lengths[4 * 5 + 4] = 9;   // (4,4): tile 3
+  lengths[3 * 5 + 3] = 5;   // (3,3): tile 0
+  EXPECT_EQ(linked_list::tile_longest(lengths, 5, 5), (std::vector<uint32_t>{5, 7, 2, 9}));
+}
+
+TEST(LinkedList, NetworkByLengthClassMatchesTheReferenceOnUnevenLists) {
+  // Lists of 2..23 fragments: tiles of the 8-, 16- and 32-element networks.
+  // 37x29 is no multiple of the 4x4 tiles: the edge tiles are partial.
+  const RunResult r = test::render_once("linked_list", {{"sort", "network"}}, "random_quads", {}, 37, 29);
+  ASSERT_GT(r.max_depth_complexity, 16u);
+  ASSERT_LT(r.mean_depth_complexity, 12.5);
+  EXPECT_LT(r.error->max_abs, kFloatTolerance);
+  EXPECT_EQ(r.counters.fragments_stored, r.scene_fragments);
+  // Truncated to 12: classes 8 and 12, the longer lists left to the truncating draw.
+  RunResult truncated[2];
+  int i = 0;
+  for (const std::string sort : {"network", "insertion"})
+    truncated[i++] = test::render_once("linked_list", {{"sort", sort}, {"max_per_pixel", "12"}}, "random_quads", {}, 37, 29);
+  EXPECT_GT(truncated[0].counters.fragments_dropped, 0u);
+  EXPECT_EQ(truncated[0].counters.fragments_dropped, truncated[1].counters.fragments_dropped);
+  double worst = 0.0;
+  for (size_t k = 0; k < truncated[0].image.rgba.size(); ++k)
+    worst = std::max(worst, std::abs(double(truncated[0].image.rgba[k]) - double(truncated[1].image.rgba[k])));
+  EXPECT_EQ(worst, 0.0) << "the classed network and the insertion sort keep different fragments";
 }
 
 TEST(LinkedList, EverySortMatchesTheReferenceOnThirtyTwoQuads) {
@@ -104,9 +152,10 @@ TEST(LinkedList, PoolOverflowGrowsAndReRendersWithoutLoss) {
   EXPECT_EQ(r.counters.fragments_stored, 16u * w * h);
   EXPECT_EQ(r.counters.fragments_dropped, 0u);
   EXPECT_LT(r.error->max_abs, kFloatTolerance);
-  // The grown pool holds the 1.25x slack: heads + lengths (8 B/pixel) + 32 B/node + counters.
+  // The grown pool holds the 1.25x slack: heads + lengths (8 B/pixel) + 32 B/node + counters,
+  // + the length classes 1, 8, 16, 32, 64: 5 x (16 B draw command + 4 B per 4x4 tile).
   const uint64_t nodes = uint64_t(16.0 * w * h * 1.25) + 1;
-  EXPECT_EQ(r.counters.bytes_allocated, 8u * w * h + 32u * nodes + 12u);
+  EXPECT_EQ(r.counters.bytes_allocated, 8u * w * h + 32u * nodes + 12u + 5u * (16u + 4u * (w / 4) * (h / 4)));
   const RunResult roomy = test::render_once("linked_list", {{"initial_nodes_per_pixel", "16"}}, "quads",
                                             {{"layers", "16"}}, w, h);
   EXPECT_EQ(roomy.counters.overflow_retries, 0u);
@@ -217,7 +266,13 @@ const std::vector<std::string> kPoolSizings = {"previous_frame", "count", "worst
 // pixels, 216 single fragments, 101 lists longer than 8).
 const RawParams kUnevenScene = {{"count", "64"}, {"size", "0.3"}};
 
-const RawParams kGrouped = {{"group_by_length", "true"}};
+const RawParams kGrouped = {{"length_classes", "true"}};
+
+// The length classes' storage (default length_classes=true): per class a
+// 16 B draw command and 4 B per 4x4 tile; max_per_pixel=64 gives classes 1, 8, 16, 32, 64.
+uint64_t class_bytes(int w, int h, uint64_t classes = 5) {
+  return classes * (16u + 4u * uint64_t((w + 3) / 4) * uint64_t((h + 3) / 4));
+}
 
 double work_saved(const RunResult& r, const std::string& name) {
   for (const auto& [key, value] : r.counters.work_saved)
@@ -232,21 +287,21 @@ double largest_difference(const Image& a, const Image& b) {
   return worst;
 }
 
-TEST(LinkedListAdaptive, EveryPoolSizingAndGroupingMatchesTheReference) {
+TEST(LinkedListAdaptive, EveryPoolSizingAndLengthClassesMatchTheReference) {
   const std::vector<std::pair<std::string, RawParams>> scenes = {{"quads", {{"layers", "32"}}},
                                                                  {"random_quads", kUnevenScene}};
   for (const auto& [scene, scene_params] : scenes) {
     for (const std::string& sizing : kPoolSizings) {
       const RunResult grouped = test::render_once(
-          "linked_list", {{"pool_sizing", sizing}, {"group_by_length", "true"}}, scene, scene_params, 64, 64);
+          "linked_list", {{"pool_sizing", sizing}, {"length_classes", "true"}}, scene, scene_params, 64, 64);
       const RunResult single = test::render_once(
-          "linked_list", {{"pool_sizing", sizing}, {"group_by_length", "false"}}, scene, scene_params, 64, 64);
+          "linked_list", {{"pool_sizing", sizing}, {"length_classes", "false"}}, scene, scene_params, 64, 64);
       for (const RunResult* r : {&grouped, &single}) {
         ASSERT_TRUE(r->error.has_value()) << scene << " " << sizing;
         EXPECT_LT(r->error->max_abs, kFloatTolerance) << scene << " " << sizing;
         EXPECT_EQ(r->counters.fragments_stored, r->scene_fragments) << scene << " " << sizing;
       }
-      // The same fragments in the same order and the same float blend: the grouping only splits the draws.
+      // The same fragments in the same order and the same float blend: the classes only split the draws.
       EXPECT_LT(largest_difference(grouped.image, single.image), 1e-6) << scene << " " << sizing;
     }
   }
@@ -260,8 +315,8 @@ TEST(LinkedListAdaptive, CountingPassSizesThePoolExactlyFromTheFirstFrame) {
     EXPECT_EQ(r.counters.overflow_retries, 0u) << scene;
     EXPECT_EQ(r.counters.passes, 2u) << scene << ": the counting pass and the fill";
     EXPECT_NE(r.stage("count", "wall"), nullptr) << scene;
-    // Heads + lengths (8 B/pixel) + exactly one 32 B node per fragment + 12 B of counters.
-    EXPECT_EQ(r.counters.bytes_allocated, 8u * w * h + 32u * r.scene_fragments + 12u) << scene;
+    // Heads + lengths (8 B/pixel) + exactly one 32 B node per fragment + 12 B of counters + the classes.
+    EXPECT_EQ(r.counters.bytes_allocated, 8u * w * h + 32u * r.scene_fragments + 12u + class_bytes(w, h)) << scene;
     EXPECT_EQ(work_saved(r, "bytes_not_allocated"), 32.0 * (64.0 * w * h - double(r.scene_fragments))) << scene;
   }
 }
@@ -270,7 +325,7 @@ TEST(LinkedListAdaptive, WorstCaseAllocatesMaxPerPixelNodesPerPixelAndCountsGrow
   const int w = 32, h = 32;
   const RunResult r =
       test::render_once("linked_list", {{"pool_sizing", "worst_case"}}, "quads", {{"layers", "32"}}, w, h);
-  EXPECT_EQ(r.counters.bytes_allocated, 8u * w * h + 32u * 64u * w * h + 12u);
+  EXPECT_EQ(r.counters.bytes_allocated, 8u * w * h + 32u * 64u * w * h + 12u + class_bytes(w, h));
   EXPECT_EQ(r.counters.overflow_retries, 0u);
   EXPECT_EQ(r.counters.passes, 1u);
   EXPECT_EQ(work_saved(r, "bytes_not_allocated"), 0.0);
@@ -280,7 +335,12 @@ TEST(LinkedListAdaptive, WorstCaseAllocatesMaxPerPixelNodesPerPixelAndCountsGrow
                                             "quads", {{"layers", "32"}}, w, h);
   EXPECT_EQ(grown.counters.overflow_retries, 1u);
   EXPECT_EQ(grown.counters.fragments_dropped, 16u * w * h);
-  EXPECT_EQ(grown.counters.bytes_allocated, 8u * w * h + 32u * (uint64_t(32.0 * w * h * 1.25) + 1) + 12u);
+  // max_per_pixel=16: classes 1, 8, 16.
+  EXPECT_EQ(grown.counters.bytes_allocated,
+            8u * w * h + 32u * (uint64_t(32.0 * w * h * 1.25) + 1) + 12u + class_bytes(w, h, 3));
+  const RunResult plain = test::render_once("linked_list", {{"pool_sizing", "worst_case"}, {"length_classes", "false"}},
+                                            "quads", {{"layers", "32"}}, w, h);
+  EXPECT_EQ(plain.counters.bytes_allocated, 8u * w * h + 32u * 64u * w * h + 12u);
   // previous_frame grows its first pool (1 node per pixel) to 1.25 x 32 + 1
   // nodes: 40 per pixel of the worst case's 64 allocated.
   const RunResult previous = test::render_once(
@@ -290,10 +350,11 @@ TEST(LinkedListAdaptive, WorstCaseAllocatesMaxPerPixelNodesPerPixelAndCountsGrow
   EXPECT_EQ(work_saved(previous, "bytes_not_allocated"), 32.0 * (64.0 * w * h - (40.0 * w * h + 1)));
 }
 
-TEST(LinkedListAdaptive, WorkSavedByGroupingOnScenesCountedByHand) {
+TEST(LinkedListAdaptive, WorkSavedByLengthClassesOnScenesCountedByHand) {
   const int w = 32, h = 32;
-  // One layer: every pixel has one fragment, none is sorted; the ungrouped
-  // resolve would run the 8-element network (19 compare-exchanges) on each.
+  // One layer: every pixel has one fragment, all in class 1 (one full-screen
+  // draw, no sort); without classes the resolve would run the 8-element
+  // network (19 compare-exchanges) on each.
   const RunResult one = test::render_once("linked_list", kGrouped, "quads", {{"layers", "1"}}, w, h);
   EXPECT_LT(one.error->max_abs, kFloatTolerance);
   EXPECT_EQ(work_saved(one, "fragments_not_sorted"), double(w * h));
@@ -305,20 +366,21 @@ TEST(LinkedListAdaptive, WorkSavedByGroupingOnScenesCountedByHand) {
   EXPECT_EQ(work_saved(full, "fragments_not_sorted"), 0.0);
   EXPECT_EQ(work_saved(full, "pixels_in_short_groups"), 0.0);
   EXPECT_EQ(work_saved(full, "compare_exchanges_avoided"), 0.0);
-  // 12 layers: the frame's array is 16; groups 8 and 16 exist but all lists go to 16.
+  // 12 layers: the frame's array is 16; every list needs it.
   const RunResult twelve = test::render_once("linked_list", kGrouped, "quads", {{"layers", "12"}}, w, h);
   EXPECT_EQ(work_saved(twelve, "pixels_in_short_groups"), 0.0);
-  // The ungrouped path saves nothing by definition; insertion sort reports no network figure.
-  // Off by default (slower on llvmpipe, see the README).
-  const RunResult single = test::render_once("linked_list", {}, "quads", {{"layers", "1"}}, w, h);
+  // Without classes nothing is saved by definition; insertion sort reports no network figure.
+  const RunResult single = test::render_once("linked_list", {{"length_classes", "false"}}, "quads", {{"layers", "1"}}, w, h);
   EXPECT_EQ(work_saved(single, "fragments_not_sorted"), 0.0);
   EXPECT_EQ(work_saved(single, "compare_exchanges_avoided"), 0.0);
-  const RunResult insertion = test::render_once("linked_list", {{"sort", "insertion"}, {"group_by_length", "true"}}, "quads", {{"layers", "1"}}, w, h);
+  // On by default, for every sort.
+  const RunResult insertion = test::render_once("linked_list", {{"sort", "insertion"}}, "quads", {{"layers", "1"}}, w, h);
+  EXPECT_LT(insertion.error->max_abs, kFloatTolerance);
   EXPECT_EQ(work_saved(insertion, "fragments_not_sorted"), double(w * h));
   for (const auto& [key, value] : insertion.counters.work_saved) EXPECT_NE(key, "compare_exchanges_avoided");
 }
 
-TEST(LinkedListAdaptive, WorkSavedByGroupingMatchesTheMeasuredListLengths) {
+TEST(LinkedListAdaptive, WorkSavedByLengthClassesMatchesTheMeasuredListLengths) {
   const int w = 64, h = 64;
   const RunResult r = test::render_once("linked_list", kGrouped, "random_quads", kUnevenScene, w, h);
   // The harness's own per-pixel count (a separate counting shader).
@@ -327,21 +389,27 @@ TEST(LinkedListAdaptive, WorkSavedByGroupingMatchesTheMeasuredListLengths) {
   const SceneGpu gpu(scene);
   const DepthComplexity c = measure_depth_complexity(gpu, scene.camera.view, scene.camera.projection(1.0f), w, h);
   ASSERT_GE(c.max, 9u) << "the scene must need more than the smallest array";
-  const std::vector<uint64_t> histogram = list_length_histogram(c);
   const uint32_t largest = std::max<uint32_t>(8, std::bit_ceil(c.max));
-  const auto group = [&](uint32_t length) {
-    uint32_t size = 8;
-    while (size < length) size *= 2;
+  // Each 4x4 tile is resolved by the smallest class (1, 8, 16, ...) that holds its longest list.
+  const std::vector<uint32_t> tiles = linked_list::tile_longest(c.per_pixel, w, h);
+  const auto size_of_tile = [&](uint32_t longest) {
+    uint32_t size = longest <= 1 ? 1 : 8;
+    while (size < longest) size *= 2;
     return size;
   };
-  uint64_t short_groups = 0, avoided = 0;
-  for (uint32_t length = 0; length < histogram.size(); ++length) {
-    const uint64_t used = length <= 1 ? 0 : odd_even_merge_sort(group(length)).size();
-    if (length >= 2 && group(length) < largest) short_groups += histogram[length];
-    avoided += histogram[length] * (odd_even_merge_sort(largest).size() - used);
+  uint64_t not_sorted = 0, short_groups = 0, avoided = 0;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const uint32_t length = c.per_pixel[size_t(y) * w + x];
+      const uint32_t size = size_of_tile(tiles[size_t(y / 4) * (w / 4) + x / 4]);
+      if (length == 1 && size == 1) ++not_sorted;
+      if (length >= 2 && size < largest) ++short_groups;
+      avoided += odd_even_merge_sort(largest).size() - odd_even_merge_sort(size).size();
+    }
   }
-  EXPECT_GT(histogram[1], 0u);
-  EXPECT_EQ(work_saved(r, "fragments_not_sorted"), double(histogram[1]));
+  EXPECT_GT(not_sorted, 0u);
+  EXPECT_GT(short_groups, 0u);
+  EXPECT_EQ(work_saved(r, "fragments_not_sorted"), double(not_sorted));
   EXPECT_EQ(work_saved(r, "pixels_in_short_groups"), double(short_groups));
   EXPECT_EQ(work_saved(r, "compare_exchanges_avoided"), double(avoided));
 }

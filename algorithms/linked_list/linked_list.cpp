@@ -5,9 +5,10 @@
 // and composites it front to back in float. The node pool is sized from the
 // previous frame's fragment count (growing with a re-render on overflow),
 // from a counting pass, or to the worst case W*H*max_per_pixel
-// (pool_sizing). With group_by_length the resolve is one draw per array
-// size, so short lists do not pay for the frame's longest one, and lists of
-// 0 or 1 fragments are not sorted at all.
+// (pool_sizing). With length_classes the resolve is drawn by 4x4 tiles
+// classified by their longest list (length_classes.h), so short lists do not
+// pay for the frame's longest one, and tiles of 0/1-fragment lists are not
+// sorted at all.
 #include <algorithm>
 #include <bit>
 #include <map>
@@ -17,6 +18,7 @@
 #include "core/technique.h"
 #include "gl/check.h"
 #include "gl/shader_program.h"
+#include "length_classes.h"
 #include "sorting_network.h"
 #include "../../shaders/bindings.h"
 
@@ -29,12 +31,12 @@ constexpr GLuint kHeadsBinding = OIT_FIRST_TECHNIQUE_BINDING + 0;
 constexpr GLuint kNodesBinding = OIT_FIRST_TECHNIQUE_BINDING + 1;
 constexpr GLuint kCountersBinding = OIT_FIRST_TECHNIQUE_BINDING + 2;
 constexpr GLuint kLengthsBinding = OIT_FIRST_TECHNIQUE_BINDING + 3;
-// Texture units of the resolve's read-only views (texelFetch of buffer textures).
-constexpr GLuint kNodesUnit = 0, kHeadsUnit = 1, kLengthsUnit = 2;
+// The resolve's read-only views: the nodes on image unit 0 (imageLoad), heads
+// and lengths on texture units 1 and 2 (texelFetch of buffer textures).
+constexpr GLuint kNodesImageUnit = 0, kHeadsUnit = 1, kLengthsUnit = 2;
 constexpr GLint kCapacityLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
 constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
 constexpr GLint kMaxPerPixelLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 2;
-constexpr GLint kMinLengthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 3;  // resolve.frag
 // Smallest local array compiled: tiny lists are not worth a program each.
 constexpr uint32_t kSmallestArray = 8;
 // Largest unrolled network (and its program); longer arrays fall back to the
@@ -54,12 +56,12 @@ PoolSizing pool_sizing_from(const std::string& name) {
                               "'; choose previous_frame, count or worst_case");
 }
 
-// The local array sizes of the grouped resolve for a frame whose largest
-// array is `largest`: powers of two from kSmallestArray, then `largest`.
-std::vector<uint32_t> group_sizes(uint32_t largest) {
-  std::vector<uint32_t> sizes;
-  for (uint32_t size = kSmallestArray; size < largest; size *= 2) sizes.push_back(size);
-  sizes.push_back(largest);
+// The length classes (local array sizes) of a frame whose largest array is
+// `array_size`: 1 (lists of 0 or 1 fragments, nothing to sort), the powers
+// of two from kSmallestArray, then `array_size`.
+std::vector<uint32_t> classes_for(uint32_t array_size) {
+  std::vector<uint32_t> sizes = linked_list::class_sizes(std::min(kSmallestArray, array_size), array_size);
+  if (sizes.front() > 1) sizes.insert(sizes.begin(), 1u);
   return sizes;
 }
 
@@ -68,7 +70,7 @@ class LinkedList final : public Technique {
   explicit LinkedList(const ParamSet& params)
       : sort_(params.choice("sort")),
         pool_sizing_(pool_sizing_from(params.choice("pool_sizing"))),
-        group_by_length_(params.boolean("group_by_length")),
+        length_classes_(params.boolean("length_classes")),
         max_per_pixel_(uint32_t(params.integer("max_per_pixel"))),
         nodes_per_pixel_(uint64_t(params.integer("initial_nodes_per_pixel"))),
         fill_(build_geometry_program("algorithms/linked_list/fill.frag")),
@@ -86,6 +88,7 @@ class LinkedList final : public Technique {
     heads_view_ = buffer_view(heads_, GL_R32UI);
     lengths_view_ = buffer_view(lengths_, GL_R32UI);
     previous_fragments_ = 0;
+    if (length_classes_) classes_.resize(width, height, classes_for(array_size_for(max_per_pixel_)).size());
     switch (pool_sizing_) {
       case PoolSizing::previous_frame: allocate_pool(uint64_t(width) * uint64_t(height) * nodes_per_pixel_); break;
       case PoolSizing::count: allocate_pool(1); break;  // the counting pass sizes it before every fill
@@ -143,32 +146,31 @@ class LinkedList final : public Technique {
     array_size_ = array_size_for(counts[1]);
     frame.bind_target();
     bind_storage();
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    glBindTextureUnit(kNodesUnit, nodes_view_.id());
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glBindImageTexture(kNodesImageUnit, nodes_view_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32UI);
     glBindTextureUnit(kHeadsUnit, heads_view_.id());
     glBindTextureUnit(kLengthsUnit, lengths_view_.id());
-    if (!group_by_length_) {
-      draw_resolve(frame, array_size_, 0);
-    } else {
-      // Every pixel is drawn by exactly one of these: lists of 0 or 1
-      // fragments without a sort, then each list by the smallest array that
-      // holds it. A draw of lengths the frame does not have is not issued.
-      draw_fullscreen(frame, program("short", "", 1));
-      uint32_t shortest = 2;
-      for (uint32_t size : group_sizes(array_size_)) {
-        if (shortest <= size && shortest <= longest_) draw_resolve(frame, size, shortest);
-        shortest = size + 1;
-      }
+    sizes_ = {array_size_};
+    if (length_classes_) {
+      // Each tile runs the smallest array (and network) that holds its
+      // longest list. When every list is as long as the longest (fragments =
+      // longest x pixels) there is one class, and one full-screen draw.
+      sizes_ = classes_for(array_size_);
+      if (uint64_t(counts[0]) == uint64_t(counts[1]) * uint64_t(width_) * uint64_t(height_))
+        sizes_ = {sizes_[linked_list::class_index(sizes_, longest_)]};
     }
+    classes_.draw(frame, sizes_, [&](uint32_t size) { return program("resolve", sort_for(size), size); });
     // Lists longer than max_per_pixel are left to a second draw that keeps
     // their nearest max_per_pixel fragments.
     if (dropped_ > 0) draw_fullscreen(frame, program("truncated", "", max_per_pixel_));
-    for (GLuint unit : {kNodesUnit, kHeadsUnit, kLengthsUnit}) glBindTextureUnit(unit, 0);
+    for (GLuint unit : {kHeadsUnit, kLengthsUnit}) glBindTextureUnit(unit, 0);
+    glBindImageTexture(kNodesImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32UI);
   }
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
-    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * 8 + capacity_ * uint64_t(kNodeBytes) + kCounterBytes;
+    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * 8 + capacity_ * uint64_t(kNodeBytes) + kCounterBytes +
+                        (length_classes_ ? classes_.bytes_allocated() : 0);
     c.fragments_stored = stored_;
     c.fragments_dropped = dropped_;
     c.passes = passes_;
@@ -199,37 +201,44 @@ class LinkedList final : public Technique {
     if (std::max<uint64_t>(fragments, 1) != capacity_) allocate_pool(fragments);
   }
 
-  // One resolve draw of the lists with min_length .. array_size fragments.
-  void draw_resolve(const Frame& frame, uint32_t array_size, uint32_t min_length) {
-    const std::string sort = (sort_ == "network" && array_size > kLargestNetwork) ? "insertion" : sort_;
-    const GLuint resolve = program("resolve", sort, array_size);
-    glProgramUniform1ui(resolve, kMinLengthLocation, min_length);
-    draw_fullscreen(frame, resolve);
+  // The sort a resolve of `array_size` elements runs: the network only up to
+  // kLargestNetwork.
+  std::string sort_for(uint32_t array_size) const {
+    return (sort_ == "network" && array_size > kLargestNetwork) ? "insertion" : sort_;
   }
 
-  // What pool_sizing and group_by_length saved in the last frame against
-  // the non-adaptive path (worst-case pool, one resolve at the frame's
-  // largest array). Reads the per-pixel lengths back, outside the frame.
+  // What pool_sizing and length_classes saved in the last frame against the
+  // non-adaptive path (worst-case pool, one resolve at the frame's largest
+  // array). Reads the per-pixel lengths back, outside the frame, and
+  // classifies the tiles as classify.comp did.
   void work_saved(TechniqueCounters& c) const {
     const double bytes_not_allocated =
         pool_sizing_ == PoolSizing::worst_case ? 0.0 : (double(worst_case_nodes()) - double(capacity_)) * kNodeBytes;
     c.work_saved.push_back({"bytes_not_allocated", bytes_not_allocated});
     const bool network = sort_ == "network" && array_size_ <= kLargestNetwork;
     uint64_t not_sorted = 0, short_groups = 0, exchanges_avoided = 0;
-    if (group_by_length_ && array_size_ > 0) {
+    if (length_classes_ && array_size_ > 0) {
       std::vector<uint32_t> lengths(size_t(width_) * size_t(height_));
       glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
       glGetNamedBufferSubData(lengths_.id(), 0, GLsizeiptr(lengths.size() * 4), lengths.data());
-      // Compare-exchanges of the network each array size runs (0: no sort).
-      const std::vector<uint32_t> sizes = group_sizes(array_size_);
-      std::map<uint32_t, uint64_t> exchanges = {{0u, 0u}};
-      for (uint32_t size : sizes) exchanges[size] = linked_list::odd_even_merge_sort(size).size();
-      for (uint32_t length : lengths) {
-        if (length > array_size_) continue;  // the truncating draw, the same in both paths
-        const uint32_t size = length <= 1 ? 0u : *std::lower_bound(sizes.begin(), sizes.end(), length);
-        if (length == 1) ++not_sorted;
-        if (length >= 2 && size < array_size_) ++short_groups;
-        exchanges_avoided += exchanges[array_size_] - exchanges[size];
+      const std::vector<uint32_t> tile_longest = linked_list::tile_longest(lengths, width_, height_);
+      const int tiles_x = (width_ + linked_list::LengthClasses::kTile - 1) / linked_list::LengthClasses::kTile;
+      // Compare-exchanges of the network each array size runs (size 1: none).
+      std::map<uint32_t, uint64_t> exchanges;
+      for (uint32_t size : sizes_) exchanges[size] = linked_list::odd_even_merge_sort(size).size();
+      const uint64_t full = linked_list::odd_even_merge_sort(array_size_).size();
+      for (int y = 0; y < height_; ++y) {
+        for (int x = 0; x < width_; ++x) {
+          const uint32_t length = lengths[size_t(y) * size_t(width_) + size_t(x)];
+          if (length > array_size_) continue;  // the truncating draw, the same in both paths
+          const size_t tile = size_t(y / linked_list::LengthClasses::kTile) * size_t(tiles_x) +
+                              size_t(x / linked_list::LengthClasses::kTile);
+          const uint32_t size =
+              sizes_.size() == 1 ? sizes_[0] : sizes_[linked_list::class_index(sizes_, tile_longest[tile])];
+          if (length == 1 && size == 1) ++not_sorted;
+          if (length >= 2 && size < array_size_) ++short_groups;
+          exchanges_avoided += full - exchanges[size];
+        }
       }
     }
     c.work_saved.push_back({"fragments_not_sorted", double(not_sorted)});
@@ -252,18 +261,20 @@ class LinkedList final : public Technique {
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
 
-  // `kind` "resolve" (resolve.frag with `sort`), "truncated"
-  // (resolve_truncated.frag) or "short" (resolve_short.frag), compiled once
-  // per local array size.
+  // `kind` "resolve" (tile.vert + resolve.frag with `sort`, drawn by length
+  // class or full screen) or "truncated" (resolve_truncated.frag), compiled
+  // once per local array size.
   GLuint program(const std::string& kind, const std::string& sort, uint32_t array_size) {
     const std::string key = kind + ":" + sort + ":" + std::to_string(array_size);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
-      Program built = kind == "resolve"     ? build_fullscreen_program("algorithms/linked_list/resolve.frag",
-                                                                       linked_list::resolve_defines(sort, array_size))
-                      : kind == "short"     ? build_fullscreen_program("algorithms/linked_list/resolve_short.frag")
-                                            : build_fullscreen_program("algorithms/linked_list/resolve_truncated.frag",
-                                                                       {{"LL_CAPACITY", std::to_string(array_size)}});
+      Program built =
+          kind == "resolve"
+              ? build_program({{GL_VERTEX_SHADER, "algorithms/linked_list/tile.vert"},
+                               {GL_FRAGMENT_SHADER, "algorithms/linked_list/resolve.frag"}},
+                              linked_list::tile_defines(linked_list::resolve_defines(sort, array_size)))
+              : build_fullscreen_program("algorithms/linked_list/resolve_truncated.frag",
+                                         {{"LL_CAPACITY", std::to_string(array_size)}});
       it = programs_.emplace(key, std::move(built)).first;
       glProgramUniform1i(it->second.id(), kWidthLocation, width_);
     }
@@ -292,9 +303,10 @@ class LinkedList final : public Technique {
     glProgramUniform1ui(fill_.id(), kCapacityLocation, GLuint(capacity_));
   }
 
-  // The resolve reads the lists through buffer textures: on llvmpipe a
-  // texelFetch with per-pixel addresses is a vector gather, while an SSBO
-  // load with per-pixel addresses is a lane-by-lane loop.
+  // The resolve reads the lists through buffer textures (the nodes as an
+  // image of the same view): on llvmpipe a texelFetch or imageLoad with
+  // per-pixel addresses is a vector gather, while an SSBO load with
+  // per-pixel addresses is a lane-by-lane loop.
   static Texture buffer_view(const Buffer& buffer, GLenum format) {
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_BUFFER, 1, &id);
@@ -313,11 +325,13 @@ class LinkedList final : public Technique {
 
   std::string sort_;
   PoolSizing pool_sizing_;
-  bool group_by_length_;
+  bool length_classes_;
   uint32_t max_per_pixel_;
   uint64_t nodes_per_pixel_;
   Program fill_, count_;
   std::map<std::string, Program> programs_;  // by "kind:sort:array size"
+  linked_list::LengthClasses classes_;         // tiles by list length (length_classes)
+  std::vector<uint32_t> sizes_;                // the last frame's classes (one: a full-screen draw)
   Buffer counters_, heads_, lengths_, nodes_;
   Texture heads_view_, lengths_view_, nodes_view_;
   Framebuffer dummy_framebuffer_;
@@ -347,10 +361,11 @@ void register_technique_linked_list(TechniqueRegistry& registry) {
                         "node pool: previous_frame (1.25 x the last frame's fragments, grown with a re-render "
                         "on overflow), count (a counting pass first, then exactly that many nodes; never "
                         "overflows) or worst_case (W x H x max_per_pixel nodes, allocated once)"),
-      ParamSpec::boolean("group_by_length", false,
-                         "resolve lists of 0 or 1 fragments without sorting and every other list with the "
-                         "smallest power-of-two array that holds it (one draw per size); false: one draw "
-                         "sorts every pixel in the array of the frame's longest list")};
+      ParamSpec::boolean("length_classes", true,
+                         "resolve each 4x4 tile with the smallest array (and network) that holds its longest "
+                         "list: a compute pass classifies the tiles (1 = no sort, 8, 16, ... the frame's array) "
+                         "and each class is drawn as one point per tile; false: one full-screen draw sorts "
+                         "every pixel in the array of the frame's longest list")};
   d.stages = {"count", "clear", "fill", "compose"};
   // Every fragment is kept and exactly ordered (float blend) unless a list exceeds max_per_pixel.
   d.exactness = Exactness::exact;
@@ -360,8 +375,9 @@ void register_technique_linked_list(TechniqueRegistry& registry) {
        {{"pool_sizing", "count"}}, {{"pool_sizing", "worst_case"}}},
       {"pool_previous_frame", "sizes the node pool from the previous frame's count instead of W x H x max_per_pixel",
        {{"pool_sizing", "previous_frame"}}, {{"pool_sizing", "worst_case"}}},
-      {"group_by_length", "skips the sort of 0/1-fragment lists and sorts each list in the smallest array that holds it",
-       {{"group_by_length", "true"}}, {{"group_by_length", "false"}}}};
+      {"length_classes", "resolves each 4x4 tile with the smallest array that holds its longest list (no sort for "
+       "0/1-fragment tiles) instead of the frame's largest array everywhere",
+       {{"length_classes", "true"}}, {{"length_classes", "false"}}}};
   d.create = [](const ParamSet& params) { return std::make_unique<LinkedList>(params); };
   registry.add(std::move(d));
 }

@@ -3,8 +3,9 @@
 // array of LL_CAPACITY elements, sort it by (view depth, stable triangle id),
 // composite front to back in float. Pixels whose list is longer than the
 // array are left to resolve_truncated.frag (a second draw, only when the
-// fill counted dropped fragments); with group_by_length, pixels whose list
-// fits a smaller array are left to that array's draw (u_min_length).
+// fill counted dropped fragments). With length_classes this program is drawn
+// once per class over that class's 4x4 tiles (tile.vert, length_classes.h),
+// so LL_CAPACITY is the smallest array that holds the tile's longest list.
 //
 // The list is walked by exactly ONE loop, and nothing else here walks it.
 // On Mesa 22.3 llvmpipe (seen with SSBO reads), nested loops following
@@ -14,10 +15,6 @@
 // around the compare-exchanges made llvmpipe keep the registers in memory
 // (30x slower), so the network resolve is straight-line code.
 #include "algorithms/linked_list/resolve_common.glsl"
-
-// Lists shorter than this are left to another draw (group_by_length): 0
-// when this draw resolves every list up to LL_CAPACITY.
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 3) uniform uint u_min_length;
 
 #if defined(LL_SORT_NETWORK)
 // Indexed only by constants (every macro below expands to literal indices),
@@ -44,10 +41,8 @@ uvec3 e[LL_CAPACITY];
 
 void main() {
   const uint pixel = ll_pixel();
-  // Longer lists are resolved by resolve_truncated.frag, shorter ones by
-  // the draw of a smaller array (group_by_length).
-  const uint length = length_of(pixel);
-  if (length > uint(LL_CAPACITY) || length < u_min_length) discard;
+  // Longer lists are resolved by resolve_truncated.frag.
+  if (length_of(pixel) > uint(LL_CAPACITY)) discard;
   uint cursor = head_of(pixel);
   LL_LOAD_ALL
   LL_NETWORK
@@ -60,10 +55,8 @@ uvec3 items[LL_CAPACITY];
 
 void main() {
   const uint pixel = ll_pixel();
-  // Longer lists are resolved by resolve_truncated.frag, shorter ones by
-  // the draw of a smaller array (group_by_length).
-  const uint length = length_of(pixel);
-  if (length > uint(LL_CAPACITY) || length < u_min_length) discard;
+  // Longer lists are resolved by resolve_truncated.frag.
+  if (length_of(pixel) > uint(LL_CAPACITY)) discard;
   uint count = 0u;
   uint cursor = head_of(pixel);
   while (cursor != LL_NIL && count < uint(LL_CAPACITY)) {

@@ -5,16 +5,19 @@
 layout(location = 0) out vec4 out_color;
 
 // Read-only views of the lists (see linked_list.cpp: a buffer texture fetch
-// is a vector gather on llvmpipe, an SSBO load is a loop over the lanes).
-// A node is two RGBA32UI texels: colour bits, then the link.
-layout(binding = 0) uniform usamplerBuffer u_nodes;
+// or image load is a vector gather on llvmpipe, an SSBO load is a loop over
+// the lanes). A node is two RGBA32UI texels: colour bits, then the link.
+// The nodes are read as an image: on llvmpipe (Mesa 22.3) the network
+// resolve of 32 quads took 14.5 ms with imageLoad against 19.1 ms with
+// texelFetch of the same buffer (the insertion resolve: 44.0 against 43.2).
+layout(binding = 0, rgba32ui) readonly uniform uimageBuffer u_nodes;
 layout(binding = 1) uniform usamplerBuffer u_heads;
 layout(binding = 2) uniform usamplerBuffer u_lengths;
 
 uint head_of(uint pixel) { return texelFetch(u_heads, int(pixel)).x; }
 uint length_of(uint pixel) { return texelFetch(u_lengths, int(pixel)).x; }
-uvec4 link_of(uint node) { return texelFetch(u_nodes, int(2u * node + 1u)); }
-vec4 color_of(uint node) { return uintBitsToFloat(texelFetch(u_nodes, int(2u * node))); }
+uvec4 link_of(uint node) { return imageLoad(u_nodes, int(2u * node + 1u)); }
+vec4 color_of(uint node) { return uintBitsToFloat(imageLoad(u_nodes, int(2u * node))); }
 
 // A sort element: x = view depth bits mapped to unsigned order, y = stable
 // triangle id (unique per pixel: the deterministic tie-break), z = node index.
