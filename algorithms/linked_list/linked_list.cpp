@@ -70,7 +70,9 @@ class LinkedList final : public Technique {
   explicit LinkedList(const ParamSet& params)
       : sort_(params.choice("sort")),
         pool_sizing_(pool_sizing_from(params.choice("pool_sizing"))),
-        length_classes_(params.boolean("length_classes")),
+        // Only the network: the insertion and selection sorts loop as far as
+        // the pixel's list, and measured slower drawn by class (README).
+        length_classes_(params.boolean("length_classes") && sort_ == "network"),
         max_per_pixel_(uint32_t(params.integer("max_per_pixel"))),
         nodes_per_pixel_(uint64_t(params.integer("initial_nodes_per_pixel"))),
         fill_(build_geometry_program("algorithms/linked_list/fill.frag")),
@@ -154,10 +156,15 @@ class LinkedList final : public Technique {
     if (length_classes_) {
       // Each tile runs the smallest array (and network) that holds its
       // longest list. When every list is as long as the longest (fragments =
-      // longest x pixels) there is one class, and one full-screen draw.
-      sizes_ = classes_for(array_size_);
+      // longest x pixels) there is one class, and one full-screen draw. A
+      // frame whose array is the smallest (8) is drawn full screen too: the
+      // classify pass and the point draws cost more than the network of 8
+      // (19 compare-exchanges) that class 1 would save (README).
+      const std::vector<uint32_t> classes = classes_for(array_size_);
       if (uint64_t(counts[0]) == uint64_t(counts[1]) * uint64_t(width_) * uint64_t(height_))
-        sizes_ = {sizes_[linked_list::class_index(sizes_, longest_)]};
+        sizes_ = {classes[linked_list::class_index(classes, longest_)]};
+      else if (array_size_ > kSmallestArray)
+        sizes_ = classes;
     }
     classes_.draw(frame, sizes_, [&](uint32_t size) { return program("resolve", sort_for(size), size); });
     // Lists longer than max_per_pixel are left to a second draw that keeps
@@ -362,10 +369,10 @@ void register_technique_linked_list(TechniqueRegistry& registry) {
                         "on overflow), count (a counting pass first, then exactly that many nodes; never "
                         "overflows) or worst_case (W x H x max_per_pixel nodes, allocated once)"),
       ParamSpec::boolean("length_classes", true,
-                         "resolve each 4x4 tile with the smallest array (and network) that holds its longest "
-                         "list: a compute pass classifies the tiles (1 = no sort, 8, 16, ... the frame's array) "
-                         "and each class is drawn as one point per tile; false: one full-screen draw sorts "
-                         "every pixel in the array of the frame's longest list")};
+                         "sort=network only: resolve each 4x4 tile with the smallest network that holds its "
+                         "longest list: a compute pass classifies the tiles (1 = no sort, 8, 16, ... the frame's "
+                         "array, when that is over 8) and each class is drawn as one point per tile; false: one "
+                         "full-screen draw sorts every pixel in the array of the frame's longest list")};
   d.stages = {"count", "clear", "fill", "compose"};
   // Every fragment is kept and exactly ordered (float blend) unless a list exceeds max_per_pixel.
   d.exactness = Exactness::exact;
@@ -375,8 +382,8 @@ void register_technique_linked_list(TechniqueRegistry& registry) {
        {{"pool_sizing", "count"}}, {{"pool_sizing", "worst_case"}}},
       {"pool_previous_frame", "sizes the node pool from the previous frame's count instead of W x H x max_per_pixel",
        {{"pool_sizing", "previous_frame"}}, {{"pool_sizing", "worst_case"}}},
-      {"length_classes", "resolves each 4x4 tile with the smallest array that holds its longest list (no sort for "
-       "0/1-fragment tiles) instead of the frame's largest array everywhere",
+      {"length_classes", "sort=network: resolves each 4x4 tile with the smallest network that holds its longest "
+       "list (no sort for 0/1-fragment tiles) instead of the frame's largest network everywhere",
        {{"length_classes", "true"}}, {{"length_classes", "false"}}}};
   d.create = [](const ParamSet& params) { return std::make_unique<LinkedList>(params); };
   registry.add(std::move(d));
