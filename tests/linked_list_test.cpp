@@ -152,10 +152,10 @@ TEST(LinkedList, PoolOverflowGrowsAndReRendersWithoutLoss) {
   EXPECT_EQ(r.counters.fragments_stored, 16u * w * h);
   EXPECT_EQ(r.counters.fragments_dropped, 0u);
   EXPECT_LT(r.error->max_abs, kFloatTolerance);
-  // The grown pool holds the 1.25x slack: heads + lengths (8 B/pixel) + 32 B/node + counters,
+  // The grown pool holds the 1.25x slack: 4 heads + length (20 B/pixel) + 32 B/node + counters,
   // + the length classes 1, 8, 16, 32, 64: 5 x (16 B draw command + 4 B per 4x4 tile).
   const uint64_t nodes = uint64_t(16.0 * w * h * 1.25) + 1;
-  EXPECT_EQ(r.counters.bytes_allocated, 8u * w * h + 32u * nodes + 12u + 5u * (16u + 4u * (w / 4) * (h / 4)));
+  EXPECT_EQ(r.counters.bytes_allocated, 20u * w * h + 32u * nodes + 12u + 5u * (16u + 4u * (w / 4) * (h / 4)));
   const RunResult roomy = test::render_once("linked_list", {{"initial_nodes_per_pixel", "16"}}, "quads",
                                             {{"layers", "16"}}, w, h);
   EXPECT_EQ(roomy.counters.overflow_retries, 0u);
@@ -315,8 +315,8 @@ TEST(LinkedListAdaptive, CountingPassSizesThePoolExactlyFromTheFirstFrame) {
     EXPECT_EQ(r.counters.overflow_retries, 0u) << scene;
     EXPECT_EQ(r.counters.passes, 2u) << scene << ": the counting pass and the fill";
     EXPECT_NE(r.stage("count", "wall"), nullptr) << scene;
-    // Heads + lengths (8 B/pixel) + exactly one 32 B node per fragment + 12 B of counters + the classes.
-    EXPECT_EQ(r.counters.bytes_allocated, 8u * w * h + 32u * r.scene_fragments + 12u + class_bytes(w, h)) << scene;
+    // 4 heads + length (20 B/pixel) + exactly one 32 B node per fragment + 12 B of counters + the classes.
+    EXPECT_EQ(r.counters.bytes_allocated, 20u * w * h + 32u * r.scene_fragments + 12u + class_bytes(w, h)) << scene;
     EXPECT_EQ(work_saved(r, "bytes_not_allocated"), 32.0 * (64.0 * w * h - double(r.scene_fragments))) << scene;
   }
 }
@@ -325,7 +325,7 @@ TEST(LinkedListAdaptive, WorstCaseAllocatesMaxPerPixelNodesPerPixelAndCountsGrow
   const int w = 32, h = 32;
   const RunResult r =
       test::render_once("linked_list", {{"pool_sizing", "worst_case"}}, "quads", {{"layers", "32"}}, w, h);
-  EXPECT_EQ(r.counters.bytes_allocated, 8u * w * h + 32u * 64u * w * h + 12u + class_bytes(w, h));
+  EXPECT_EQ(r.counters.bytes_allocated, 20u * w * h + 32u * 64u * w * h + 12u + class_bytes(w, h));
   EXPECT_EQ(r.counters.overflow_retries, 0u);
   EXPECT_EQ(r.counters.passes, 1u);
   EXPECT_EQ(work_saved(r, "bytes_not_allocated"), 0.0);
@@ -337,10 +337,10 @@ TEST(LinkedListAdaptive, WorstCaseAllocatesMaxPerPixelNodesPerPixelAndCountsGrow
   EXPECT_EQ(grown.counters.fragments_dropped, 16u * w * h);
   // max_per_pixel=16: classes 1, 8, 16.
   EXPECT_EQ(grown.counters.bytes_allocated,
-            8u * w * h + 32u * (uint64_t(32.0 * w * h * 1.25) + 1) + 12u + class_bytes(w, h, 3));
+            20u * w * h + 32u * (uint64_t(32.0 * w * h * 1.25) + 1) + 12u + class_bytes(w, h, 3));
   const RunResult plain = test::render_once("linked_list", {{"pool_sizing", "worst_case"}, {"length_classes", "false"}},
                                             "quads", {{"layers", "32"}}, w, h);
-  EXPECT_EQ(plain.counters.bytes_allocated, 8u * w * h + 32u * 64u * w * h + 12u);
+  EXPECT_EQ(plain.counters.bytes_allocated, 20u * w * h + 32u * 64u * w * h + 12u);
   // previous_frame grows its first pool (1 node per pixel) to 1.25 x 32 + 1
   // nodes: 40 per pixel of the worst case's 64 allocated.
   const RunResult previous = test::render_once(

@@ -13,6 +13,6 @@ void main() {
   if (position >= u_max_per_pixel) atomicAdd(ll_dropped, 1u);
   const uint index = atomicAdd(ll_node_count, 1u);
   if (index >= u_capacity) return;  // pool overflow: the host grows the pool and re-renders
-  const uint next = atomicExchange(ll_heads[pixel], index);
+  const uint next = atomicExchange(ll_heads[pixel * uint(LL_HEADS) + position % uint(LL_HEADS)], index);
   ll_nodes[index] = LinkedListNode(oit_shade(), uvec4(floatBitsToUint(oit_view_depth()), oit_triangle_id(), next, 0u));
 }

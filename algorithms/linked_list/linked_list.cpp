@@ -27,6 +27,11 @@ namespace {
 
 constexpr GLsizeiptr kNodeBytes = 32;     // LinkedListNode in nodes.glsl
 constexpr GLsizeiptr kCounterBytes = 12;  // node_count, max_length, dropped
+// Interleaved lists per pixel (LL_HEADS in nodes.glsl): the resolve walks
+// them side by side so that their node loads overlap (README: 4 heads).
+constexpr GLsizeiptr kHeads = 4;
+// Per pixel: kHeads head pointers and the list length.
+constexpr uint64_t kPixelBytes = 4 * kHeads + 4;
 constexpr GLuint kHeadsBinding = OIT_FIRST_TECHNIQUE_BINDING + 0;
 constexpr GLuint kNodesBinding = OIT_FIRST_TECHNIQUE_BINDING + 1;
 constexpr GLuint kCountersBinding = OIT_FIRST_TECHNIQUE_BINDING + 2;
@@ -85,9 +90,9 @@ class LinkedList final : public Technique {
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
-    heads_ = make_buffer(GLsizeiptr(width) * height * 4);
+    heads_ = make_buffer(GLsizeiptr(width) * height * 4 * kHeads);
     lengths_ = make_buffer(GLsizeiptr(width) * height * 4);
-    heads_view_ = buffer_view(heads_, GL_R32UI);
+    heads_view_ = buffer_view(heads_, GL_RGBA32UI);  // a pixel's four heads in one texel
     lengths_view_ = buffer_view(lengths_, GL_R32UI);
     previous_fragments_ = 0;
     if (length_classes_) classes_.resize(width, height, classes_for(array_size_for(max_per_pixel_)).size());
@@ -176,7 +181,7 @@ class LinkedList final : public Technique {
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
-    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * 8 + capacity_ * uint64_t(kNodeBytes) + kCounterBytes +
+    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * kPixelBytes + capacity_ * uint64_t(kNodeBytes) + kCounterBytes +
                         (length_classes_ ? classes_.bytes_allocated() : 0);
     c.fragments_stored = stored_;
     c.fragments_dropped = dropped_;

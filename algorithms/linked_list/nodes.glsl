@@ -1,8 +1,15 @@
-// Storage of the per-pixel linked lists (Yang et al. 2010): a head pointer
-// and a list length per pixel, one pool of nodes, and global counters.
+// Storage of the per-pixel linked lists (Yang et al. 2010): LL_HEADS head
+// pointers and a list length per pixel, one pool of nodes, and global counters.
 #include "shaders/bindings.h"
 
 #define LL_NIL 0xffffffffu
+// Each pixel's fragments are spread over LL_HEADS interleaved lists: the
+// fragment at position p (its index in the pixel, from the length atomic)
+// goes to list p % LL_HEADS. The resolve walks the lists side by side, so
+// LL_HEADS node loads are independent and their memory latencies overlap
+// (one list is a chain of dependent loads, ~2 MB apart on 256x256 quads).
+// linked_list.cpp's kHeads; the resolve reads a pixel's heads as one uvec4.
+#define LL_HEADS 4
 
 // Read and written as whole vectors: on Mesa 22.3 llvmpipe, reading single
 // scalar members of a struct array in a loop returned wrong values.
@@ -11,6 +18,7 @@ struct LinkedListNode {
   uvec4 link;  // x: view depth (float bits), y: stable triangle id, z: next node, w: unused (std430 padding)
 };
 
+// Pixel p's list c starts at ll_heads[p * LL_HEADS + c].
 layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) coherent buffer LinkedListHeads { uint ll_heads[]; };
 layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) buffer LinkedListNodes { LinkedListNode ll_nodes[]; };
 // node_count: fragments the fill produced (may exceed the pool: that is how

@@ -14,7 +14,8 @@ layout(binding = 0, rgba32ui) readonly uniform uimageBuffer u_nodes;
 layout(binding = 1) uniform usamplerBuffer u_heads;
 layout(binding = 2) uniform usamplerBuffer u_lengths;
 
-uint head_of(uint pixel) { return texelFetch(u_heads, int(pixel)).x; }
+// The heads of the pixel's LL_HEADS lists (nodes.glsl), one RGBA32UI texel.
+uvec4 heads_of(uint pixel) { return texelFetch(u_heads, int(pixel)); }
 uint length_of(uint pixel) { return texelFetch(u_lengths, int(pixel)).x; }
 uvec4 link_of(uint node) { return imageLoad(u_nodes, int(2u * node + 1u)); }
 vec4 color_of(uint node) { return uintBitsToFloat(imageLoad(u_nodes, int(2u * node))); }

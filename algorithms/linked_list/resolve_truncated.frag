@@ -13,14 +13,21 @@ void main() {
   const uint pixel = ll_pixel();
   if (length_of(pixel) <= uint(LL_CAPACITY)) discard;  // resolve.frag did it
   uint kept = 0u;
-  uint cursor = head_of(pixel);
-  // One flat loop: each iteration either takes the next fragment or moves
-  // the hole of the fragment being inserted one step nearer (a shift loop
-  // nested in the list walk is miscompiled by llvmpipe).
+  // The pixel's LL_HEADS lists (nodes.glsl) are walked one after the other.
+  const uvec4 heads = heads_of(pixel);
+  uint list = 0u;
+  uint cursor = heads.x;
+  // One flat loop: each iteration either moves on to the next list, takes
+  // the next fragment or moves the hole of the fragment being inserted one
+  // step nearer (a shift loop nested in the list walk is miscompiled by
+  // llvmpipe).
   int hole = -1;  // where `candidate` would go; -1: no insertion under way
   uvec3 candidate = uvec3(0u);
-  while (cursor != LL_NIL || hole >= 0) {
-    if (hole < 0) {
+  while (list < uint(LL_HEADS) || hole >= 0) {
+    if (hole < 0 && cursor == LL_NIL) {
+      ++list;
+      cursor = list < uint(LL_HEADS) ? heads[min(list, uint(LL_HEADS) - 1u)] : LL_NIL;
+    } else if (hole < 0) {
       const uvec4 link = link_of(cursor);
       candidate = sort_element(cursor, link);
       cursor = link.z;
