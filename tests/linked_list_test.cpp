@@ -96,7 +96,8 @@ TEST(LinkedList, NetworkByLengthClassMatchesTheReferenceOnUnevenLists) {
   RunResult truncated[2];
   int i = 0;
   for (const std::string sort : {"network", "insertion"})
-    truncated[i++] = test::render_once("linked_list", {{"sort", sort}, {"max_per_pixel", "12"}}, "random_quads", {}, 37, 29);
+    truncated[i++] =
+        test::render_once("linked_list", {{"sort", sort}, {"max_per_pixel", "12"}}, "random_quads", {}, 37, 29);
   EXPECT_GT(truncated[0].counters.fragments_dropped, 0u);
   EXPECT_EQ(truncated[0].counters.fragments_dropped, truncated[1].counters.fragments_dropped);
   double worst = 0.0;
@@ -370,7 +371,8 @@ TEST(LinkedListAdaptive, WorkSavedByLengthClassesOnScenesCountedByHand) {
   const RunResult twelve = test::render_once("linked_list", kGrouped, "quads", {{"layers", "12"}}, w, h);
   EXPECT_EQ(work_saved(twelve, "pixels_in_short_groups"), 0.0);
   // Without classes nothing is saved by definition; insertion sort reports no network figure.
-  const RunResult single = test::render_once("linked_list", {{"length_classes", "false"}}, "quads", {{"layers", "1"}}, w, h);
+  const RunResult single =
+      test::render_once("linked_list", {{"length_classes", "false"}}, "quads", {{"layers", "1"}}, w, h);
   EXPECT_EQ(work_saved(single, "fragments_not_sorted"), 0.0);
   EXPECT_EQ(work_saved(single, "compare_exchanges_avoided"), 0.0);
   // The classes are the network's only: the insertion sort saves nothing and needs no class storage.

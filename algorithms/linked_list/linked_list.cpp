@@ -181,8 +181,8 @@ class LinkedList final : public Technique {
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
-    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * kPixelBytes + capacity_ * uint64_t(kNodeBytes) + kCounterBytes +
-                        (length_classes_ ? classes_.bytes_allocated() : 0);
+    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * kPixelBytes + capacity_ * uint64_t(kNodeBytes) +
+                        kCounterBytes + (length_classes_ ? classes_.bytes_allocated() : 0);
     c.fragments_stored = stored_;
     c.fragments_dropped = dropped_;
     c.passes = passes_;
