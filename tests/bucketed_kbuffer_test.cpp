@@ -27,6 +27,13 @@ double extra(const RunResult& r, const std::string& name) {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+double saved(const RunResult& r, const std::string& name) {
+  for (const auto& [key, value] : r.counters.work_saved)
+    if (key == name) return value;
+  ADD_FAILURE() << "no work_saved counter '" << name << "'";
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
 // Largest change of a composite (rgb and alpha) when each layer's colour and
 // alpha are rounded to RGBA8, i.e. each is off by at most d = 0.5/255:
 //   out = sum_i T_i a_i c_i + T_n bg,  T_i = prod_{j<i} (1 - a_j)
@@ -201,7 +208,7 @@ TEST(BucketedKBuffer, FragmentsBeyondKAreCountedAsDropped) {
   EXPECT_EQ(r.counters.fragments_stored, 8u * 32u * 32u);
 }
 
-TEST(BucketedKBuffer, AutoFallsBackToBruteForceOnASingleObject) {
+TEST(BucketedKBuffer, AutoUsesOneBucketPerPixelOnASingleObject) {
   EXPECT_EQ(extra(run({}, "quads", {{"layers", "4"}, {"objects", "1"}}, 16), "buckets_used"), 0.0);
   EXPECT_EQ(extra(run({}, "quads", {{"layers", "4"}, {"objects", "4"}}, 16), "buckets_used"), 1.0);
   // Forced on with one object: one bucket holding every fragment of the pixel.
@@ -209,6 +216,42 @@ TEST(BucketedKBuffer, AutoFallsBackToBruteForceOnASingleObject) {
   EXPECT_EQ(extra(single, "buckets_used"), 1.0);
   EXPECT_EQ(extra(single, "buckets_per_pixel"), 1.0);
   EXPECT_EQ(extra(single, "fragments_per_bucket"), 4.0);
+}
+
+// buckets=auto on one object skips the bucket pass (no hash tables) and
+// searches each whole list as the single bucket: the same links, curvatures
+// and image as buckets=on and the brute force (off), exactly.
+TEST(BucketedKBuffer, AutoOnOneObjectSkipsTheBucketPassAndFindsTheSameLinks) {
+  for (const auto& [scene, params, size] :
+       {std::tuple{"torus", RawParams{}, 64}, std::tuple{"torus", RawParams{}, 96},
+        std::tuple{"quads", RawParams{{"layers", "6"}, {"objects", "1"}}, 32},
+        std::tuple{"spheres", RawParams{{"count", "1"}}, 64}}) {
+    const std::string what = std::string(scene) + " " + std::to_string(size);
+    const RunResult automatic = run({{"buckets", "auto"}, {"measure_accuracy", "true"}}, scene, params, size);
+    const RunResult on = run({{"buckets", "on"}, {"measure_accuracy", "true"}}, scene, params, size);
+    const RunResult off = run({{"buckets", "off"}, {"measure_accuracy", "true"}}, scene, params, size);
+    EXPECT_EQ(automatic.stage("bucket", "wall"), nullptr) << what << ": no hash tables on one object";
+    EXPECT_NE(on.stage("bucket", "wall"), nullptr) << what;
+    EXPECT_NE(off.stage("bucket", "wall"), nullptr) << what << ": the paper's brute force keeps the bucket pass";
+    EXPECT_NE(automatic.stage("neighbors", "wall"), nullptr) << what;
+    EXPECT_EQ(extra(automatic, "buckets_used"), 0.0) << what;
+    EXPECT_EQ(saved(automatic, "bucket_passes_skipped"), 1.0) << what;
+    for (const auto& [name, value] : on.counters.work_saved) EXPECT_NE(name, "bucket_passes_skipped") << what;
+    for (const auto& [name, value] : off.counters.work_saved) EXPECT_NE(name, "bucket_passes_skipped") << what;
+    EXPECT_GT(extra(automatic, "neighbor_links"), 1000.0) << what;
+    for (const RunResult* other : {&on, &off}) {
+      EXPECT_EQ(extra(automatic, "neighbor_links"), extra(*other, "neighbor_links")) << what;
+      EXPECT_EQ(extra(automatic, "link_checksum"), extra(*other, "link_checksum")) << what;
+      EXPECT_EQ(extra(automatic, "store_misses"), extra(*other, "store_misses")) << what;
+      EXPECT_EQ(automatic.counters.fragments_stored, other->counters.fragments_stored) << what;
+      EXPECT_EQ(compare_images(automatic.image, other->image).max_abs, 0.0) << what;
+    }
+  }
+  // Several objects: auto is buckets=on, bucket pass included.
+  const RunResult spheres = run({{"buckets", "auto"}}, "spheres", {}, 32);
+  EXPECT_NE(spheres.stage("bucket", "wall"), nullptr);
+  EXPECT_EQ(extra(spheres, "buckets_used"), 1.0);
+  for (const auto& [name, value] : spheres.counters.work_saved) EXPECT_NE(name, "bucket_passes_skipped");
 }
 
 TEST(BucketedKBuffer, TransferFunctionsStylizeFlatInteriorAndImageBorder) {
@@ -253,13 +296,6 @@ TEST(BucketedKBuffer, TransferFunctionsStylizeFlatInteriorAndImageBorder) {
     for (int c = 0; c < 3; ++c) largest_change = std::max(largest_change, std::abs(border[c] - interior[c]));
     EXPECT_GT(largest_change, 0.05) << color_name << "/" << opacity_name;
   }
-}
-
-double saved(const RunResult& r, const std::string& name) {
-  for (const auto& [key, value] : r.counters.work_saved)
-    if (key == name) return value;
-  ADD_FAILURE() << "no work_saved counter '" << name << "'";
-  return std::numeric_limits<double>::quiet_NaN();
 }
 
 // k=auto sizes k from a counting pass over the view: on the 32-layer quads

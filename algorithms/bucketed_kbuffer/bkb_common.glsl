@@ -1,10 +1,17 @@
 // Storage and packing shared by every pass of the bucketed k-buffer
 // (murray2016 section 4). Compile-time defines: K (slots per pixel, 1..64),
-// DEPTH_BITS (16 or 24). Every per-pixel array is pixel-major: slot i of
+// DEPTH_BITS (16 or 24); the sort, store and neighbour passes also take BUCKETS:
+// BKB_BUCKETS_HASHED finds a shape's bucket in the hash table of the bucket
+// pass, BKB_BUCKETS_SINGLE treats the whole list as one bucket (one-object
+// scenes: no hash table is built), BKB_BUCKETS_NONE (neighbour pass only,
+// buckets=off) is the brute force of murray2016 Figure 10. Every per-pixel array is pixel-major: slot i of
 // pixel p is element p * K + i, so one pixel's list is contiguous.
 #include "shaders/bindings.h"
 
 #define BKB_EMPTY 0xffffffffu
+#define BKB_BUCKETS_NONE 0
+#define BKB_BUCKETS_HASHED 1
+#define BKB_BUCKETS_SINGLE 2
 #if DEPTH_BITS == 24
 // 24-bit depth + 8-bit shape id (at most 256 objects).
 #define BKB_SHAPE_BITS 8u
@@ -23,7 +30,8 @@
 // Z: per slot a 32-bit key. After the fill pass: depth in the high bits
 // (atomicMin keeps the nearest); after the sort pass: shape id in the high bits.
 layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) coherent buffer BkbZ { uint bkb_z[]; };
-// B: per pixel a hash table of K buckets: shape id << 16 | first << 8 | last.
+// B: per pixel a hash table of K buckets: shape id << 16 | first << 8 | last
+// (BKB_BUCKETS_SINGLE: only the first word, the list's length).
 layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) coherent buffer BkbBuckets { uint bkb_buckets[]; };
 // D, split in two arrays: packed RGBA8 colour and packed normal.
 layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 2) coherent buffer BkbColors { uint bkb_colors[]; };
@@ -79,6 +87,18 @@ vec3 bkb_unpack_normal(uint word) {
   vec2 xy = vec2(uvec2(word & 0x7fffu, (word >> 15) & 0x7fffu)) * (2.0 / 32767.0) - 1.0;
   float z = sqrt(max(0.0, 1.0 - dot(xy, xy)));
   return vec3(xy, (word & 0x40000000u) != 0u ? -z : z);
+}
+
+// A pixel's whole list as one bucket (BKB_BUCKETS_SINGLE: buckets=auto on
+// a one-object scene, where the bucket pass does not run): the sort pass
+// writes the list's length to the first word of the pixel's bucket table.
+// The scene rectangle's scissor can leave that word stale outside the
+// rectangle, but there slot 0 of Z is always cleared (BKB_EMPTY), which is
+// checked first. Returns the slot range [first, last]; empty (x > y) when
+// the pixel kept nothing.
+uvec2 bkb_whole_list(uint base) {
+  uint count = bkb_z[base] == BKB_EMPTY ? 0u : bkb_buckets[base];
+  return count == 0u ? uvec2(1u, 0u) : uvec2(0u, count - 1u);
 }
 
 // Figure 4 (1)-(2): the bucket of `shape` in a pixel's hash table,

@@ -35,8 +35,18 @@ constexpr int kMaxK = 64;  // the parameter's maximum: the worst case k=auto is 
 // table's size): one set of programs per k, built on first use (README,
 // "k=auto").
 struct KPrograms {
-  Program fill, sort, bucket, store, compose, stylize, neighbors_bucketed, neighbors_brute_force;
+  Program fill, sort, bucket, store, compose, stylize;
+  // Built when a frame needs them: the single-bucket sort and store, and the
+  // neighbour search per Search (hashed buckets, brute force, single bucket).
+  Program sort_single_bucket, store_single_bucket, neighbors[3];
 };
+
+// How a frame finds a shape's fragments; the values are bkb_common.glsl's
+// BKB_BUCKETS_* (the BUCKETS define of store.frag and neighbors.frag).
+// single_bucket: buckets=auto on a one-object scene, where every list is one
+// bucket, so no hash table is built (the bucket stage does not run) and the
+// neighbour search visits whole lists without shape tests.
+enum class Search { brute_force = 0, hashed = 1, single_bucket = 2 };
 
 class BucketedKBuffer final : public Technique {
  public:
@@ -140,10 +150,10 @@ class BucketedKBuffer final : public Technique {
     bind_storage();
     glBindFramebuffer(GL_FRAMEBUFFER, no_attachments_.id());
     glViewport(0, 0, width_, height_);
-    geometry_pass(frame, "fill", programs_->fill);
-    fullscreen_pass(frame, "sort", programs_->sort.id());
-    fullscreen_pass(frame, "bucket", programs_->bucket.id());
-    geometry_pass(frame, "store", programs_->store);
+    geometry_pass(frame, "fill", programs_->fill.id());
+    fullscreen_pass(frame, "sort", sort_program());
+    if (search_ != Search::single_bucket) fullscreen_pass(frame, "bucket", programs_->bucket.id());
+    geometry_pass(frame, "store", store_program());
     fullscreen_pass(frame, "neighbors", neighbors_program());
     {
       // Both identity: colour and alpha stay as stored; the stage does no work.
@@ -169,6 +179,8 @@ class BucketedKBuffer final : public Technique {
       c.work_saved = {{"bytes_not_allocated", double(bytes_for(kMaxK)) - double(c.bytes_allocated)},
                       {"slots_not_cleared", double(size_t(width_) * size_t(height_) * size_t(kMaxK - allocated_k_))}};
     }
+    // Against buckets=on: the last frame built no hash tables (one object).
+    if (search_ == Search::single_bucket) c.work_saved.push_back({"bucket_passes_skipped", 1.0});
     if (slots == 0) return c;
     bkb::SlotReadback r;
     r.keys = read_uints(z_, slots);
@@ -181,7 +193,9 @@ class BucketedKBuffer final : public Technique {
     c.fragments_stored = s.stored;
     c.fragments_dropped = dropped + s.store_misses;
     c.extra = {{"bits_per_fragment", double(bytes_per_slot() * 8)},
-               {"buckets_used", buckets_used_ ? 1.0 : 0.0},
+               // 1: hash-table buckets (buckets=on, or auto on several objects);
+               // 0: brute force (off) or auto's single bucket on one object.
+               {"buckets_used", search_ == Search::hashed ? 1.0 : 0.0},
                // 1 bucket per pixel (a single object): a bucket is the whole
                // list and buckets=on can only add the hash look-up's cost.
                {"buckets_per_pixel", s.covered_pixels ? double(s.buckets) / double(s.covered_pixels) : 0.0},
@@ -260,9 +274,14 @@ class BucketedKBuffer final : public Technique {
     d.push_back({"MEASURE_ACCURACY", measure_ ? "1" : "0"});
     return d;
   }
-  ShaderDefines neighbors_defines(int k, bool bucketed) const {
+  ShaderDefines sort_defines(int k, Search search) const {
+    ShaderDefines d = defines(k);
+    d.push_back({"BUCKETS", std::to_string(int(search))});
+    return d;
+  }
+  ShaderDefines search_defines(int k, Search search) const {
     ShaderDefines d = store_defines(k);
-    d.push_back({"BUCKETED", bucketed ? "1" : "0"});
+    d.push_back({"BUCKETS", std::to_string(int(search))});
     return d;
   }
 
@@ -273,9 +292,9 @@ class BucketedKBuffer final : public Technique {
     if (it != programs_by_k_.end()) return it->second;
     KPrograms p;
     p.fill = build_geometry_program("algorithms/bucketed_kbuffer/fill.frag", defines(k));
-    p.sort = build_fullscreen_program("algorithms/bucketed_kbuffer/sort.frag", defines(k));
+    p.sort = build_fullscreen_program("algorithms/bucketed_kbuffer/sort.frag", sort_defines(k, Search::hashed));
     p.bucket = build_fullscreen_program("algorithms/bucketed_kbuffer/bucket.frag", defines(k));
-    p.store = build_geometry_program("algorithms/bucketed_kbuffer/store.frag", store_defines(k));
+    p.store = build_geometry_program("algorithms/bucketed_kbuffer/store.frag", search_defines(k, Search::hashed));
     p.compose = build_fullscreen_program("algorithms/bucketed_kbuffer/compose.frag", defines(k));
     if (!identity_) {
       ShaderDefines d = defines(k);
@@ -302,7 +321,9 @@ class BucketedKBuffer final : public Technique {
       bounds_scene_ = &scene;
     }
     analytic_curvature_ = scene.analytic_curvature;
-    buckets_used_ = mode_ == BucketMode::on || (mode_ == BucketMode::automatic && scene.object_count > 1);
+    search_ = mode_ == BucketMode::off ? Search::brute_force
+              : mode_ == BucketMode::automatic && scene.object_count <= 1 ? Search::single_bucket
+                                                                           : Search::hashed;
     // The scene's bounding sphere along the view axis bounds every fragment's
     // view depth; the view matrix may carry a uniform scale.
     const float scale = std::cbrt(std::abs(glm::determinant(glm::mat3(frame.view))));
@@ -312,8 +333,8 @@ class BucketedKBuffer final : public Technique {
     depth_far_ = std::max(centre + radius, depth_near_ + 1e-6f * std::max(1.0f, depth_near_));
     const glm::mat4 inverse_projection = glm::inverse(frame.projection);
     const KPrograms& p = *programs_;
-    for (GLuint program : {p.fill.id(), p.sort.id(), p.bucket.id(), p.store.id(), neighbors_program(), p.stylize.id(),
-                           p.compose.id()}) {
+    for (GLuint program : {p.fill.id(), sort_program(), p.bucket.id(), store_program(), neighbors_program(),
+                           p.stylize.id(), p.compose.id()}) {
       if (program == 0) continue;
       frame.set_shared_uniforms(program);
       if (active(program, "u_width")) glProgramUniform1i(program, kUniform + 0, width_);
@@ -331,17 +352,37 @@ class BucketedKBuffer final : public Technique {
   }
 
   GLuint neighbors_program() {
-    Program& program = buckets_used_ ? programs_->neighbors_bucketed : programs_->neighbors_brute_force;
-    if (!program) {
-      program = build_fullscreen_program("algorithms/bucketed_kbuffer/neighbors.frag",
-                                         neighbors_defines(programs_k_, buckets_used_));
-    }
+    Program& program = programs_->neighbors[int(search_)];
+    if (!program)
+      program = build_fullscreen_program("algorithms/bucketed_kbuffer/neighbors.frag", search_defines(programs_k_, search_));
     return program.id();
   }
 
-  void geometry_pass(const Frame& frame, const char* stage, const Program& program) {
+  // One object under buckets=auto: the sort pass also records each list's
+  // length, which replaces the hash table.
+  GLuint sort_program() {
+    if (search_ != Search::single_bucket) return programs_->sort.id();
+    Program& program = programs_->sort_single_bucket;
+    if (!program)
+      program = build_fullscreen_program("algorithms/bucketed_kbuffer/sort.frag",
+                                         sort_defines(programs_k_, Search::single_bucket));
+    return program.id();
+  }
+
+  // buckets=off keeps the hashed store: the paper's brute force (Figure 10)
+  // concerns only the neighbour query.
+  GLuint store_program() {
+    if (search_ != Search::single_bucket) return programs_->store.id();
+    Program& program = programs_->store_single_bucket;
+    if (!program)
+      program = build_geometry_program("algorithms/bucketed_kbuffer/store.frag",
+                                       search_defines(programs_k_, Search::single_bucket));
+    return program.id();
+  }
+
+  void geometry_pass(const Frame& frame, const char* stage, GLuint program) {
     auto timed = frame.clock.stage(stage);
-    glUseProgram(program.id());
+    glUseProgram(program);
     frame.scene.draw();
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
@@ -395,7 +436,8 @@ class BucketedKBuffer final : public Technique {
   int width_ = 0, height_ = 0;
   const Scene* bounds_scene_ = nullptr;
   BoundingSphere bounds_;
-  bool buckets_used_ = true, analytic_curvature_ = false;
+  Search search_ = Search::hashed;  // this frame's
+  bool analytic_curvature_ = false;
   float depth_near_ = 0.0f, depth_far_ = 1.0f;
 };
 

@@ -5,12 +5,26 @@
 // (z: depth normalised to [0, 1] by the quantisation range) among the
 // candidates of the SAME shape id, and is kept only if no other fragment of
 // this pixel (same shape) is closer to it: the reverse check of carnecky2013
-// Algorithm 2. BUCKETED = 1 visits one bucket (hash look-up, Figure 4);
-// BUCKETED = 0 is the brute force of Figure 10: it evaluates eps for every
-// fragment of the adjacent pixel and of its own pixel and discards other
-// shapes (eps = infinity, as carnecky2013 does for other components). Both
-// visit candidates in the same order with the same strict comparison, so
-// they find the same links.
+// Algorithm 2. BUCKETS (bkb_common.glsl) picks how the candidates are found:
+// BKB_BUCKETS_HASHED visits one bucket (hash look-up, Figure 4);
+// BKB_BUCKETS_NONE is the brute force of Figure 10: it evaluates eps for
+// every fragment of the adjacent pixel and of its own pixel and discards
+// other shapes (eps = infinity, as carnecky2013 does for other components);
+// BKB_BUCKETS_SINGLE (one-object scenes) visits every fragment with neither
+// hash look-up nor shape test, since all share the shape. All three visit
+// candidates in the same order with the same strict comparison, so they find
+// the same links.
+//
+// Why the brute force is slower than one bucket on a one-object scene on
+// llvmpipe, although both visit the same slots: its candidate loop has the
+// constant bound K (break at the first BKB_EMPTY), so the compiler unrolls
+// it into K copies, and llvmpipe runs a SIMD group of fragments in lockstep
+// with masked lanes: every copy executes for the whole group even after all
+// lanes have met BKB_EMPTY (measured: neighbors 20.5 ms brute force vs
+// 11.4 ms one bucket, torus 256x256, k = 16, median of 5 frames; with a
+// bound the compiler cannot see (same code otherwise) the brute force
+// dropped to the bucketed time, see the README). The single-bucket path
+// therefore bounds its loops by the list length (bkb_whole_list), not K.
 //
 // Curvature (Vergne et al. 2009 style, in screen space): from the four
 // linked neighbours, the 2x2 Jacobian J of the viewer-facing normal's (x, y)
@@ -78,12 +92,12 @@ uint find_neighbour(uint i, uvec2 own_range, uint nb, uvec2 range, Ray ray, out 
   vec3 best_normal = vec3(0.0);
   for (uint j = range.x; j <= range.y; ++j) {
     uint key = bkb_z[nb + j];
-#if !BUCKETED
+#if BUCKETS == BKB_BUCKETS_NONE
     if (key == BKB_EMPTY) break;
 #endif
     vec3 normal_j = bkb_unpack_normal(bkb_normals[nb + j]);
     float eps = continuity(normal_i, depth_i, normal_j, bkb_depth_unit(key));
-#if !BUCKETED
+#if BUCKETS == BKB_BUCKETS_NONE
     if (bkb_shape(key) != shape) eps = kNoCandidate;
 #endif
     if (eps < best_eps) {
@@ -98,7 +112,7 @@ uint find_neighbour(uint i, uvec2 own_range, uint nb, uvec2 range, Ray ray, out 
   float best_depth = bkb_depth_unit(best_key);
   for (uint i2 = own_range.x; i2 <= own_range.y; ++i2) {
     float eps = continuity(own_normals[i2], bkb_depth_unit(own_keys[i2]), best_normal, best_depth);
-#if !BUCKETED
+#if BUCKETS == BKB_BUCKETS_NONE
     if (bkb_shape(own_keys[i2]) != shape) eps = kNoCandidate;
 #endif
     if (eps < best_eps) return 0xffu;
@@ -125,11 +139,23 @@ void main() {
   uint base_down = neighbour_base(q_down), base_up = neighbour_base(q_up);
   Ray ray_left = pixel_ray(q_left), ray_right = pixel_ray(q_right);
   Ray ray_down = pixel_ray(q_down), ray_up = pixel_ray(q_up);
-  // Brute force: every slot of the adjacent pixel, every fragment of this one.
-  uvec2 own_range = uvec2(0u, own_count - 1u), all_slots = uvec2(0u, uint(K) - 1u);
+  uvec2 own_range = uvec2(0u, own_count - 1u);
+  // Brute force: every slot of the adjacent pixel, every fragment of this one
+  // (the other paths overwrite the ranges below).
+  uvec2 all_slots = uvec2(0u, uint(K) - 1u);
   uvec2 range_left = all_slots, range_right = all_slots, range_down = all_slots, range_up = all_slots;
   for (uint i = 0u; i < own_count; ++i) {
-#if BUCKETED
+#if BUCKETS == BKB_BUCKETS_SINGLE
+    if (i == 0u) {
+      // One bucket per pixel: the adjacent pixels' whole lists, found once
+      // and only by pixels that kept a fragment.
+      range_left = base_left == BKB_EMPTY ? uvec2(1u, 0u) : bkb_whole_list(base_left);
+      range_right = base_right == BKB_EMPTY ? uvec2(1u, 0u) : bkb_whole_list(base_right);
+      range_down = base_down == BKB_EMPTY ? uvec2(1u, 0u) : bkb_whole_list(base_down);
+      range_up = base_up == BKB_EMPTY ? uvec2(1u, 0u) : bkb_whole_list(base_up);
+    }
+#endif
+#if BUCKETS == BKB_BUCKETS_HASHED
     uint shape = bkb_shape(own_keys[i]);
     if (i == 0u || shape != bkb_shape(own_keys[i - 1u])) {
       // First fragment of one of this pixel's buckets: its range follows

@@ -17,8 +17,9 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
                                  "slots per pixel: the k nearest fragments are kept; auto = the view's depth "
                                  "complexity, counted every frame (capped by auto_k_memory_mb)"),
       ParamSpec::choice("buckets", "auto", {"auto", "on", "off"},
-                        "neighbour query in one bucket (on), over all fragments (off, brute force), "
-                        "or on unless the scene has a single object (auto)"),
+                        "neighbour query in one hashed bucket (on), over all fragments (off, brute force), "
+                        "or on unless the scene has a single object (auto), where each list is the one bucket: "
+                        "no bucket pass, no hash look-ups"),
       ParamSpec::choice("color_transfer", "mean_curvature_shading",
                         {"mean_curvature_shading", "curved_bright", "identity"},
                         "1D colour transfer function of kappa: murray2016 Figure 6(a), 6(b), or colour unchanged"),
@@ -44,7 +45,9 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
   d.stages = {"count", "clear", "fill", "sort", "bucket", "store", "neighbors", "stylize", "compose"};
   d.exactness = Exactness::approximate;
   d.quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32", "64"}}};
-  d.adaptive_switches = {{"buckets_auto", "runs the brute-force neighbour search when the scene has one object, where buckets cannot help",
+  d.adaptive_switches = {{"buckets_auto",
+                          "on a one-object scene skips the bucket pass (no hash tables) and searches each whole "
+                          "list as the single bucket, without hash look-ups or shape tests",
                           {{"buckets", "auto"}}, {{"buckets", "on"}}},
                          {"k_auto", "sizes k from the view's depth complexity (a counting pass) instead of the "
                                     "worst-case constant 64",

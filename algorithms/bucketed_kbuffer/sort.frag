@@ -32,4 +32,9 @@ void main() {
     bkb_z[base + i] = keys[i];
     bkb_normals[base + i] = 0u;
   }
+#if BUCKETS == BKB_BUCKETS_SINGLE
+  // No bucket pass follows (one object): the list is the pixel's one bucket
+  // and its length all that the store and neighbour passes need.
+  bkb_buckets[base] = count;
+#endif
 }

@@ -1,6 +1,7 @@
 #version 450 core
 // Data pass (murray2016 4.1 "Data storage", Figure 4): the second geometry
-// pass. Each fragment finds its bucket by its shape id, then its slot by a
+// pass. Each fragment finds its bucket by its shape id (BUCKETS =
+// BKB_BUCKETS_SINGLE: the whole list), then its slot by a
 // binary search on the key inside the bucket, and stores its colour (RGBA8)
 // and normal there. Fragments beyond the K nearest find no slot. Fragments
 // with identical keys (same shape, same quantised depth) each claim their
@@ -22,7 +23,13 @@ void main() {
   uint key = bkb_shape_key(shape, bkb_quantise_depth(oit_view_depth()));
   uint base = bkb_pixel_base();
   uvec2 bucket;
+#if BUCKETS == BKB_BUCKETS_SINGLE
+  // One object: every kept fragment shares this shape, the list is the bucket.
+  bucket = bkb_whole_list(base);
+  if (bucket.x > bucket.y) return;
+#else
   if (!bkb_find_bucket(base, shape, bucket)) return;
+#endif
   uint low = bucket.x, high = bucket.y + 1u;  // lower bound of key in [first, last]
   while (low < high) {
     uint middle = (low + high) >> 1;
