@@ -1,8 +1,9 @@
 // bucketed_kbuffer: the bucketed k-buffer of murray2016 with screen-space
 // curvature and curvature/depth transfer functions. Stages: clear, fill (Z:
 // K nearest keys by 32-bit atomicMin), sort (swap to shape-major and sort),
-// bucket (per-pixel hash table), store (second geometry pass: colour and
-// normal), neighbors (links + curvature), stylize, compose (back to front).
+// bucket (per-pixel hash table; skipped by buckets=auto on one object),
+// store (second geometry pass: colour and normal), neighbors (links +
+// curvature), stylize, compose (back to front).
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/packing.hpp>
 
@@ -42,7 +43,7 @@ struct KPrograms {
 };
 
 // How a frame finds a shape's fragments; the values are bkb_common.glsl's
-// BKB_BUCKETS_* (the BUCKETS define of store.frag and neighbors.frag).
+// BKB_BUCKETS_* (the BUCKETS define of sort.frag, store.frag and neighbors.frag).
 // single_bucket: buckets=auto on a one-object scene, where every list is one
 // bucket, so no hash table is built (the bucket stage does not run) and the
 // neighbour search visits whole lists without shape tests.
@@ -354,7 +355,8 @@ class BucketedKBuffer final : public Technique {
   GLuint neighbors_program() {
     Program& program = programs_->neighbors[int(search_)];
     if (!program)
-      program = build_fullscreen_program("algorithms/bucketed_kbuffer/neighbors.frag", search_defines(programs_k_, search_));
+      program = build_fullscreen_program("algorithms/bucketed_kbuffer/neighbors.frag",
+                                         search_defines(programs_k_, search_));
     return program.id();
   }
 
