@@ -146,12 +146,14 @@ TEST(ResultsCsv, ReaderReturnsWhatTheWriterWroteAndFinishedRunsLeaveErrorsOut) {
   skipped.spec.camera = "default";
   skipped.status = RunStatus::skipped;
   skipped.message = " leading and trailing spaces ";
+  RunResult without_rect = skipped;  // the same run with the scene rectangle off is another run
+  without_rect.spec.scene_rect = false;
   {
     CsvWriter writer(path);
-    for (const RunResult* r : {&ok, &failed, &skipped}) writer.write(*r, context());
+    for (const RunResult* r : {&ok, &failed, &skipped, &without_rect}) writer.write(*r, context());
   }
   const auto records = read_csv(path);
-  ASSERT_EQ(records.size(), 1u + 6u + 1u + 1u);
+  ASSERT_EQ(records.size(), 1u + 6u + 1u + 1u + 1u);
   EXPECT_EQ(records[0], csv_columns());
   EXPECT_EQ(records[1], csv_rows(ok, context())[0]);
   EXPECT_EQ(records[7], csv_rows(failed, context())[0]);
@@ -161,7 +163,8 @@ TEST(ResultsCsv, ReaderReturnsWhatTheWriterWroteAndFinishedRunsLeaveErrorsOut) {
   const std::set<RunKey> finished = finished_runs(path);
   const std::set<RunKey> expected = {
       {"kbuffer", "k=16 tail=drop", "quads", "layers=32", "random:4:7@2", 64, 32},
-      {"kbuffer", "k=16 tail=drop", "quads", "layers=32", "default", 64, 32}};
+      {"kbuffer", "k=16 tail=drop", "quads", "layers=32", "default", 64, 32},
+      {"kbuffer", "k=16 tail=drop", "quads", "layers=32", "default", 64, 32, false}};
   EXPECT_EQ(finished, expected);  // the linked_list error row is not finished
 
   // A row cut short by a crash while writing is no run; the rows before it still count.
