@@ -18,6 +18,7 @@
 #include "by_triangle_id.h"
 #include "core/technique.h"
 #include "gl/check.h"
+#include "gl/pass_queries.h"
 #include "gl/shader_program.h"
 #include "../../shaders/bindings.h"
 
@@ -158,13 +159,8 @@ class DepthPeelingBySubmission final : public Technique {
     // Geometry passes early exit did not run (without it all max_passes run).
     c.work_saved = {{"passes_avoided", early_exit_ ? double(uint64_t(max_passes_) - passes_) : 0.0}};
     // Read lazily, so no frame waits for them.
-    uint64_t peeled = 0, peeled_by_last_pass = 0;
-    for (int pass = 1; pass <= blended_passes_; ++pass) {
-      GLuint samples = 0;
-      glGetQueryObjectuiv(blend_queries_[size_t(pass - 1)].id(), GL_QUERY_RESULT, &samples);
-      peeled += samples;
-      peeled_by_last_pass = samples;
-    }
+    const uint64_t peeled = blend_queries_.sum(0, size_t(blended_passes_));
+    const uint64_t peeled_by_last_pass = blended_passes_ > 0 ? blend_queries_.result(size_t(blended_passes_ - 1)) : 0;
     c.fragments_stored = peeled;
     if (last_allowed_pass_blended_) {
       // What the capped last pass saw un-peeled but did not peel is never peeled.
@@ -178,7 +174,6 @@ class DepthPeelingBySubmission final : public Technique {
 
  private:
   void blend_layer_under_accumulation(int current, int pass) {
-    while (blend_queries_.size() < size_t(pass)) blend_queries_.push_back(make_query(GL_SAMPLES_PASSED));
     glBindFramebuffer(GL_FRAMEBUFFER, accumulation_target_.id());
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
@@ -188,7 +183,7 @@ class DepthPeelingBySubmission final : public Technique {
     glUseProgram(blend_layer_.id());
     glBindTextureUnit(kLayerColorUnit, layer_color_.id());
     glBindTextureUnit(kLayerKeysUnit, keys_[current].id());
-    glBeginQuery(GL_SAMPLES_PASSED, blend_queries_[size_t(pass - 1)].id());
+    glBeginQuery(GL_SAMPLES_PASSED, blend_queries_.at(size_t(pass - 1)).id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glEndQuery(GL_SAMPLES_PASSED);
     glDisable(GL_BLEND);
@@ -207,7 +202,7 @@ class DepthPeelingBySubmission final : public Technique {
   Program peel_, peel_counting_, blend_layer_, compose_;
   Buffer counter_;
   Query any_samples_;
-  std::vector<Query> blend_queries_;  // GL_SAMPLES_PASSED per blend pass: fragments peeled
+  PassSampleQueries blend_queries_;  // blend pass p at p - 1: fragments peeled
   Texture layer_color_, depth_, accumulation_, keys_[2];
   Framebuffer peel_targets_[2], accumulation_target_;
   int width_ = 0, height_ = 0;

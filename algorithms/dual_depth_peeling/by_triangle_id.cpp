@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "gl/check.h"
+#include "gl/pass_queries.h"
 #include "gl/shader_program.h"
 #include "../../shaders/bindings.h"
 
@@ -165,12 +166,7 @@ class DualDepthPeelingByTriangleId final : public Technique {
     // composited by pass p + 1: passes 2 .. passes - 1 count.
     GLuint fragments = 0;
     if (passes_ > 0) glGetQueryObjectuiv(fragments_query_.id(), GL_QUERY_RESULT, &fragments);
-    uint64_t composited = 0;
-    for (uint64_t pass = 2; pass + 1 <= passes_; ++pass) {
-      GLuint selected = 0;
-      glGetQueryObjectuiv(selected_queries_[size_t(pass)].id(), GL_QUERY_RESULT, &selected);
-      composited += selected;
-    }
+    const uint64_t composited = selected_queries_.sum(2, passes_);
     c.fragments_stored = composited;
     // Whatever was not composited: the middle layers when the passes ran out.
     c.fragments_dropped = fragments > composited ? fragments - composited : 0;
@@ -182,8 +178,7 @@ class DualDepthPeelingByTriangleId final : public Technique {
   // returns whether any pixel selected a fragment (waits for the pass when
   // early exit needs to know).
   bool resolve(int current, int previous, int pass, const GLuint nothing_here[4]) {
-    while (selected_queries_.size() <= size_t(pass)) selected_queries_.push_back(make_query(GL_SAMPLES_PASSED));
-    const Query& query = selected_queries_[size_t(pass)];
+    const Query& query = selected_queries_.at(size_t(pass));
     glClearNamedFramebufferuiv(state_targets_[current].id(), GL_COLOR, 0, nothing_here);
     glBindFramebuffer(GL_FRAMEBUFFER, state_targets_[current].id());
     glUseProgram(resolve_.id());
@@ -196,10 +191,7 @@ class DualDepthPeelingByTriangleId final : public Technique {
       glDrawArrays(GL_TRIANGLES, 0, 3);
     }
     glEndQuery(GL_SAMPLES_PASSED);
-    if (!early_exit_) return true;
-    GLuint selected = 0;
-    glGetQueryObjectuiv(query.id(), GL_QUERY_RESULT, &selected);
-    return selected != 0;
+    return !early_exit_ || selected_queries_.result(size_t(pass)) != 0;
   }
 
   // The candidate keys rank ids up to kDualDepthPeelingMaxTriangleId;
@@ -225,7 +217,7 @@ class DualDepthPeelingByTriangleId final : public Technique {
   bool early_exit_;
   Program init_, peel_, resolve_, compose_;
   Query fragments_query_;
-  std::vector<Query> selected_queries_;  // GL_SAMPLES_PASSED of pass p's resolve: fragments selected
+  PassSampleQueries selected_queries_;  // pass p's resolve: fragments selected
   Texture front_, back_, select_, keys_[2], next_[2];
   Framebuffer peel_target_, state_targets_[2], init_target_;
   const Scene* checked_scene_ = nullptr;
