@@ -52,4 +52,11 @@ std::vector<DiagnosticImage> diagnostic_images_once(const std::string& technique
   return instance->diagnostic_images();
 }
 
+const DiagnosticImage* find_diagnostic(const std::vector<DiagnosticImage>& images, const std::string& name) {
+  for (const DiagnosticImage& d : images)
+    if (d.name == name) return &d;
+  ADD_FAILURE() << "no diagnostic image '" << name << "'";
+  return nullptr;
+}
+
 }  // namespace oit::test

@@ -17,5 +17,7 @@ RunResult render_once(const std::string& technique, const RawParams& params, con
 std::vector<DiagnosticImage> diagnostic_images_once(const std::string& technique, const RawParams& params,
                                                     const std::string& scene, const RawParams& scene_params,
                                                     int width, int height);
+// The image called `name` among `images`; nullptr, and a test failure, when there is none.
+const DiagnosticImage* find_diagnostic(const std::vector<DiagnosticImage>& images, const std::string& name);
 
 }  // namespace oit::test

@@ -332,12 +332,7 @@ TEST(IllustrationBuffer, InvalidParametersAreErrorsNamingTheParameter) {
 namespace oit {
 namespace {
 
-const DiagnosticImage* find_diagnostic(const std::vector<DiagnosticImage>& images, const std::string& name) {
-  for (const DiagnosticImage& d : images)
-    if (d.name == name) return &d;
-  ADD_FAILURE() << "no diagnostic image '" << name << "'";
-  return nullptr;
-}
+using test::find_diagnostic;
 
 TEST(IllustrationBuffer, DiagnosticImagesShowTheFrontFragmentsNeighboursOnFullScreenQuads) {
   const int w = 24, h = 16;
