@@ -32,6 +32,34 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
+// The lines of a text file (or of a PLY header), trimmed and numbered from
+// 1. Reading past the end gives empty lines and still counts them, so a
+// message about a missing line names the line that is missing.
+class TextLines {
+ public:
+  explicit TextLines(std::string_view bytes) : bytes_(bytes) {}
+  // The next line; false (and an empty line) once the bytes are used up.
+  bool next(std::string_view& line) {
+    ++number_;
+    if (start_ >= bytes_.size()) {
+      line = {};
+      return false;
+    }
+    size_t end = bytes_.find('\n', start_);
+    if (end == std::string_view::npos) end = bytes_.size();
+    line = trim(bytes_.substr(start_, end - start_));
+    start_ = end + 1;
+    return true;
+  }
+  uint64_t number() const { return number_; }     // of the line last read
+  std::string_view rest() const { return bytes_.substr(std::min(start_, bytes_.size())); }
+
+ private:
+  std::string_view bytes_;
+  size_t start_ = 0;
+  uint64_t number_ = 0;
+};
+
 std::string shown(std::string_view token) {
   std::string text(token.substr(0, 32));
   for (char& c : text)
@@ -143,14 +171,10 @@ void require_room(const std::string& path, uint64_t count, uint64_t min_bytes, s
 MeshFileFacts check_obj(const std::string& path, std::string_view bytes) {
   MeshFileFacts facts{"obj"};
   uint64_t largest_positive = 0, largest_line = 0;
-  uint64_t line_number = 0;
-  size_t start = 0;
-  while (start < bytes.size()) {
-    size_t end = bytes.find('\n', start);
-    if (end == std::string_view::npos) end = bytes.size();
-    const std::string_view line = trim(bytes.substr(start, end - start));
-    start = end + 1;
-    ++line_number;
+  TextLines lines(bytes);
+  std::string_view line;
+  while (lines.next(line)) {
+    const uint64_t line_number = lines.number();
     if (line.empty() || line.front() == '#') continue;
     const std::string at = "line " + std::to_string(line_number);
     Tokens tokens(line);
@@ -349,12 +373,10 @@ MeshFileFacts check_ply(const std::string& path, std::string_view bytes) {
   MeshFileFacts facts{"ply"};
   std::vector<PlyElement> elements;
   bool binary = false, big_endian = false, have_format = false, ended = false;
-  size_t start = 0;
-  for (int line_number = 1; start < bytes.size() && !ended; ++line_number) {
-    size_t end = bytes.find('\n', start);
-    if (end == std::string_view::npos) end = bytes.size();
-    const std::string_view line = trim(bytes.substr(start, end - start));
-    start = end + 1;
+  TextLines lines(bytes);
+  std::string_view line;
+  while (!ended && lines.next(line)) {
+    const uint64_t line_number = lines.number();
     const std::string at = "header line " + std::to_string(line_number);
     // The header is text; OpenMesh's header parser loops forever on some
     // control bytes (a NUL inside the format line, found by the mutation test).
@@ -426,7 +448,7 @@ MeshFileFacts check_ply(const std::string& path, std::string_view bytes) {
   facts.vertices = vertex->count;
   facts.binary = binary;
 
-  PlyBody body(path, bytes.substr(std::min(start, bytes.size())), binary, big_endian);
+  PlyBody body(path, lines.rest(), binary, big_endian);
   for (const auto& element : elements) {
     uint64_t min_bytes = 0;  // smallest possible item: one byte (binary) or two characters (ASCII) per value
     for (const auto& p : element.properties)
@@ -506,31 +528,23 @@ MeshFileFacts check_stl(const std::string& path, std::string_view bytes) {
     fail(path, "is neither ASCII STL (no 'solid') nor binary STL" + detail);
   }
   // ASCII: every corner is a line "vertex x y z" (OpenMesh reads three lines after "outer loop").
-  size_t start = 0;
-  uint64_t line_number = 0;
-  while (start < bytes.size()) {
-    size_t end = bytes.find('\n', start);
-    if (end == std::string_view::npos) end = bytes.size();
-    const std::string_view line = trim(bytes.substr(start, end - start));
-    start = end + 1;
-    ++line_number;
+  TextLines lines(bytes);
+  std::string_view line;
+  while (lines.next(line)) {
     Tokens tokens(line);
     const std::string_view keyword = tokens.next();
-    const std::string at = "line " + std::to_string(line_number);
+    const std::string at = "line " + std::to_string(lines.number());
     if (line.find("outer") != std::string_view::npos || line.find("OUTER") != std::string_view::npos) {
       ++facts.faces;
       // OpenMesh takes the next three lines as the corners, whatever they say.
       for (int k = 0; k < 3; ++k) {
-        size_t next = bytes.find('\n', start);
-        if (next == std::string_view::npos) next = bytes.size();
-        const std::string_view corner = trim(bytes.substr(std::min(start, bytes.size()), next - std::min(start, bytes.size())));
-        ++line_number;
+        std::string_view corner;
+        lines.next(corner);  // past the end: empty, and reported as missing below
         Tokens corner_tokens(corner);
-        const std::string corner_at = "line " + std::to_string(line_number);
+        const std::string corner_at = "line " + std::to_string(lines.number());
         if (corner_tokens.next() != "vertex") fail(path, corner_at + ": expected 'vertex x y z' (file truncated?)");
         for (const char* axis : {"x", "y", "z"}) require_real(path, corner_tokens.next(), corner_at + ": vertex " + axis);
         ++facts.vertices;
-        start = next + 1;
       }
     } else if (keyword == "vertex") {
       fail(path, at + ": 'vertex' outside an 'outer loop'");
