@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "accuracy.h"
+#include "core/fragment_pool.h"
 #include "gl/check.h"
 #include "gl/shader_program.h"
 #include "settings.h"
@@ -33,7 +34,6 @@ enum : GLuint {
 constexpr GLuint kSearchUnit = 0, kTrianglesUnit = 1, kFieldsUnit = 2, kShadeUnit = 3;
 constexpr GLuint kFragmentUnit = 0, kNextUnit = 1;  // the sort's views (sort.comp)
 constexpr uint32_t kSmallestArray = 8;
-constexpr double kPoolSlack = 1.25;
 // Keeps both field ranges inside fragData for any storage-offset alignment up to 4 KiB.
 constexpr uint64_t kSmallestPool = 256;
 
@@ -94,9 +94,7 @@ class IllustrationBuffer final : public Technique {
     for (;;) {
       {
         auto stage = frame.clock.stage("clear");
-        // A pool over twice the last frame's need shrinks (factor 2: no reallocation every frame).
-        const uint64_t wanted = pool_size_for(last_produced_);
-        if (last_produced_ > 0 && capacity_ > 2 * wanted) allocate_pool(wanted);
+        if (const uint64_t shrunk = fragment_pool::shrunk_capacity(capacity_, last_produced_)) allocate_pool(shrunk);
         const GLuint nil = 0xffffffffu, zero = 0;
         glClearNamedBufferData(head_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &nil);
         glClearNamedBufferData(count_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -118,7 +116,7 @@ class IllustrationBuffer final : public Technique {
       if (counts[0] <= capacity_) break;
       // Overflow: nothing is dropped silently; grow to this view's need and render again.
       ++overflow_retries_;
-      allocate_pool(pool_size_for(counts[0]));
+      allocate_pool(fragment_pool::capacity_for(counts[0]));
     }
     produced_ = counts[0];
     dropped_ = counts[2];
@@ -190,7 +188,6 @@ class IllustrationBuffer final : public Technique {
 
  private:
   bool modulated() const { return s_.modulation != Modulation::none; }
-  static uint64_t pool_size_for(uint64_t fragments) { return uint64_t(double(fragments) * kPoolSlack) + 1; }
 
   std::vector<GLuint> programs() const {
     std::vector<GLuint> all = {fill_.id(), compose_.id()};

@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/fragment_pool.h"
 #include "core/technique.h"
 #include "gl/check.h"
 #include "gl/shader_program.h"
@@ -48,8 +49,6 @@ constexpr uint32_t kSmallestArray = 8;
 // insertion sort, because a 256-element network is ~3000 compare-exchanges
 // of straight-line code that takes llvmpipe far too long to compile.
 constexpr uint32_t kLargestNetwork = 128;
-// The pool holds this much more than the fragments it was sized from.
-constexpr double kPoolSlack = 1.25;
 
 enum class PoolSizing { previous_frame, count, worst_case };
 
@@ -115,11 +114,9 @@ class LinkedList final : public Technique {
     for (;;) {
       {
         auto clear = frame.clock.stage("clear");
-        // A pool far larger than the last frame needed shrinks to that need
-        // (with slack); the factor 2 keeps it from reallocating every frame.
-        const uint64_t wanted = pool_size_for(previous_fragments_);
-        if (pool_sizing_ == PoolSizing::previous_frame && previous_fragments_ > 0 && capacity_ > 2 * wanted)
-          allocate_pool(wanted);
+        // A pool far larger than the last frame needed shrinks to that need (core/fragment_pool.h).
+        const uint64_t shrunk = fragment_pool::shrunk_capacity(capacity_, previous_fragments_);
+        if (pool_sizing_ == PoolSizing::previous_frame && shrunk > 0) allocate_pool(shrunk);
         const GLuint nil = 0xffffffffu, zero = 0;
         glClearNamedBufferData(heads_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &nil);
         glClearNamedBufferData(lengths_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -143,7 +140,7 @@ class LinkedList final : public Technique {
       // render again. pool_sizing=count never gets here: the counting pass
       // ran the same geometry, so the fill produces exactly that count.
       ++overflow_retries_;
-      allocate_pool(pool_sizing_ == PoolSizing::count ? counts[0] : pool_size_for(counts[0]));
+      allocate_pool(pool_sizing_ == PoolSizing::count ? counts[0] : fragment_pool::capacity_for(counts[0]));
     }
     dropped_ = counts[2];
     stored_ = counts[0] - counts[2];
@@ -257,8 +254,6 @@ class LinkedList final : public Technique {
     c.work_saved.push_back({"pixels_in_short_groups", double(short_groups)});
     if (network) c.work_saved.push_back({"compare_exchanges_avoided", double(exchanges_avoided)});
   }
-
-  static uint64_t pool_size_for(uint64_t fragments) { return uint64_t(double(fragments) * kPoolSlack) + 1; }
 
   // Local array for the frame's longest list: a power of two (so a few
   // programs serve every frame), never more than max_per_pixel.

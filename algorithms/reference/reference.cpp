@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/fragment_pool.h"
 #include "core/technique.h"
 #include "gl/check.h"
 #include "gl/shader_program.h"
@@ -78,7 +79,7 @@ class Reference final : public Technique {
       if (produced <= capacity_) break;
       // Overflow: grow to what this view needs (plus slack) and render again.
       ++overflow_retries_;
-      allocate_pool(uint64_t(produced) + uint64_t(produced) / 4 + 1);
+      allocate_pool(fragment_pool::capacity_for(produced));
     }
     auto compose = frame.clock.stage("compose");
     if (max_length_ > kMaxGpuListLength) {
