@@ -120,12 +120,8 @@ class BucketedKBuffer final : public Technique {
   // k=auto: the most slots per pixel that fit both the memory cap and the
   // device's largest storage block, at least 1 and at most the maximum.
   int auto_k_cap() const {
-    const uint64_t pixels = std::max<uint64_t>(uint64_t(width_) * uint64_t(height_), 1);
-    uint64_t cap = memory_cap_bytes_ / (pixels * bytes_per_slot());
-    GLint64 max_block = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    if (max_block > 0) cap = std::min(cap, uint64_t(max_block) / (pixels * (measure_ ? 16u : 4u)));
-    return int(std::clamp<uint64_t>(cap, 1, kMaxK));
+    // The largest single array: 16-byte truth records with measure_accuracy, else 4-byte words.
+    return slots_per_pixel_cap(width_, height_, memory_cap_bytes_, bytes_per_slot(), measure_ ? 16u : 4u, kMaxK);
   }
 
   // Z + B + colour + normal + features (+ links, expected, estimated, truth)

@@ -184,12 +184,7 @@ class KBuffer final : public Technique {
   // device's largest storage block (the colour buffer is the biggest), at
   // least 1 and at most the parameter's maximum.
   int auto_k_cap() const {
-    const uint64_t pixels = std::max<uint64_t>(uint64_t(width_) * uint64_t(height_), 1);
-    uint64_t cap = memory_cap_bytes_ / (pixels * kSlotBytes);
-    GLint64 max_block = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    if (max_block > 0) cap = std::min(cap, uint64_t(max_block) / (pixels * kColorBytes));
-    return int(std::clamp<uint64_t>(cap, 1, kMaxK));
+    return slots_per_pixel_cap(width_, height_, memory_cap_bytes_, kSlotBytes, kColorBytes, kMaxK);
   }
 
   // The compose program for k slots. Only compose depends on the define K

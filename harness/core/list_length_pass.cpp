@@ -50,4 +50,14 @@ uint32_t ListLengthPass::longest_list(const Frame& frame) {
 
 uint64_t ListLengthPass::bytes_allocated() const { return uint64_t(width_) * uint64_t(height_) * 4u; }
 
+int slots_per_pixel_cap(int width, int height, uint64_t memory_cap_bytes, uint64_t bytes_per_slot,
+                        uint64_t largest_array_bytes_per_slot, int max_slots) {
+  const uint64_t pixels = std::max<uint64_t>(uint64_t(width) * uint64_t(height), 1);
+  uint64_t cap = memory_cap_bytes / (pixels * bytes_per_slot);
+  GLint64 max_block = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+  if (max_block > 0) cap = std::min(cap, uint64_t(max_block) / (pixels * largest_array_bytes_per_slot));
+  return int(std::clamp<uint64_t>(cap, 1, uint64_t(max_slots)));
+}
+
 }  // namespace oit

@@ -32,4 +32,12 @@ class ListLengthPass {
   int width_ = 0, height_ = 0;
 };
 
+// The most slots per pixel (at least 1, at most max_slots) that a technique
+// sizing itself from ListLengthPass may allocate at width x height: all its
+// per-slot arrays (bytes_per_slot in all) within memory_cap_bytes, and its
+// largest single array (largest_array_bytes_per_slot) within the device's
+// largest storage block.
+int slots_per_pixel_cap(int width, int height, uint64_t memory_cap_bytes, uint64_t bytes_per_slot,
+                        uint64_t largest_array_bytes_per_slot, int max_slots);
+
 }  // namespace oit
