@@ -32,7 +32,9 @@ void expect_exact_techniques_order_independent(const RunSpec& spec) {
       EXPECT_LE(c.largest_difference, technique.exact_tolerance)
           << technique.id << " moved under " << c.worst_order << " on " << spec.scene;
     }
-    if (technique.id == "unsorted") EXPECT_GT(c.largest_difference, 0.05) << "unsorted should depend on the order";
+    if (technique.id == "unsorted") {
+      EXPECT_GT(c.largest_difference, 0.05) << "unsorted should depend on the order";
+    }
   }
   EXPECT_GE(checked, 2u);
 }

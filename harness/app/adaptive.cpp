@@ -5,6 +5,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "app/commands.h"
 #include "core/results_csv.h"
 
 namespace oit {
@@ -151,7 +152,7 @@ int run_adaptive(const CommonOptions& common, const AdaptiveOptions& options) {
   auto context = create_headless_context(parse_device_preference(common.device), common.debug_gl);
   Harness harness(*context, registry);
   const DeviceInfo& device = harness.device();
-  const RunContext run_context{device.renderer, device.version, device.platform, OIT_GIT_REVISION, utc_timestamp()};
+  const RunContext csv_context = run_context(device);
   std::unique_ptr<CsvWriter> csv;
   if (!options.csv.empty()) csv = std::make_unique<CsvWriter>(options.csv);
   std::fprintf(stderr, "oitbench adaptive: %zu technique(s), %zu scene(s), %dx%d, %d repeat(s) of on/off on %s\n",
@@ -188,7 +189,7 @@ int run_adaptive(const CommonOptions& common, const AdaptiveOptions& options) {
             std::fprintf(stderr, "  %s %s=%s on %s (repeat %d) ... ", technique->id.c_str(), feature.name.c_str(),
                          is_on ? "on" : "off", scenes[s].c_str(), repeat + 1);
             RunResult result = harness.run(spec);
-            if (csv) csv->write(result, run_context);
+            if (csv) csv->write(result, csv_context);
             if (result.status != RunStatus::ok) {
               std::fprintf(stderr, "%s: %s\n", to_string(result.status).c_str(), result.message.c_str());
               row.status = result.status;

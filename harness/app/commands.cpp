@@ -1,5 +1,7 @@
 #include "app/commands.h"
 
+#include "app/huge_page_malloc.h"
+
 #include <cstdio>
 #include <iostream>
 #include <set>
@@ -15,10 +17,6 @@ namespace {
 
 std::unique_ptr<GlContext> open_context(const CommonOptions& common) {
   return create_headless_context(parse_device_preference(common.device), common.debug_gl);
-}
-
-RunContext run_context(const DeviceInfo& device) {
-  return {device.renderer, device.version, device.platform, OIT_GIT_REVISION, utc_timestamp()};
 }
 
 void print_params(const ParamSchema& schema) {
@@ -73,10 +71,16 @@ void print_summary(const std::vector<RunResult>& results, const std::string& bas
 
 }  // namespace
 
+std::string platform_text(const DeviceInfo& device) { return device.platform + ", host pages " + host_page_policy(); }
+
+RunContext run_context(const DeviceInfo& device) {
+  return {device.renderer, device.version, platform_text(device), OIT_GIT_REVISION, utc_timestamp()};
+}
+
 int run_list(const CommonOptions& common) {
   auto context = open_context(common);
   const DeviceInfo& device = context->device();
-  std::printf("Device: %s (%s, %s)%s\n\n", device.renderer.c_str(), device.version.c_str(), device.platform.c_str(),
+  std::printf("Device: %s (%s, %s)%s\n\n", device.renderer.c_str(), device.version.c_str(), platform_text(device).c_str(),
               device.software ? " — software GL: stage clock defaults to wall+glFinish" : "");
   std::printf("Techniques:\n");
   for (const auto& t : builtin_techniques().all()) {

@@ -3,8 +3,16 @@
 #include <vector>
 
 #include "app/sweep.h"
+#include "core/results_csv.h"
 
 namespace oit {
+
+// The CSV's `platform` column and the `Device:` lines: how the context was
+// made and the page policy of the host heap (huge_page_malloc.h), which on
+// software GL holds every GL buffer and changes its timings.
+std::string platform_text(const DeviceInfo& device);
+// The per-sweep columns of every CSV row (device, revision, start time).
+RunContext run_context(const DeviceInfo& device);
 
 struct CommonOptions {
   std::string device = "auto";

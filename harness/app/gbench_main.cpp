@@ -9,6 +9,7 @@
 
 #include <cstdio>
 
+#include "app/huge_page_malloc.h"
 #include "app/sweep.h"
 
 namespace {
@@ -48,6 +49,7 @@ void run_benchmark(benchmark::State& state, oit::Harness* harness, oit::RunSpec 
 }  // namespace
 
 int main(int argc, char** argv) {
+  oit::relaunch_with_huge_page_malloc(argv);
   benchmark::Initialize(&argc, argv);
   CLI::App app{"oitbench_gbench: oitbench runs as Google Benchmark benchmarks"};
   oit::SweepOptions sweep;

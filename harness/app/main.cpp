@@ -7,11 +7,13 @@
 #include "app/adaptive.h"
 #include "app/check_order.h"
 #include "app/commands.h"
+#include "app/huge_page_malloc.h"
 #include "app/pareto.h"
 #include "app/stress.h"
 #include "app/viewer/view_command.h"
 
 int main(int argc, char** argv) {
+  oit::relaunch_with_huge_page_malloc(argv);
   CLI::App app{"oitbench: order-independent transparency techniques, timed stage by stage and compared "
                "with the exact image"};
   app.require_subcommand(1);
