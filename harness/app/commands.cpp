@@ -11,6 +11,7 @@
 #include "core/results_csv.h"
 #include "gl/program_cache.h"
 #include "scene_library.h"
+#include "oit_revision.h"
 
 namespace oit {
 namespace {

@@ -18,6 +18,7 @@
 #include "core/results_csv.h"
 #include "scene_library.h"
 #include "stacked_quads.h"
+#include "oit_revision.h"
 
 namespace oit {
 namespace {

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "gl/embedded_shaders.h"
+#include "oit_revision.h"
 
 namespace oit {
 namespace {
