@@ -158,5 +158,29 @@ TEST(ViewerLiveTechnique, InvalidParametersAreRefusedWithTheSchemaMessageAndTheO
   live.render(quads.gpu, camera.view, camera.projection(1.0f), glm::vec3(0.0f));
 }
 
+// The viewer's "saved" line for the scene rectangle counts what the
+// harness's pixels_outside_scene_rect counts for the same frame.
+TEST(ViewerLiveTechnique, PixelsOutsideTheSceneRectangleAreTheHarnessCount) {
+  GlContext& context = test::gl_context();
+  const Scene scene = load_scene("torus", {});
+  const SceneGpu gpu(scene);
+  const SceneFacts facts{scene.triangle_count(), scene.object_count, true};
+  LiveTechnique live(builtin_techniques(), context.device(), ClockKind::wall);
+  ASSERT_EQ(live.configure("unsorted", {}, facts, 64, 48), "");
+  const glm::mat4 view = scene.camera.view, projection = scene.camera.projection(64.0f / 48.0f);
+  live.render(gpu, view, projection, glm::vec3(0.0f));
+  const uint64_t expected = 64 * 48 - projected_scene_rect(gpu.bounding_box(), projection * view, 64, 48).pixels();
+  ASSERT_GT(expected, 0u) << "the torus should leave pixels outside its rectangle";
+  EXPECT_EQ(live.pixels_outside_scene_rect(), expected);
+  const RunResult run = test::render_once("unsorted", {}, "torus", {}, 64, 48);
+  double harness_count = -1.0;
+  for (const auto& [name, value] : run.counters.work_saved)
+    if (name == kPixelsOutsideSceneRect) harness_count = value;
+  EXPECT_EQ(harness_count, double(expected));
+  live.set_scene_rect(false);
+  live.render(gpu, view, projection, glm::vec3(0.0f));
+  EXPECT_EQ(live.pixels_outside_scene_rect(), 0u);
+}
+
 }  // namespace
 }  // namespace oit

@@ -207,6 +207,51 @@ TEST(Viewer, SplitShowsTechniqueAOnTheLeftAndBOnTheRight) {
   EXPECT_GT(max_difference(shot, b, 0, 62, 20), kTolerance) << "A and B should differ on spheres";
 }
 
+// Split mode splits the error and diagnostic displays like the image:
+// A's heatmap left of the split line, B's right of it (labels and the line
+// are drawn over the top rows and the middle columns; compare around them).
+TEST(Viewer, SplitErrorDisplayShowsEachTechniquesErrorHeatmapOnItsSide) {
+  // Spheres: the two approximate techniques err in different places
+  // (kbuffer where lists exceed k, unsorted where submission order is wrong).
+  Harness& harness = test::harness();
+  const Image& reference = harness.reference_image("spheres", {}, 64, 64, glm::vec3(0.0f));
+  const RunResult a = test::render_once("kbuffer", {{"k", "2"}}, "spheres", {}, 64, 64);
+  const RunResult b = test::render_once("unsorted", {}, "spheres", {}, 64, 64);
+  write_image(error_heatmap(a.image, reference), kOut + "/split_error_a.png");
+  write_image(error_heatmap(b.image, reference), kOut + "/split_error_b.png");
+  const Png shot = view_screenshot(
+      "--technique kbuffer --set k=2 --compare unsorted --show split --display error --scene spheres --size 64x64",
+      "split_error");
+  const Png expected_a = load_png(kOut + "/split_error_a.png"), expected_b = load_png(kOut + "/split_error_b.png");
+  ASSERT_GT(expected_a.width, 0);
+  EXPECT_LE(max_difference(shot, expected_a, 0, 30, 20), kTolerance);
+  EXPECT_LE(max_difference(shot, expected_b, 34, 64, 20), kTolerance);
+  EXPECT_GT(max_difference(expected_a, expected_b, 0, 30, 20), kTolerance) << "the two error maps should differ";
+  EXPECT_GT(max_difference(expected_a, expected_b, 34, 64, 20), kTolerance) << "the two error maps should differ";
+}
+
+TEST(Viewer, SplitDiagnosticDisplayShowsEachTechniquesFieldOnItsSide) {
+  const RawParams sphere{{"count", "1"}};
+  const auto a = test::diagnostic_images_once("illustration_buffer", {}, "spheres", sphere, 64, 64);
+  const auto b = test::diagnostic_images_once("bucketed_kbuffer", {}, "spheres", sphere, 64, 64);
+  const DiagnosticImage* field_a = test::find_diagnostic(a, "neighbor_count");
+  const DiagnosticImage* field_b = test::find_diagnostic(b, "neighbor_count");
+  ASSERT_TRUE(field_a && field_b);
+  for (const auto& [field, name] : {std::pair{field_a, "a"}, std::pair{field_b, "b"}}) {
+    write_image(heatmap_range(field->values, field->width, field->height, field->low, field->high),
+                kOut + "/split_diagnostic_" + name + ".png");
+  }
+  const Png shot = view_screenshot("--technique illustration_buffer --compare bucketed_kbuffer --show split "
+                                   "--display diagnostic --diagnostic neighbor_count --scene spheres "
+                                   "--scene-set count=1 --size 64x64",
+                                   "split_diagnostic");
+  const Png expected_a = load_png(kOut + "/split_diagnostic_a.png");
+  const Png expected_b = load_png(kOut + "/split_diagnostic_b.png");
+  ASSERT_GT(expected_a.width, 0);
+  EXPECT_LE(max_difference(shot, expected_a, 0, 30, 20), kTolerance);
+  EXPECT_LE(max_difference(shot, expected_b, 34, 64, 20), kTolerance);
+}
+
 TEST(Viewer, WithoutADisplayExitsNonZeroWithAdvice) {
   const Outcome o = run("env -u DISPLAY -u WAYLAND_DISPLAY " + kOitbench + " view --frames 1");
   EXPECT_EQ(o.exit_code, 1) << o.output;  // an orderly error, not a crash (signal)

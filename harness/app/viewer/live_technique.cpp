@@ -42,7 +42,8 @@ void LiveTechnique::render(const SceneGpu& scene, const glm::mat4& view, const g
                            const glm::vec3& background) {
   if (!technique_) return;
   const Frame frame{scene, view, projection, width_, height_, background, target_->framebuffer.id(), *clock_};
-  render_frame(*technique_, frame, true, scene_rect_);
+  const ScreenRect rect = render_frame(*technique_, frame, true, scene_rect_);
+  pixels_outside_ = scene_rect_ ? uint64_t(width_) * uint64_t(height_) - rect.pixels() : 0;
   gl_check("a viewer frame of " + id_);
   // The very first frame closes a window at once, so timings show up
   // without waiting (and a short --frames run has them too).

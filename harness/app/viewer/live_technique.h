@@ -48,6 +48,9 @@ class LiveTechnique {
   // render_frame's scene rectangle, for every later frame (default on).
   void set_scene_rect(bool on) { scene_rect_ = on; }
   bool scene_rect() const { return scene_rect_; }
+  // Pixels of the last frame outside the scene rectangle (0 when it is off):
+  // the harness's pixels_outside_scene_rect.
+  uint64_t pixels_outside_scene_rect() const { return pixels_outside_; }
 
  private:
   // Frames per timing window: medians over a few frames are steadier than
@@ -67,6 +70,7 @@ class LiveTechnique {
   RawParams params_;
   int width_ = 0, height_ = 0;
   bool scene_rect_ = true;
+  uint64_t pixels_outside_ = 0;
 };
 
 }  // namespace oit

@@ -12,7 +12,6 @@
 #include "app/sweep.h"
 #include "app/viewer/param_editor.h"
 #include "cameras.h"
-#include "core/heatmap.h"
 #include "gl/check.h"
 #include "scene_library.h"
 
@@ -154,86 +153,6 @@ void Viewer::render_slot(Slot& slot) {
   }
 }
 
-// ---- diagnostics ------------------------------------------------------
-
-std::string Viewer::diagnostic_key() const {
-  // Everything the diagnostic images depend on; the shown technique's
-  // image is deterministic for a fixed configuration and camera.
-  const Slot& shown = shown_slot();
-  std::ostringstream key;
-  key << int(display_) << "|" << diagnostic_name_ << "|" << scene_generation_ << "|" << background_.r << "," << background_.g << ","
-      << background_.b << "|" << shown.live.id() << " " << shown.live.canonical_params() << "|";
-  const glm::mat4 view = orbit_.camera().view, proj = projection();
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) key << view[c][r] << "," << proj[c][r] << ";";
-  return key.str();
-}
-
-void Viewer::upload(const Image& image) {
-  glTextureSubImage2D(display_target_->color.id(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT,
-                      image.rgba.data());
-}
-
-void Viewer::update_diagnostics() {
-  if (display_ == Display::image) return;
-  const std::string key = diagnostic_key();
-  if (key == diagnostics_key_) return;
-  diagnostics_key_ = key;
-  diagnostics_message_.clear();
-  error_.reset();
-  diagnostic_.reset();
-  diagnostic_names_.clear();
-  try {
-    const glm::mat4 view = orbit_.camera().view, proj = projection();
-    if (display_ == Display::diagnostic) {
-      // Whatever the shown technique offers about its last frame (this view).
-      const Slot& shown = shown_slot();
-      if (!shown.live.ready()) throw std::runtime_error("no technique is running");
-      std::vector<DiagnosticImage> images = shown.live.diagnostic_images();
-      for (const DiagnosticImage& d : images) diagnostic_names_.push_back(d.name);
-      if (images.empty())
-        throw std::runtime_error(shown.live.id() + " offers no diagnostic images with these parameters");
-      auto it = std::find_if(images.begin(), images.end(),
-                             [&](const DiagnosticImage& d) { return d.name == diagnostic_name_; });
-      if (!diagnostic_name_.empty() && it == images.end())
-        throw std::runtime_error(shown.live.id() + " has no diagnostic image '" + diagnostic_name_ + "'");
-      if (it == images.end()) it = images.begin();
-      diagnostic_ = std::move(*it);
-      upload(heatmap_range(diagnostic_->values, diagnostic_->width, diagnostic_->height, diagnostic_->low,
-                           diagnostic_->high));
-      return;
-    }
-    if (display_ == Display::list_length) {
-      complexity_ = measure_depth_complexity(*scene_gpu_, view, proj, width_, height_);
-      upload(list_length_heatmap(complexity_));
-      return;
-    }
-    // The exact reference of this very view: the registry's reference
-    // technique, rendered as the harness renders references.
-    if (reference_->id().empty()) {
-      if (std::string m = reference_->configure(registry_.reference().id, {}, facts(), width_, height_); !m.empty())
-        throw std::runtime_error(m);
-    }
-    reference_->render(*scene_gpu_, view, proj, background_);
-    reference_image_ = reference_->read_image();
-    if (display_ == Display::reference) {
-      upload(reference_image_);
-      return;
-    }
-    const Slot& shown = shown_slot();
-    if (!shown.live.ready()) throw std::runtime_error("no technique is running");
-    const Image image = shown.live.read_image();
-    error_ = compare_images(image, reference_image_);
-    upload(error_heatmap(image, reference_image_));
-  } catch (const std::exception& e) {
-    while (glGetError() != GL_NO_ERROR) {
-    }
-    diagnostics_message_ = e.what();
-    const GLfloat black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-    glClearNamedFramebufferfv(display_target_->framebuffer.id(), GL_COLOR, 0, black);
-  }
-}
-
 // ---- output -----------------------------------------------------------
 
 void Viewer::draw_scene_area(int framebuffer_height) {
@@ -247,10 +166,7 @@ void Viewer::draw_scene_area(int framebuffer_height) {
   if (display_ != Display::image) return blit(display_target_->framebuffer.id(), 0, width_);
   const Slot& first = shown_slot();
   if (first.live.ready()) blit(first.live.target().framebuffer.id(), 0, width_);
-  if (compare_ && show_ == Show::split && b_->live.ready()) {
-    const int split = std::clamp(int(split_ * float(width_) + 0.5f), 0, width_);
-    blit(b_->live.target().framebuffer.id(), split, width_);
-  }
+  if (compare_ && show_ == Show::split && b_->live.ready()) blit(b_->live.target().framebuffer.id(), split_column(), width_);
 }
 
 void Viewer::handle_mouse() {

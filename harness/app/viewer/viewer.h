@@ -48,10 +48,21 @@ class Viewer {
   void configure(Slot& slot);
   void render_slot(Slot& slot);
   // The technique the scene area and the diagnostics show: A, unless the
-  // comparison is on and toggled to B (split shows A's diagnostics).
+  // comparison is on and toggled to B (split: A left, B right).
   const Slot& shown_slot() const { return compare_ && show_ == Show::b ? *b_ : *a_; }
+  int split_column() const;  // first column of B in split mode
+  // What one technique's error or diagnostic heatmap says (viewer_diagnostics.cpp).
+  struct DiagnosticHalf {
+    std::optional<ImageError> error;
+    std::optional<DiagnosticImage> field;  // the one shown (values kept for the panel's range)
+    std::string message;                   // why it is black
+  };
+  // Error and diagnostic displays split like the image (A | B).
+  bool split_diagnostics() const;
   void update_diagnostics();
   std::string diagnostic_key() const;
+  const Image& reference_of_view();
+  Image heatmap_of(const Slot& slot, DiagnosticHalf& half);
   void upload(const Image& image);
   // Output.
   void draw_scene_area(int framebuffer_height);
@@ -96,13 +107,11 @@ class Viewer {
   Display display_ = Display::image;
   std::unique_ptr<LiveTechnique> reference_;
   std::string diagnostics_key_;  // what the diagnostics below were computed for
-  std::string diagnostics_message_;
   Image reference_image_;
-  std::optional<ImageError> error_;
   DepthComplexity complexity_;
   std::string diagnostic_name_;             // wanted diagnostic image ("": the technique's first)
   std::vector<std::string> diagnostic_names_;  // what the shown technique offers
-  std::optional<DiagnosticImage> diagnostic_;  // the one shown (values kept for the panel's range)
+  DiagnosticHalf halves_[2];                // the shown technique; B in split mode
   std::unique_ptr<RenderTarget> display_target_;  // uploaded diagnostic image
 
   std::string screenshot_path_ = "oitbench_view.png";

@@ -75,9 +75,9 @@ void Viewer::draw_panel(int framebuffer_width, int framebuffer_height) {
   ImGui::End();
 
   // Labels over the split image, drawn by ImGui on top of the scene area.
-  if (compare_ && show_ == Show::split && display_ == Display::image) {
+  if (compare_ && show_ == Show::split && (display_ == Display::image || split_diagnostics())) {
     ImDrawList* draw = ImGui::GetForegroundDrawList();
-    const float x = std::clamp(split_, 0.0f, 1.0f) * float(width_);
+    const float x = float(split_column());
     draw->AddLine(ImVec2(x, 0.0f), ImVec2(x, float(height_)), IM_COL32(255, 255, 255, 160));
     draw->AddText(ImVec2(6.0f, 4.0f), IM_COL32(255, 255, 255, 220), a_->live.id().c_str());
     draw->AddText(ImVec2(x + 6.0f, 4.0f), IM_COL32(255, 255, 255, 220), b_->live.id().c_str());
@@ -108,6 +108,14 @@ void Viewer::panel_scene() {
   }
   if (!scene_message_.empty()) wrapped_colored(kRed, scene_message_);
   ImGui::ColorEdit3("background", &background_.r, ImGuiColorEditFlags_Float);
+  // Both techniques alike, as `bench --scene-rect` (the reference never).
+  bool scene_rect = a_->live.scene_rect();
+  if (ImGui::Checkbox("scene rectangle", &scene_rect)) {
+    a_->live.set_scene_rect(scene_rect);
+    b_->live.set_scene_rect(scene_rect);
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("confine the techniques to the scene's projected bounding rectangle (--scene-rect on)");
 }
 
 void Viewer::panel_camera() {
@@ -188,6 +196,11 @@ void Viewer::panel_timings(const Slot& slot, const char* label) {
   ImGui::Text("passes %llu, overflow retries %llu", static_cast<unsigned long long>(c.passes),
               static_cast<unsigned long long>(c.overflow_retries));
   for (const auto& [name, value] : c.extra) ImGui::Text("%s %.4g", name.c_str(), value);
+  // What the adaptive paths avoided (the CSV's work_saved).
+  for (const auto& [name, value] : c.work_saved) ImGui::Text("saved: %s %.4g", name.c_str(), value);
+  if (slot.live.scene_rect())
+    ImGui::Text("saved: %s %llu", kPixelsOutsideSceneRect,
+                static_cast<unsigned long long>(slot.live.pixels_outside_scene_rect()));
   ImGui::Separator();
   ImGui::PopID();
 }
@@ -206,14 +219,7 @@ void Viewer::panel_diagnostics() {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("diagnostic images the shown technique offers (if any)");
   display_ = Display(display);
   if (display_ == Display::image) return;
-  const Slot& shown = shown_slot();
   if (display_ == Display::reference) ImGui::TextColored(kGrey, "exact reference (%s)", registry_.reference().id.c_str());
-  if (display_ == Display::error && error_) {
-    ImGui::Text("%s vs reference (heatmap: blue 0 .. red max)", shown.live.id().c_str());
-    ImGui::Text("max abs %.4g   rmse %.4g", error_->max_abs, error_->rmse);
-    ImGui::Text("psnr %.2f dB   ssim %.4f", error_->psnr_db, error_->ssim);
-    ImGui::Text("pixels off by > 1/255: %.2f%%", 100.0 * error_->share_over_1_255);
-  }
   if (display_ == Display::list_length) {
     ImGui::Text("fragments per pixel (blue 0 .. red %u)", complexity_.max);
     ImGui::Text("Psi %.4f   mean %.3f   max %u", complexity_.psi, complexity_.mean, complexity_.max);
@@ -222,11 +228,26 @@ void Viewer::panel_diagnostics() {
   }
   if (display_ == Display::diagnostic) {
     for (const std::string& name : diagnostic_names_) {
-      const bool current = diagnostic_ && diagnostic_->name == name;
+      const bool current = halves_[0].field && halves_[0].field->name == name;
       if (ImGui::RadioButton(name.c_str(), current)) diagnostic_name_ = name;
     }
-    if (diagnostic_) {
-      const DiagnosticImage& d = *diagnostic_;
+  }
+  const bool split = split_diagnostics();
+  if (split) ImGui::TextColored(kGrey, "split: A left of the line, B right of it");
+  const Slot* slots[2] = {&shown_slot(), split ? b_.get() : nullptr};
+  for (int h = 0; h < 2; ++h) {
+    if (!slots[h]) continue;
+    const DiagnosticHalf& half = halves_[h];
+    const std::string who = (split ? std::string(h == 0 ? "A " : "B ") : std::string()) + slots[h]->live.id();
+    if (display_ == Display::error && half.error) {
+      const ImageError& e = *half.error;
+      ImGui::Text("%s vs reference (heatmap: blue 0 .. red max)", who.c_str());
+      ImGui::Text("max abs %.4g   rmse %.4g", e.max_abs, e.rmse);
+      ImGui::Text("psnr %.2f dB   ssim %.4f", e.psnr_db, e.ssim);
+      ImGui::Text("pixels off by > 1/255: %.2f%%", 100.0 * e.share_over_1_255);
+    }
+    if (display_ == Display::diagnostic && half.field) {
+      const DiagnosticImage& d = *half.field;
       float lo = 0.0f, hi = 0.0f;
       size_t valued = 0;
       for (float v : d.values) {
@@ -235,12 +256,12 @@ void Viewer::panel_diagnostics() {
         hi = valued == 0 ? v : std::max(hi, v);
         ++valued;
       }
-      ImGui::TextWrapped("%s: %s", d.name.c_str(), d.description.c_str());
+      ImGui::TextWrapped("%s, %s: %s", who.c_str(), d.name.c_str(), d.description.c_str());
       ImGui::Text("heatmap: blue %.4g .. red %.4g (black: no fragment)", d.low, d.high);
       if (valued > 0) ImGui::Text("values %.4g .. %.4g over %zu pixels", lo, hi, valued);
     }
+    if (!half.message.empty()) wrapped_colored(kRed, (split ? who + ": " : std::string()) + half.message);
   }
-  if (!diagnostics_message_.empty()) wrapped_colored(kRed, diagnostics_message_);
 }
 
 void Viewer::panel_output() {
