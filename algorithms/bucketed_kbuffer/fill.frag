@@ -1,4 +1,5 @@
 #version 450 core
+#include "shaders/subgroup_atomics.glsl"
 // Z pass (murray2016 4.1 "Z insertion", 4.2): the K nearest fragments of
 // each pixel as depth-major 32-bit keys (depth | shape id), kept sorted by a
 // chain of 32-bit atomicMin: each slot keeps the smaller key and the larger
@@ -13,7 +14,7 @@ void main() {
   // atomics: a slot already <= the carried key keeps its value, and a key
   // above the last slot can never be among the K nearest.
   if (carried > bkb_z[base + uint(K - 1)]) {
-    atomicAdd(bkb_dropped, 1u);
+    OIT_ATOMIC_COUNT(bkb_dropped);
     return;
   }
   for (int i = 0; i < K; ++i) {
@@ -22,5 +23,5 @@ void main() {
     if (previous == BKB_EMPTY) return;  // took a free slot
     carried = max(previous, carried);
   }
-  atomicAdd(bkb_dropped, 1u);  // beyond the K nearest
+  OIT_ATOMIC_COUNT(bkb_dropped);  // beyond the K nearest
 }

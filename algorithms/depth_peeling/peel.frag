@@ -1,4 +1,5 @@
 #version 450 core
+#include "shaders/subgroup_atomics.glsl"
 // One depth-peeling pass (Everitt 2001). The previous pass left, per pixel,
 // the key of the layer it peeled (see peel_shared.glsl). This pass discards
 // every fragment peeled already; among the rest the hardware depth test
@@ -34,7 +35,7 @@ void main() {
   const uvec2 previous = texelFetch(u_previous_keys, ivec2(gl_FragCoord.xy), 0).xy;
   if (!not_peeled_yet(depth, submitted, previous)) discard;
 #if defined(COUNT_SURVIVORS) && COUNT_SURVIVORS
-  atomicAdd(survivors_of_last_pass, 1u);
+  OIT_ATOMIC_COUNT(survivors_of_last_pass);
 #endif
   gl_FragDepth = depth * kDepthScale;
   const vec4 color = oit_shade();

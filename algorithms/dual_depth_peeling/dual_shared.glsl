@@ -12,12 +12,13 @@
 // COUNT_LEFT_UNPEELED is 1 only in the variant used for the last pass
 // max_passes allows: fragments still strictly inside the range after it are
 // never composited, so it counts them. (An atomic slows a pass down on Mesa
-// llvmpipe even where it never runs, hence a separate program.)
+// llvmpipe even where it never runs, hence a separate program.) Include
+// shaders/subgroup_atomics.glsl first where the count is taken.
 #if defined(COUNT_LEFT_UNPEELED) && COUNT_LEFT_UNPEELED
 layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) buffer DualDepthPeelingCounter {
   uint left_unpeeled;
 };
-#define DUAL_PEELING_COUNT_LEFT_UNPEELED() atomicAdd(left_unpeeled, 1u)
+#define DUAL_PEELING_COUNT_LEFT_UNPEELED() OIT_ATOMIC_COUNT(left_unpeeled)
 #else
 #define DUAL_PEELING_COUNT_LEFT_UNPEELED()
 #endif

@@ -1,4 +1,5 @@
 #version 450 core
+#include "shaders/subgroup_atomics.glsl"
 // First geometry pass: the nearest and farthest depth of every pixel
 // (GL_MAX blending of (-depth, depth)).
 #include "shaders/shading.glsl"

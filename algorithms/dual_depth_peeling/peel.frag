@@ -1,4 +1,5 @@
 #version 450 core
+#include "shaders/subgroup_atomics.glsl"
 // One dual peeling pass (Bavoil & Myers 2008). The previous pass found each
 // pixel's remaining depth range [nearest, farthest]. Fragments outside it were
 // composited before: discarded. The fragment at `nearest` is blended under

@@ -1,4 +1,5 @@
 #version 450 core
+#include "shaders/subgroup_atomics.glsl"
 // Fill (carnecky2013 Algorithm 1, pastyrik2016 Algorithm 1): every fragment
 // is appended to its pixel's list with its colour, depth, slopes, normal,
 // object and triangle id. The list length is counted even when the pool is
@@ -25,13 +26,14 @@ void main() {
 #endif
   const uint pixel = uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);
   const uint position = atomicAdd(ib_count[pixel], 1u);
-  atomicMax(ib_longest, position + 1u);
+  OIT_ATOMIC_RAISE(ib_longest, position + 1u);
   // Beyond the sort's array: counted here; the sort keeps the nearest max_per_pixel.
   if (position >= u_max_per_pixel) {
-    atomicAdd(ib_dropped, 1u);
+    OIT_ATOMIC_COUNT(ib_dropped);
     if (position == u_max_per_pixel) atomicAdd(ib_truncated, 1u);
   }
-  const uint index = atomicAdd(ib_produced, 1u);
+  uint index;
+  OIT_ATOMIC_APPEND(ib_produced, index);
   if (index >= u_capacity) return;  // pool overflow: the host grows the pool and re-renders
   ib_next[index] = atomicExchange(ib_head[pixel], index);
   const uvec4 key = uvec4(floatBitsToUint(depth), oit_triangle_id(), v_object_id, ib_pack_normal(oit_view_normal()));

@@ -1,4 +1,5 @@
 #version 450 core
+#include "shaders/subgroup_atomics.glsl"
 // Pass 2 (store): the same fragments again. A fragment among the K nearest
 // finds its depth key in the pixel's sorted keys (binary search for the
 // first slot >= key) and writes its colour there. Tied keys (equal view
@@ -44,6 +45,6 @@ void main() {
   out_tail_accumulation = vec4(color.rgb * color.a, color.a);
   out_tail_revealage = vec4(color.a);
 #else
-  atomicAdd(kbuffer_dropped, 1u);
+  OIT_ATOMIC_COUNT(kbuffer_dropped);
 #endif
 }

@@ -1,4 +1,5 @@
 #version 450 core
+#include "shaders/subgroup_atomics.glsl"
 // Fill pass: every fragment is appended to its pixel's list. The pixel's
 // length is counted even when the pool is full, so the host learns both how
 // many nodes it needs and how long the longest list is.
@@ -8,10 +9,11 @@
 void main() {
   const uint pixel = ll_pixel();
   const uint position = atomicAdd(ll_lengths[pixel], 1u);
-  atomicMax(ll_max_length, position + 1u);
+  OIT_ATOMIC_RAISE(ll_max_length, position + 1u);
   // Counted here, composited nowhere: the resolve keeps the nearest max_per_pixel.
-  if (position >= u_max_per_pixel) atomicAdd(ll_dropped, 1u);
-  const uint index = atomicAdd(ll_node_count, 1u);
+  if (position >= u_max_per_pixel) OIT_ATOMIC_COUNT(ll_dropped);
+  uint index;
+  OIT_ATOMIC_APPEND(ll_node_count, index);
   if (index >= u_capacity) return;  // pool overflow: the host grows the pool and re-renders
   const uint next = atomicExchange(ll_heads[pixel * uint(LL_HEADS) + position % uint(LL_HEADS)], index);
   ll_nodes[index] = LinkedListNode(oit_shade(), uvec4(floatBitsToUint(oit_view_depth()), oit_triangle_id(), next, 0u));

@@ -1,6 +1,7 @@
 #include "app/commands.h"
 
 #include "app/huge_page_malloc.h"
+#include "gl/shader_capabilities.h"
 
 #include <cstdio>
 #include <iostream>
@@ -72,7 +73,9 @@ void print_summary(const std::vector<RunResult>& results, const std::string& bas
 
 }  // namespace
 
-std::string platform_text(const DeviceInfo& device) { return device.platform + ", host pages " + host_page_policy(); }
+std::string platform_text(const DeviceInfo& device) {
+  return device.platform + ", host pages " + host_page_policy() + ", " + atomics_path();
+}
 
 RunContext run_context(const DeviceInfo& device) {
   return {device.renderer, device.version, platform_text(device), OIT_GIT_REVISION, utc_timestamp()};

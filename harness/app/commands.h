@@ -8,8 +8,9 @@
 namespace oit {
 
 // The CSV's `platform` column and the `Device:` lines: how the context was
-// made and the page policy of the host heap (huge_page_malloc.h), which on
-// software GL holds every GL buffer and changes its timings.
+// made, the page policy of the host heap (huge_page_malloc.h), which on
+// software GL holds every GL buffer, and whether shared counters take the
+// subgroup path (gl/shader_capabilities.h): both change timings.
 std::string platform_text(const DeviceInfo& device);
 // The per-sweep columns of every CSV row (device, revision, start time).
 RunContext run_context(const DeviceInfo& device);

@@ -9,6 +9,7 @@
 
 #include "gl/embedded_shaders.h"
 #include "gl/program_cache.h"
+#include "gl/shader_capabilities.h"
 
 namespace oit {
 namespace {
@@ -98,10 +99,13 @@ Shader compile(const ShaderStageSource& stage, const PreprocessedShader& pre) {
   return shader;
 }
 
+// The caller's defines, then the current context's (shader_capabilities.h).
 std::vector<PreprocessedShader> preprocess_stages(const std::vector<ShaderStageSource>& stages,
                                                   const ShaderDefines& defines) {
+  ShaderDefines all = defines;
+  for (auto& define : capability_defines()) all.push_back(std::move(define));
   std::vector<PreprocessedShader> sources;
-  for (const auto& stage : stages) sources.push_back(preprocess_shader(stage.path, defines));
+  for (const auto& stage : stages) sources.push_back(preprocess_shader(stage.path, all));
   return sources;
 }
 
