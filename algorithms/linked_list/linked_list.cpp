@@ -83,7 +83,10 @@ class LinkedList final : public Technique {
         counters_(make_buffer(kCounterBytes)) {
     linked_list::resolve_defines(sort_, 1);  // rejects an unknown sort before any frame
     glProgramUniform1ui(fill_.id(), kMaxPerPixelLocation, max_per_pixel_);
-    if (pool_sizing_ == PoolSizing::count) count_ = build_geometry_program("algorithms/linked_list/count.frag");
+    if (pool_sizing_ == PoolSizing::count) {
+      count_ = build_geometry_program("algorithms/linked_list/count.frag");
+      count_query_ = make_query(GL_SAMPLES_PASSED);
+    }
   }
 
   void resize(int width, int height) override {
@@ -193,20 +196,22 @@ class LinkedList final : public Technique {
 
   // pool_sizing=count: one geometry pass that only counts fragments, then
   // the pool is reallocated to exactly that count (only when it changed).
+  // pool_sizing=count: the fill's fragments counted by the rasterizer
+  // (GL_SAMPLES_PASSED on a single-sample framebuffer without depth test or
+  // discard counts exactly the fragments, under the same scissor), so the
+  // pass runs no shader work at all.
   void count_fragments(const Frame& frame) {
     auto count = frame.clock.stage("count");
-    const GLuint zero = 0;
-    glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glBindFramebuffer(GL_FRAMEBUFFER, dummy_framebuffer_.id());
     glViewport(0, 0, width_, height_);
     glUseProgram(count_.id());
     frame.set_shared_uniforms(count_.id());
-    bind_storage();
+    glBeginQuery(GL_SAMPLES_PASSED, count_query_.id());
     frame.scene.draw();
+    glEndQuery(GL_SAMPLES_PASSED);
     ++passes_;
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     GLuint fragments = 0;
-    glGetNamedBufferSubData(counters_.id(), 0, sizeof fragments, &fragments);
+    glGetQueryObjectuiv(count_query_.id(), GL_QUERY_RESULT, &fragments);
     if (std::max<uint64_t>(fragments, 1) != capacity_) allocate_pool(fragments);
   }
 
@@ -336,6 +341,7 @@ class LinkedList final : public Technique {
   uint32_t max_per_pixel_;
   uint64_t nodes_per_pixel_;
   Program fill_, count_;
+  Query count_query_;  // pool_sizing=count's fragment count
   std::map<std::string, Program> programs_;  // by "kind:sort:array size"
   linked_list::LengthClasses classes_;         // tiles by list length (length_classes)
   std::vector<uint32_t> sizes_;                // the last frame's classes (one: a full-screen draw)
