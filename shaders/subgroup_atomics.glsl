@@ -10,7 +10,8 @@
 // subgroup instead of one per invocation, and the same values. Helper
 // invocations take part in neither (their side effects are discarded).
 //
-// Include first, right after #version: it may enable extensions.
+// For fragment shaders (the macros read gl_HelperInvocation). Include first,
+// right after #version: it may enable extensions.
 #if defined(OIT_SHADER_BALLOT)
 #extension GL_ARB_shader_ballot : require
 #extension GL_ARB_gpu_shader_int64 : require
