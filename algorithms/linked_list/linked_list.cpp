@@ -194,12 +194,11 @@ class LinkedList final : public Technique {
  private:
   uint64_t worst_case_nodes() const { return uint64_t(width_) * uint64_t(height_) * max_per_pixel_; }
 
-  // pool_sizing=count: one geometry pass that only counts fragments, then
-  // the pool is reallocated to exactly that count (only when it changed).
-  // pool_sizing=count: the fill's fragments counted by the rasterizer
-  // (GL_SAMPLES_PASSED on a single-sample framebuffer without depth test or
-  // discard counts exactly the fragments, under the same scissor), so the
-  // pass runs no shader work at all.
+  // pool_sizing=count: one geometry pass whose fragments the rasterizer
+  // counts (GL_SAMPLES_PASSED on a single-sample framebuffer without depth
+  // test or discard counts exactly the fill's fragments, under the same
+  // scissor), with no shader work; then the pool is reallocated to exactly
+  // that count (only when it changed).
   void count_fragments(const Frame& frame) {
     auto count = frame.clock.stage("count");
     glBindFramebuffer(GL_FRAMEBUFFER, dummy_framebuffer_.id());

@@ -1,12 +1,11 @@
 #include "app/commands.h"
 
-#include "app/huge_page_malloc.h"
-#include "gl/shader_capabilities.h"
-
 #include <cstdio>
 #include <iostream>
 #include <set>
 
+#include "app/huge_page_malloc.h"
+#include "gl/shader_capabilities.h"
 #include "core/heatmap.h"
 #include "cameras.h"
 #include "core/results_csv.h"
