@@ -2,7 +2,8 @@
 // one benchmark per run, manual time = the stage clock's median-free per-frame
 // `total`, counters = fragments, bytes and error. Google Benchmark's own flags
 // (--benchmark_filter, --benchmark_repetitions, --benchmark_format, ...) work
-// as usual; oitbench's sweep flags come after `--`.
+// as usual; benchmark::Initialize takes those out of argv and the sweep
+// flags (those of `oitbench bench`, without --csv) stay for CLI11.
 #include <benchmark/benchmark.h>
 
 #include <CLI/CLI.hpp>
