@@ -222,8 +222,10 @@ int run_adaptive(const CommonOptions& common, const AdaptiveOptions& options) {
   }
   print_table(rows);
   std::printf("\ntime and memory: on / off (below 1: the feature saves); max diff: largest |on - off| of any "
-              "pixel's RGBA\nmedian total ms over %d timed frames x %d repeats per side | device: %s | clock: %s%s%s\n",
-              options.frames, options.repeats, device.renderer.c_str(), to_string(harness.default_clock()).c_str(),
+              "pixel's RGBA\nmedian total ms over %d timed frames x %d repeats per side | device: %s (%s) | clock: "
+              "%s%s%s\n",
+              options.frames, options.repeats, device.renderer.c_str(), csv_context.platform.c_str(),
+              to_string(harness.default_clock()).c_str(),
               csv ? " | rows appended to " : "", options.csv.c_str());
   return 0;
 }

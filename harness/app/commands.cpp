@@ -202,7 +202,8 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
   if (resumed > 0)
     std::printf("(%zu run%s already in %s from an earlier invocation: not in this table)\n", resumed,
                 resumed == 1 ? "" : "s", options.csv.c_str());
-  std::printf("\ndevice: %s | clock: %s | rows appended to %s\n", harness.device().renderer.c_str(),
+  std::printf("\ndevice: %s (%s) | clock: %s | rows appended to %s\n", harness.device().renderer.c_str(),
+              platform_text(harness.device()).c_str(),
               options.sweep.clock == "auto" ? to_string(harness.default_clock()).c_str() : options.sweep.clock.c_str(),
               options.csv.c_str());
   std::printf("runs: %zu done (%zu ok, %zu error), %zu resumed (already in the CSV), %zu skipped\n", ok + failed, ok,
