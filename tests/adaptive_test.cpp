@@ -18,7 +18,6 @@ namespace oit {
 namespace {
 
 using test::Outcome;
-using test::split_csv_line;
 
 const std::string kOut = std::string(OIT_BINARY_DIR) + "/test_output/adaptive";
 
@@ -77,21 +76,15 @@ TEST(AdaptiveCommand, EarlyExitAndSceneRectOnAndOffInTheTableAndTheCsv) {
   EXPECT_EQ(rect[9], "0");
   EXPECT_EQ(rect[10], "pixels_outside_scene_rect=0");  // the quads cover the whole image
 
-  std::ifstream in(csv);
-  std::string line;
-  std::getline(in, line);
-  const std::vector<std::string> header = split_csv_line(line);
-  ASSERT_EQ(header, csv_columns());
-  auto column = [&](const std::string& name) {
-    return size_t(std::find(header.begin(), header.end(), name) - header.begin());
-  };
+  const test::CsvTable table = test::read_csv_table(csv);
+  ASSERT_EQ(table.header, csv_columns());
+  auto column = [&](const std::string& name) { return table.column(name); };
   // Passes of every run's total row, by configuration: each side twice.
   std::map<std::string, std::vector<std::string>> passes;
-  while (std::getline(in, line)) {
-    const auto row = split_csv_line(line);
-    ASSERT_EQ(row.size(), header.size()) << line;
-    EXPECT_EQ(row[column("status")], "ok") << line;
-    EXPECT_EQ(row[column("scene_params")].find("layers=4"), 0u) << line;
+  for (const auto& row : table.rows) {
+    ASSERT_EQ(row.size(), table.header.size());
+    EXPECT_EQ(row[column("status")], "ok") << row[column("message")];
+    EXPECT_EQ(row[column("scene_params")].find("layers=4"), 0u) << row[column("scene_params")];
     if (row[column("stage")] != "total") continue;
     const std::string params = row[column("params")];
     const bool early_exit = params.find("early_exit=true") != std::string::npos;

@@ -22,7 +22,6 @@ namespace oit {
 namespace {
 
 using test::Outcome;
-using test::split_csv_line;
 
 const std::string kOut = std::string(OIT_BINARY_DIR) + "/test_output/cli";
 
@@ -54,21 +53,15 @@ TEST(Cli, BenchWithBothClocksWritesEveryStageOfEveryTechniqueTwice) {
   ASSERT_EQ(o.exit_code, 0) << o.output;
   EXPECT_NE(o.output.find("technique"), std::string::npos) << "no summary table:\n" << o.output;
 
-  std::ifstream in(csv);
-  std::string line;
-  std::getline(in, line);
-  const std::vector<std::string> header = split_csv_line(line);
-  ASSERT_EQ(header, csv_columns());
-  auto column = [&](const std::string& name) {
-    return size_t(std::find(header.begin(), header.end(), name) - header.begin());
-  };
+  const test::CsvTable table = test::read_csv_table(csv);
+  ASSERT_EQ(table.header, csv_columns());
+  auto column = [&](const std::string& name) { return table.column(name); };
   std::set<std::string> seen;  // technique/stage/clock
-  while (std::getline(in, line)) {
-    const auto row = split_csv_line(line);
-    ASSERT_EQ(row.size(), header.size()) << line;
-    EXPECT_EQ(row[column("status")], "ok") << line;
-    EXPECT_FALSE(row[column("median_ms")].empty()) << line;
-    EXPECT_FALSE(row[column("device")].empty()) << line;
+  for (const auto& row : table.rows) {
+    ASSERT_EQ(row.size(), table.header.size());
+    EXPECT_EQ(row[column("status")], "ok") << row[column("message")];
+    EXPECT_FALSE(row[column("median_ms")].empty()) << row[column("technique")] << " " << row[column("stage")];
+    EXPECT_FALSE(row[column("device")].empty());
     seen.insert(row[column("technique")] + "/" + row[column("stage")] + "/" + row[column("clock")]);
   }
   for (const char* id : {"unsorted", "reference"}) {

@@ -1,8 +1,9 @@
 #pragma once
 // Runs the oitbench binary as users do (a shell command line) for the tests
-// of the command line, and splits the CSV lines they check.
+// of the command line, and reads the CSV files they check.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +11,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "core/results_csv.h"
 
 namespace oit::test {
 
@@ -34,18 +37,23 @@ inline Outcome run_oitbench(const std::string& out_dir, const std::string& argum
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
 }
 
-// The fields checked by these tests hold no quotes; quoted fields are kept whole.
-inline std::vector<std::string> split_csv_line(const std::string& line) {
-  std::vector<std::string> fields;
-  std::string field;
-  bool quoted = false;
-  for (char c : line) {
-    if (c == '"') quoted = !quoted;
-    else if (c == ',' && !quoted) fields.push_back(std::exchange(field, ""));
-    else field += c;
+// A results CSV as the harness reads it (read_csv, libcsv): the header, the
+// rows after it, and a column's index by name (header.size() when absent).
+struct CsvTable {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  size_t column(const std::string& name) const {
+    return size_t(std::find(header.begin(), header.end(), name) - header.begin());
   }
-  fields.push_back(field);
-  return fields;
+};
+
+inline CsvTable read_csv_table(const std::string& path) {
+  std::vector<std::vector<std::string>> records = read_csv(path);
+  CsvTable table;
+  if (records.empty()) return table;
+  table.header = std::move(records.front());
+  table.rows.assign(std::make_move_iterator(records.begin() + 1), std::make_move_iterator(records.end()));
+  return table;
 }
 
 }  // namespace oit::test
