@@ -242,15 +242,6 @@ class IllustrationBuffer final : public Technique {
     return (offset + alignment - 1) / alignment * alignment;
   }
 
-  static Texture buffer_view(const Buffer& buffer, GLenum format, GLintptr offset, GLsizeiptr bytes) {
-    GLuint id = 0;
-    glCreateTextures(GL_TEXTURE_BUFFER, 1, &id);
-    Texture view(id);
-    glTextureBufferRange(view.id(), format, buffer.id(), offset, bytes);
-    gl_check("creating an illustration_buffer buffer texture");
-    return view;
-  }
-
   // Once per scene: the bounding-sphere radius (heuristic, eq. 1) or the
   // triangle table (triangle_index), keyed by the scene's content hash.
   void prepare_scene_data(const Scene& scene) {
@@ -267,7 +258,8 @@ class IllustrationBuffer final : public Technique {
     const TriangleTable table = build_triangle_table(scene, s_.weld_vertices);
     const GLsizeiptr bytes = GLsizeiptr(table.vertices_by_stable_id.size() * sizeof(glm::uvec4));
     triangles_ = make_buffer(bytes, table.vertices_by_stable_id.data(), 0);
-    triangles_view_ = bytes > 0 ? buffer_view(triangles_, GL_RGBA32UI, 0, bytes) : Texture();
+    triangles_view_ = bytes > 0 ? make_buffer_texture(triangles_, GL_RGBA32UI, 0, bytes) : Texture();
+    gl_check("uploading the illustration_buffer triangle table");
     triangle_rows_ = table.vertices_by_stable_id.size();
     isolated_triangles_ = table.isolated_triangles;
   }
@@ -293,13 +285,14 @@ class IllustrationBuffer final : public Technique {
     if (s_.measure_accuracy) truth_ = make_buffer(GLsizeiptr(capacity) * kTruthBytes);
     gl_check("allocating the illustration buffer's fragment pool");
     capacity_ = capacity;
-    fragment_view_ = buffer_view(data_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kFragmentBytes);
-    next_view_ = buffer_view(next_, GL_R32UI, 0, GLsizeiptr(capacity) * kNextBytes);
-    search_view_ = buffer_view(data2_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kSearchBytes);
-    shade_view_ = buffer_view(data3_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kShadeBytes);
+    fragment_view_ = make_buffer_texture(data_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kFragmentBytes);
+    next_view_ = make_buffer_texture(next_, GL_R32UI, 0, GLsizeiptr(capacity) * kNextBytes);
+    search_view_ = make_buffer_texture(data2_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kSearchBytes);
+    shade_view_ = make_buffer_texture(data3_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kShadeBytes);
     const GLsizeiptr field_bytes = kFieldBytes * GLsizeiptr(capacity);
-    fields_view_[0] = buffer_view(data_, GL_RGBA32F, 0, field_bytes);
-    fields_view_[1] = buffer_view(data_, GL_RGBA32F, second_field_range(), field_bytes);
+    fields_view_[0] = make_buffer_texture(data_, GL_RGBA32F, 0, field_bytes);
+    fields_view_[1] = make_buffer_texture(data_, GL_RGBA32F, second_field_range(), field_bytes);
+    gl_check("creating the illustration buffer's read-only views");
     set(fill_.id(), "u_capacity", uint32_t(capacity_));
   }
 

@@ -65,10 +65,7 @@ void LengthClasses::resize(int width, int height, size_t max_classes) {
   tile_count_ = uint32_t((width + kTile - 1) / kTile) * uint32_t((height + kTile - 1) / kTile);
   commands_ = make_buffer(GLsizeiptr(max_classes) * kCommandBytes);
   class_tiles_ = make_buffer(GLsizeiptr(max_classes) * tile_count_ * 4);
-  GLuint id = 0;
-  glCreateTextures(GL_TEXTURE_BUFFER, 1, &id);
-  class_tiles_view_ = Texture(id);
-  glTextureBuffer(class_tiles_view_.id(), GL_R32UI, class_tiles_.id());
+  class_tiles_view_ = make_buffer_texture(class_tiles_, GL_R32UI);
   gl_check("allocating the linked_list length classes");
 }
 

@@ -94,8 +94,9 @@ class LinkedList final : public Technique {
     height_ = height;
     heads_ = make_buffer(GLsizeiptr(width) * height * 4 * kHeads);
     lengths_ = make_buffer(GLsizeiptr(width) * height * 4);
-    heads_view_ = buffer_view(heads_, GL_RGBA32UI);  // a pixel's four heads in one texel
-    lengths_view_ = buffer_view(lengths_, GL_R32UI);
+    heads_view_ = make_buffer_texture(heads_, GL_RGBA32UI);  // a pixel's four heads in one texel
+    lengths_view_ = make_buffer_texture(lengths_, GL_R32UI);
+    gl_check("creating the linked_list heads and lengths views");
     previous_fragments_ = 0;
     if (length_classes_) classes_.resize(width, height, classes_for(array_size_for(max_per_pixel_)).size());
     switch (pool_sizing_) {
@@ -308,23 +309,10 @@ class LinkedList final : public Technique {
                                std::to_string(max_texels) + " texels); render at a smaller size");
     }
     nodes_ = make_buffer(GLsizeiptr(capacity) * kNodeBytes);
-    nodes_view_ = buffer_view(nodes_, GL_RGBA32UI);
+    nodes_view_ = make_buffer_texture(nodes_, GL_RGBA32UI);
     gl_check("allocating the linked_list node pool");
     capacity_ = capacity;
     glProgramUniform1ui(fill_.id(), kCapacityLocation, GLuint(capacity_));
-  }
-
-  // The resolve reads the lists through buffer textures (the nodes as an
-  // image of the same view): on llvmpipe a texelFetch or imageLoad with
-  // per-pixel addresses is a vector gather, while an SSBO load with
-  // per-pixel addresses is a lane-by-lane loop.
-  static Texture buffer_view(const Buffer& buffer, GLenum format) {
-    GLuint id = 0;
-    glCreateTextures(GL_TEXTURE_BUFFER, 1, &id);
-    Texture view(id);
-    glTextureBuffer(view.id(), format, buffer.id());
-    gl_check("creating a linked_list buffer texture");
-    return view;
   }
 
   void bind_storage() const {
@@ -345,6 +333,10 @@ class LinkedList final : public Technique {
   linked_list::LengthClasses classes_;         // tiles by list length (length_classes)
   std::vector<uint32_t> sizes_;                // the last frame's classes (one: a full-screen draw)
   Buffer counters_, heads_, lengths_, nodes_;
+  // The resolve reads the lists through buffer textures (the nodes as an
+  // image of the same view): on llvmpipe a texelFetch or imageLoad with
+  // per-pixel addresses is a vector gather, while an SSBO load with
+  // per-pixel addresses is a lane-by-lane loop.
   Texture heads_view_, lengths_view_, nodes_view_;
   Framebuffer dummy_framebuffer_;
   int width_ = 0, height_ = 0;

@@ -60,6 +60,21 @@ inline Buffer make_buffer(GLsizeiptr bytes, const void* data = nullptr,
   return Buffer(id);
 }
 
+// A buffer texture reading `buffer` as `internal_format` texels: the whole
+// buffer, or `bytes` from `offset` when bytes > 0 (offset aligned to
+// GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT).
+inline Texture make_buffer_texture(const Buffer& buffer, GLenum internal_format, GLintptr offset = 0,
+                                   GLsizeiptr bytes = 0) {
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_BUFFER, 1, &id);
+  if (bytes > 0) {
+    glTextureBufferRange(id, internal_format, buffer.id(), offset, bytes);
+  } else {
+    glTextureBuffer(id, internal_format, buffer.id());
+  }
+  return Texture(id);
+}
+
 inline Texture make_texture_2d(GLenum internal_format, int width, int height) {
   GLuint id = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &id);
