@@ -49,7 +49,9 @@ TEST(SubgroupAtomics, SoftwareGlTakesTheSubgroupPath) {
   // what CI tests and what the README's numbers measured.
   const DeviceInfo& device = test::gl_context().device();
   unsetenv("OIT_SHADER_BALLOT");
-  if (device.software) EXPECT_EQ(atomics_path(), "subgroup atomics") << device.renderer;
+  if (device.software) {
+    EXPECT_EQ(atomics_path(), "subgroup atomics") << device.renderer;
+  }
   setenv("OIT_SHADER_BALLOT", "off", 1);
   EXPECT_EQ(atomics_path(), "plain atomics");
   EXPECT_TRUE(capability_defines().empty());
