@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/image.h"
+#include "gl/check.h"
 #include "scene.h"
 #include "scene_library.h"
 
@@ -15,6 +17,25 @@ GlContext& gl_context() {
 Harness& harness() {
   static Harness instance(gl_context(), builtin_techniques());
   return instance;
+}
+
+glm::vec4 drawn_texel(const Program& program) {
+  gl_context();
+  Texture color = make_texture_2d(GL_RGBA32F, 4, 4);
+  Framebuffer framebuffer = make_framebuffer();
+  glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, color.id(), 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+  glViewport(0, 0, 4, 4);
+  glUseProgram(program.id());
+  VertexArray empty = make_vertex_array();
+  glBindVertexArray(empty.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  const Image image = read_texture_rgba32f(color.id(), 4, 4);
+  glBindVertexArray(0);
+  glUseProgram(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl_check("drawing a test shader full screen");
+  return {image.at(2, 2, 0), image.at(2, 2, 1), image.at(2, 2, 2), image.at(2, 2, 3)};
 }
 
 RunResult render_once(const std::string& technique, const RawParams& params, const std::string& scene,

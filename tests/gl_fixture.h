@@ -17,6 +17,10 @@ RunResult render_once(const std::string& technique, const RawParams& params, con
 std::vector<DiagnosticImage> diagnostic_images_once(const std::string& technique, const RawParams& params,
                                                     const std::string& scene, const RawParams& scene_params,
                                                     int width, int height);
+// The RGBA that a full-screen draw of `program` (no inputs) writes at texel
+// (2, 2) of a 4x4 RGBA32F target: what the shader-loader tests check.
+glm::vec4 drawn_texel(const Program& program);
+
 // The image called `name` among `images`; nullptr, and a test failure, when there is none.
 const DiagnosticImage* find_diagnostic(const std::vector<DiagnosticImage>& images, const std::string& name);
 

@@ -5,7 +5,6 @@
 
 #include <map>
 
-#include "gl/check.h"
 #include "gl/shader_program.h"
 #include "gl_fixture.h"
 #include "scene_library.h"
@@ -192,20 +191,9 @@ TEST(ShaderLoader, CompileErrorNamesTheIncludedFileAndLine) {
 TEST(ShaderLoader, DefinesAreInjectedAndIncludesResolved) {
   test::gl_context();
   const Program program = build_fullscreen_program("tests/shaders/defined_value.frag", {{"VALUE", "0.625"}});
-  Texture color = make_texture_2d(GL_RGBA32F, 4, 4);
-  Framebuffer framebuffer = make_framebuffer();
-  glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, color.id(), 0);
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
-  glViewport(0, 0, 4, 4);
-  glUseProgram(program.id());
-  VertexArray empty = make_vertex_array();
-  glBindVertexArray(empty.id());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  const Image image = read_texture_rgba32f(color.id(), 4, 4);
-  gl_check("drawing the define test shader");
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  EXPECT_EQ(image.at(2, 2, 0), 0.625f);
-  EXPECT_EQ(image.at(2, 2, 1), 8.0f);  // OIT_FIRST_TECHNIQUE_UNIFORM from shaders/bindings.h
+  const glm::vec4 texel = test::drawn_texel(program);
+  EXPECT_EQ(texel.r, 0.625f);
+  EXPECT_EQ(texel.g, 8.0f);  // OIT_FIRST_TECHNIQUE_UNIFORM from shaders/bindings.h
 }
 
 }  // namespace

@@ -7,8 +7,6 @@
 #include <bit>
 #include <cstdlib>
 
-#include "core/image.h"
-#include "gl/check.h"
 #include "gl/program_cache.h"
 #include "gl/shader_program.h"
 #include "gl_fixture.h"
@@ -16,24 +14,8 @@
 namespace oit {
 namespace {
 
-// The red channel a full-screen draw of `program` writes into a 4x4 target.
-float drawn_value(const Program& program) {
-  Texture color = make_texture_2d(GL_RGBA32F, 4, 4);
-  Framebuffer framebuffer = make_framebuffer();
-  glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, color.id(), 0);
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
-  glViewport(0, 0, 4, 4);
-  glUseProgram(program.id());
-  VertexArray empty = make_vertex_array();
-  glBindVertexArray(empty.id());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  const Image image = read_texture_rgba32f(color.id(), 4, 4);
-  glBindVertexArray(0);
-  glUseProgram(0);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  gl_check("drawing the cache test shader");
-  return image.at(2, 2, 0);
-}
+// The red channel a full-screen draw of `program` writes.
+float drawn_value(const Program& program) { return test::drawn_texel(program).r; }
 
 Program value_program(const std::string& value) {
   return build_fullscreen_program("tests/shaders/defined_value.frag", {{"VALUE", value}});
