@@ -15,7 +15,7 @@ namespace oit {
 const std::vector<std::string>& csv_columns() {
   static const std::vector<std::string> columns = {
       "timestamp", "git_revision", "device", "gl_version", "platform",
-      "technique", "params", "scene", "scene_params", "camera", "width", "height", "scene_rect",
+      "technique", "params", "scene", "scene_params", "camera", "width", "height", "scene_rect", "tiles",
       "clock", "stage", "median_ms", "min_ms", "p05_ms", "p95_ms", "mean_ms", "frames", "warmup",
       "status", "message",
       "fragments", "max_depth_complexity", "mean_depth_complexity", "psi",
@@ -96,7 +96,7 @@ std::vector<std::vector<std::string>> csv_rows(const RunResult& r, const RunCont
     std::vector<std::string> row = {
         context.timestamp, context.git_revision, context.device, context.gl_version, context.platform,
         r.spec.technique, r.technique_params, r.spec.scene, r.scene_params, r.spec.camera,
-        std::to_string(r.spec.width), std::to_string(r.spec.height), r.spec.scene_rect ? "on" : "off", clock, stage,
+        std::to_string(r.spec.width), std::to_string(r.spec.height), r.spec.scene_rect ? "on" : "off", ran ? std::to_string(r.tiles) : "", clock, stage,
         s ? number(s->median) : "", s ? number(s->min) : "", s ? number(s->p05) : "", s ? number(s->p95) : "",
         s ? number(s->mean) : "", s ? std::to_string(s->count) : "", std::to_string(r.spec.warmup),
         to_string(r.status), r.message,

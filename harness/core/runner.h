@@ -72,6 +72,8 @@ struct RunResult {
   uint32_t max_depth_complexity = 0;
   double mean_depth_complexity = 0.0;
   double psi = 0.0;  // complexity coverage (DepthComplexity::psi)
+  // Screen tiles each frame was rendered in (1: untiled); see tiling.h.
+  int tiles = 1;
   double other_process_load = -1.0;  // share of all cores; -1 unknown
   bool noisy = false;
   // |gl - wall| / wall of the median total, when both clocks ran.
