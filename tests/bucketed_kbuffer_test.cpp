@@ -21,14 +21,14 @@ constexpr const char* kId = "bucketed_kbuffer";
 constexpr double kRgba8Step = 1.0 / 255.0;
 
 double extra(const RunResult& r, const std::string& name) {
-  for (const auto& [key, value] : r.counters.extra)
+  for (const auto& [key, value, combine] : r.counters.extra)
     if (key == name) return value;
   ADD_FAILURE() << "no extra counter '" << name << "'";
   return std::numeric_limits<double>::quiet_NaN();
 }
 
 double saved(const RunResult& r, const std::string& name) {
-  for (const auto& [key, value] : r.counters.work_saved)
+  for (const auto& [key, value, combine] : r.counters.work_saved)
     if (key == name) return value;
   ADD_FAILURE() << "no work_saved counter '" << name << "'";
   return std::numeric_limits<double>::quiet_NaN();
@@ -236,8 +236,8 @@ TEST(BucketedKBuffer, AutoOnOneObjectSkipsTheBucketPassAndFindsTheSameLinks) {
     EXPECT_NE(automatic.stage("neighbors", "wall"), nullptr) << what;
     EXPECT_EQ(extra(automatic, "buckets_used"), 0.0) << what;
     EXPECT_EQ(saved(automatic, "bucket_passes_skipped"), 1.0) << what;
-    for (const auto& [name, value] : on.counters.work_saved) EXPECT_NE(name, "bucket_passes_skipped") << what;
-    for (const auto& [name, value] : off.counters.work_saved) EXPECT_NE(name, "bucket_passes_skipped") << what;
+    for (const auto& [name, value, combine] : on.counters.work_saved) EXPECT_NE(name, "bucket_passes_skipped") << what;
+    for (const auto& [name, value, combine] : off.counters.work_saved) EXPECT_NE(name, "bucket_passes_skipped") << what;
     EXPECT_GT(extra(automatic, "neighbor_links"), 1000.0) << what;
     for (const RunResult* other : {&on, &off}) {
       EXPECT_EQ(extra(automatic, "neighbor_links"), extra(*other, "neighbor_links")) << what;
@@ -251,7 +251,7 @@ TEST(BucketedKBuffer, AutoOnOneObjectSkipsTheBucketPassAndFindsTheSameLinks) {
   const RunResult spheres = run({{"buckets", "auto"}}, "spheres", {}, 32);
   EXPECT_NE(spheres.stage("bucket", "wall"), nullptr);
   EXPECT_EQ(extra(spheres, "buckets_used"), 1.0);
-  for (const auto& [name, value] : spheres.counters.work_saved) EXPECT_NE(name, "bucket_passes_skipped");
+  for (const auto& [name, value, combine] : spheres.counters.work_saved) EXPECT_NE(name, "bucket_passes_skipped");
 }
 
 TEST(BucketedKBuffer, TransferFunctionsStylizeFlatInteriorAndImageBorder) {
@@ -326,7 +326,7 @@ TEST(BucketedKBuffer, AutoKIsTheViewsDepthComplexityAndMatchesTheWorstCaseK) {
             double(worst_case.counters.bytes_allocated) - double(automatic.counters.bytes_allocated));
   EXPECT_EQ(saved(automatic, "slots_not_cleared"), double(32u * pixels));
   // Only the harness's own figure (the scene rectangle) remains: nothing of the technique adapts with a fixed k.
-  for (const auto& [name, value] : worst_case.counters.work_saved) EXPECT_EQ(name, "pixels_outside_scene_rect");
+  for (const auto& [name, value, combine] : worst_case.counters.work_saved) EXPECT_EQ(name, "pixels_outside_scene_rect");
 
   const RunResult four = run(unstylized({{"k", "auto"}}), "quads", {{"layers", "4"}}, size);
   ASSERT_TRUE(four.error.has_value());

@@ -48,8 +48,7 @@ const TieBreak kTieBreaks[] = {
 };
 
 double passes_avoided(const RunResult& r) {
-  for (const auto& [name, value] : r.counters.work_saved)
-    if (name == "passes_avoided") return value;
+  if (auto value = find_figure(r.counters.work_saved, "passes_avoided")) return *value;
   ADD_FAILURE() << "no passes_avoided in work_saved";
   return -1.0;
 }

@@ -53,7 +53,7 @@ float largest_difference(const std::vector<float>& a, const std::vector<float>& 
 }
 
 double passes_avoided(const RunResult& r) {
-  for (const auto& [name, value] : r.counters.work_saved)
+  for (const auto& [name, value, combine] : r.counters.work_saved)
     if (name == "passes_avoided") return value;
   ADD_FAILURE() << "no passes_avoided in work_saved";
   return -1.0;

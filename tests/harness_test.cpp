@@ -145,7 +145,8 @@ TEST(Harness, EveryRunRecordsTheScenesTrianglesAndVertices) {
   const RunResult r = test::harness().run(spec);
   ASSERT_EQ(r.status, RunStatus::ok) << r.message;
   const Scene scene = load_scene(spec.scene, spec.scene_params);
-  std::map<std::string, double> extra(r.counters.extra.begin(), r.counters.extra.end());
+  std::map<std::string, double> extra;
+  for (const Figure& figure : r.counters.extra) extra[figure.name] = figure.value;
   EXPECT_EQ(extra["scene_triangles"], double(scene.triangle_count()));
   EXPECT_EQ(extra["scene_vertices"], double(scene.vertices.size()));
   EXPECT_GT(extra["scene_triangles"], 0.0);

@@ -22,8 +22,7 @@ const std::vector<std::string> kSearches = {"triangle_index", "heuristic"};
 constexpr double kFloatTolerance = 1e-5;
 
 double extra(const RunResult& r, const std::string& name) {
-  for (const auto& [key, value] : r.counters.extra)
-    if (key == name) return value;
+  if (auto value = find_figure(r.counters.extra, name)) return *value;
   ADD_FAILURE() << "no extra counter '" << name << "'";
   return -1.0;
 }
@@ -248,8 +247,7 @@ TEST(IllustrationBuffer, ListsLongerThanTheSortArrayAreCounted) {
 }
 
 double work_saved(const RunResult& r, const std::string& name) {
-  for (const auto& [key, value] : r.counters.work_saved)
-    if (key == name) return value;
+  if (auto value = find_figure(r.counters.work_saved, name)) return *value;
   ADD_FAILURE() << "no work_saved figure '" << name << "'";
   return -1.0;
 }

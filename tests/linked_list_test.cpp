@@ -276,7 +276,7 @@ uint64_t class_bytes(int w, int h, uint64_t classes = 5) {
 }
 
 double work_saved(const RunResult& r, const std::string& name) {
-  for (const auto& [key, value] : r.counters.work_saved)
+  for (const auto& [key, value, combine] : r.counters.work_saved)
     if (key == name) return value;
   ADD_FAILURE() << "no work_saved figure " << name;
   return -1.0;
@@ -381,7 +381,7 @@ TEST(LinkedListAdaptive, WorkSavedByLengthClassesOnScenesCountedByHand) {
   EXPECT_LT(insertion.error->max_abs, kFloatTolerance);
   EXPECT_EQ(work_saved(insertion, "fragments_not_sorted"), 0.0);
   EXPECT_EQ(insertion.counters.bytes_allocated, one.counters.bytes_allocated - class_bytes(w, h));
-  for (const auto& [key, value] : insertion.counters.work_saved) EXPECT_NE(key, "compare_exchanges_avoided");
+  for (const auto& [key, value, combine] : insertion.counters.work_saved) EXPECT_NE(key, "compare_exchanges_avoided");
 }
 
 TEST(LinkedListAdaptive, WorkSavedByLengthClassesMatchesTheMeasuredListLengths) {

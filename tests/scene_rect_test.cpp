@@ -176,10 +176,10 @@ TEST(SceneRectRun, HarnessCountsThePixelsOutsideAndKeepsTheImage) {
   ASSERT_EQ(off.status, RunStatus::ok) << off.message;
   // The technique's own work_saved figures come first; the harness adds its count last, and only when on.
   ASSERT_FALSE(on.counters.work_saved.empty());
-  EXPECT_EQ(on.counters.work_saved.back().first, "pixels_outside_scene_rect");
-  EXPECT_GT(on.counters.work_saved.back().second, 0.0);
-  EXPECT_LT(on.counters.work_saved.back().second, 32.0 * 32.0);
-  for (const auto& [name, value] : off.counters.work_saved) EXPECT_NE(name, "pixels_outside_scene_rect");
+  EXPECT_EQ(on.counters.work_saved.back().name, "pixels_outside_scene_rect");
+  EXPECT_GT(on.counters.work_saved.back().value, 0.0);
+  EXPECT_LT(on.counters.work_saved.back().value, 32.0 * 32.0);
+  for (const auto& [name, value, combine] : off.counters.work_saved) EXPECT_NE(name, "pixels_outside_scene_rect");
   EXPECT_EQ(max_difference(on.image, off.image), 0.0);
   EXPECT_LE(on.error->max_abs, 1e-5);
   const RunContext context{"device", "version", "platform", "rev", "time"};

@@ -174,7 +174,7 @@ TEST(ViewerLiveTechnique, PixelsOutsideTheSceneRectangleAreTheHarnessCount) {
   EXPECT_EQ(live.pixels_outside_scene_rect(), expected);
   const RunResult run = test::render_once("unsorted", {}, "torus", {}, 64, 48);
   double harness_count = -1.0;
-  for (const auto& [name, value] : run.counters.work_saved)
+  for (const auto& [name, value, combine] : run.counters.work_saved)
     if (name == kPixelsOutsideSceneRect) harness_count = value;
   EXPECT_EQ(harness_count, double(expected));
   live.set_scene_rect(false);

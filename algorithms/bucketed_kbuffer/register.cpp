@@ -1,6 +1,7 @@
 // The descriptor of the bucketed k-buffer: parameters, stages, support check.
 #include <string>
 
+#include "core/fragment_pool.h"
 #include "core/technique.h"
 
 namespace oit {
@@ -61,6 +62,14 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
     return "";
   };
   d.create = make_bucketed_kbuffer;
+  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
+    const bool measure = params.boolean("measure_accuracy");
+    const uint64_t slots = content.pixels() * fragment_pool::slots_per_pixel(content, params, 64);
+    return StorageNeed{slots * (measure ? 16 : 4), slots * (measure ? 48 : 20) + content.pixels() * 4};
+  };
+  // Links reach the 4 adjacent pixels, and a link is kept only when the
+  // neighbour's own search finds the pixel back (reverse check).
+  d.tile_halo = [](const ParamSet&) { return 2; };
   registry.add(std::move(d));
 }
 

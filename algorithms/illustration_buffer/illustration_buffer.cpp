@@ -89,6 +89,15 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
       return "neighbors=triangle_index needs indexed geometry (shared vertex indices)";
     return "";
   };
+  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
+    return illustration_buffer::storage_need(illustration_buffer::settings_from(params), content);
+  };
+  // A pixel's links reach the 4 adjacent pixels, and each diffusion
+  // iteration carries values one link further.
+  d.tile_halo = [](const ParamSet& params) {
+    const illustration_buffer::Settings s = illustration_buffer::settings_from(params);
+    return s.modulation == illustration_buffer::Modulation::none ? 0 : s.iterations + 2;
+  };
   d.create = [](const ParamSet& params) {
     return illustration_buffer::make_illustration_buffer(illustration_buffer::settings_from(params));
   };

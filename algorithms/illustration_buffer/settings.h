@@ -35,5 +35,7 @@ struct Settings {
 
 Settings settings_from(const ParamSet& params);
 std::unique_ptr<Technique> make_illustration_buffer(const Settings& settings);
+// GPU storage of a frame of `content` (TechniqueDescriptor::storage_need).
+StorageNeed storage_need(const Settings& settings, const FrameContent& content);
 
 }  // namespace oit::illustration_buffer

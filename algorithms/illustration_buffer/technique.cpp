@@ -47,6 +47,10 @@ void set(GLuint program, const char* name, uint32_t value) {
   if (GLint at = glGetUniformLocation(program, name); at >= 0) glProgramUniform1ui(program, at, value);
 }
 
+uint64_t bytes_per_fragment(const Settings& s) {
+  return uint64_t(kNextBytes + kFragmentBytes + kSearchBytes + kShadeBytes + (s.measure_accuracy ? kTruthBytes : 0));
+}
+
 class IllustrationBuffer final : public Technique {
  public:
   explicit IllustrationBuffer(const Settings& settings) : s_(settings), counters_(make_buffer(kCounterBytes)) {
@@ -166,8 +170,7 @@ class IllustrationBuffer final : public Technique {
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
-    const uint64_t per_fragment =
-        uint64_t(kNextBytes + kFragmentBytes + kSearchBytes + kShadeBytes + (s_.measure_accuracy ? kTruthBytes : 0));
+    const uint64_t per_fragment = bytes_per_fragment(s_);
     c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * 8 + capacity_ * per_fragment + kCounterBytes +
                         triangle_rows_ * 16;
     c.fragments_stored = stored_;
@@ -419,6 +422,11 @@ std::vector<DiagnosticImage> IllustrationBuffer::diagnostic_images() const {
 
 std::unique_ptr<Technique> make_illustration_buffer(const Settings& settings) {
   return std::make_unique<IllustrationBuffer>(settings);
+}
+
+StorageNeed storage_need(const Settings& settings, const FrameContent& content) {
+  const uint64_t nodes = std::max(fragment_pool::nodes_for(content, settings.initial_nodes_per_pixel), kSmallestPool);
+  return {nodes * uint64_t(kLargestRecordBytes), content.pixels() * 8 + nodes * bytes_per_fragment(settings)};
 }
 
 }  // namespace oit::illustration_buffer

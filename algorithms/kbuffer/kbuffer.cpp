@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/fragment_pool.h"
 #include "core/list_length_pass.h"
 #include "core/technique.h"
 #include "gl/check.h"
@@ -277,6 +278,11 @@ void register_technique_kbuffer(TechniqueRegistry& registry) {
                                     "worst-case constant 64",
                           {{"k", "auto"}}, {{"k", "64"}}}};
   d.create = [](const ParamSet& params) { return std::make_unique<KBuffer>(params); };
+  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
+    const uint64_t slots = content.pixels() * fragment_pool::slots_per_pixel(content, params, kMaxK);
+    const uint64_t tail = params.choice("tail") == "blend" ? kTailBytesPerPixel : 0;
+    return StorageNeed{slots * kColorBytes, slots * kSlotBytes + content.pixels() * (tail + 4)};
+  };
   registry.add(std::move(d));
 }
 

@@ -383,6 +383,14 @@ void register_technique_linked_list(TechniqueRegistry& registry) {
        "list (no sort for 0/1-fragment tiles) instead of the frame's largest network everywhere",
        {{"length_classes", "true"}}, {{"length_classes", "false"}}}};
   d.create = [](const ParamSet& params) { return std::make_unique<LinkedList>(params); };
+  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
+    const PoolSizing sizing = pool_sizing_from(params.choice("pool_sizing"));
+    const uint64_t nodes =
+        sizing == PoolSizing::count        ? std::max<uint64_t>(content.fragments, 1)
+        : sizing == PoolSizing::worst_case ? content.pixels() * uint64_t(params.integer("max_per_pixel"))
+                                           : fragment_pool::nodes_for(content, uint64_t(params.integer("initial_nodes_per_pixel")));
+    return StorageNeed{nodes * kNodeBytes, content.pixels() * (kPixelBytes + 2) + nodes * kNodeBytes};
+  };
   registry.add(std::move(d));
 }
 

@@ -215,6 +215,10 @@ void register_technique_reference(TechniqueRegistry& registry) {
   d.exactness = Exactness::exact;
   d.is_reference = true;
   d.create = [](const ParamSet& params) { return std::make_unique<Reference>(params); };
+  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
+    const uint64_t nodes = fragment_pool::nodes_for(content, uint64_t(params.integer("initial_nodes_per_pixel")));
+    return StorageNeed{nodes * kNodeBytes, content.pixels() * 8 + nodes * kNodeBytes};
+  };
   registry.add(std::move(d));
 }
 

@@ -78,9 +78,9 @@ double median_total(const std::vector<RunResult>& runs) {
   return samples.empty() ? 0.0 : summarize(samples).median;
 }
 
-std::string pairs_text(const std::vector<std::pair<std::string, double>>& pairs) {
+std::string pairs_text(const std::vector<Figure>& pairs) {
   std::string text;
-  for (const auto& [name, value] : pairs) {
+  for (const auto& [name, value, combine] : pairs) {
     char pair[128];
     std::snprintf(pair, sizeof pair, "%s%s=%.10g", text.empty() ? "" : " ", name.c_str(), value);
     text += pair;
@@ -211,9 +211,9 @@ int run_adaptive(const CommonOptions& common, const AdaptiveOptions& options) {
           row.difference = compare_images(on.back().image, off.back().image).max_abs;
           // The harness's pixels belong to its own feature; a technique's
           // switch shows what the technique reports.
-          std::vector<std::pair<std::string, double>> saved;
-          for (const auto& entry : on.back().counters.work_saved)
-            if ((entry.first == kPixelsOutsideSceneRect) == feature.harness) saved.push_back(entry);
+          std::vector<Figure> saved;
+          for (const Figure& entry : on.back().counters.work_saved)
+            if ((entry.name == kPixelsOutsideSceneRect) == feature.harness) saved.push_back(entry);
           row.work_saved = pairs_text(saved);
         }
         rows.push_back(row);

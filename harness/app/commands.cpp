@@ -56,9 +56,9 @@ void print_summary(const std::vector<RunResult>& results, const std::string& bas
     for (const auto& o : results) swept |= o.spec.scene == r.spec.scene && o.scene_params != r.scene_params;
     const std::string scene = swept ? r.spec.scene + " " + r.scene_params : r.spec.scene;
     std::string saved;
-    for (const auto& [name, value] : r.counters.work_saved) {
+    for (const Figure& figure : r.counters.work_saved) {
       char pair[96];
-      std::snprintf(pair, sizeof pair, " %s=%.10g", name.c_str(), value);
+      std::snprintf(pair, sizeof pair, " %s=%.10g", figure.name.c_str(), figure.value);
       saved += pair;
     }
     if (!saved.empty()) saved = " |" + saved;

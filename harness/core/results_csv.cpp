@@ -49,11 +49,11 @@ std::string number(double value) {
   return text;
 }
 
-std::string extra_text(const std::vector<std::pair<std::string, double>>& extra) {
+std::string extra_text(const std::vector<Figure>& extra) {
   std::string text;
   // Ten significant digits: counts such as a scene's triangles stay exact
   // (six would print 1234567 as 1.23457e+06).
-  for (const auto& [name, value] : extra) {
+  for (const auto& [name, value, combine] : extra) {
     char formatted[64];
     std::snprintf(formatted, sizeof(formatted), "%.10g", value);
     text += (text.empty() ? "" : " ") + name + "=" + formatted;

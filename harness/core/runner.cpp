@@ -71,21 +71,77 @@ ScreenRect scene_rect_of(const Frame& frame) {
   return projected_scene_rect(frame.scene.bounding_box(), frame.projection * frame.view, frame.width, frame.height);
 }
 
-ScreenRect render_frame(Technique& technique, const Frame& frame, bool record, bool scene_rect) {
+Tiling::Tiling(TilePlan plan) : plan_(std::move(plan)) {
+  if (plan_.tiled()) target_ = std::make_unique<RenderTarget>(plan_.frame_width(), plan_.frame_height());
+}
+
+namespace {
+
+ScreenRect intersection(const ScreenRect& a, const ScreenRect& b) {
+  const int x0 = std::max(a.x, b.x), y0 = std::max(a.y, b.y);
+  const int x1 = std::min(a.x + a.width, b.x + b.width), y1 = std::min(a.y + a.height, b.y + b.height);
+  return x1 > x0 && y1 > y0 ? ScreenRect{x0, y0, x1 - x0, y1 - y0} : ScreenRect{};
+}
+
+// The target cleared to the background (alpha 0); then, with `rect`, the
+// scissor confines everything after to it.
+void begin_target(GLuint framebuffer, const glm::vec3& background, const ScreenRect* rect) {
   reset_gl_state();
-  // Before the scissor: the pixels the scene cannot reach show the background.
-  const GLfloat clear_color[4] = {frame.background.r, frame.background.g, frame.background.b, 0.0f};
-  glClearNamedFramebufferfv(frame.target_framebuffer, GL_COLOR, 0, clear_color);
-  const ScreenRect rect = scene_rect ? scene_rect_of(frame) : ScreenRect{0, 0, frame.width, frame.height};
-  if (scene_rect) {
+  const GLfloat clear_color[4] = {background.r, background.g, background.b, 0.0f};
+  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, clear_color);
+  if (rect) {
     glEnable(GL_SCISSOR_TEST);
-    glScissor(rect.x, rect.y, rect.width, rect.height);
+    glScissor(rect->x, rect->y, rect->width, rect->height);
   }
+}
+
+// Tile `index` of a tiled frame: the technique renders the tile's window as
+// a frame of its own; the tile's inner rectangle is copied into the target.
+// False when the tile lies outside the scene's rectangle: nothing to render.
+bool render_tile(Technique& technique, const Frame& frame, const Tiling& tiling, int index, const ScreenRect* rect) {
+  const TilePlan& plan = tiling.plan();
+  const ScreenRect& tile = plan.tiles[size_t(index)];
+  if (rect && intersection(*rect, tile).pixels() == 0) return false;
+  const ScreenRect window = plan.window(tile);
+  const Frame part{frame.scene,           frame.view,  window_projection(frame.projection, window, frame.width, frame.height),
+                   window.width,          window.height, frame.background, tiling.framebuffer(), frame.clock, index,
+                   plan.count()};
+  ScreenRect local;
+  if (rect) {
+    local = intersection(*rect, window);
+    local.x -= window.x;
+    local.y -= window.y;
+  }
+  begin_target(tiling.framebuffer(), frame.background, rect ? &local : nullptr);
+  frame.scene.bind();
+  technique.render(part);
+  reset_gl_state();
+  glBlitNamedFramebuffer(tiling.framebuffer(), frame.target_framebuffer, tile.x - window.x, tile.y - window.y,
+                         tile.x - window.x + tile.width, tile.y - window.y + tile.height, tile.x, tile.y,
+                         tile.x + tile.width, tile.y + tile.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  return true;
+}
+
+}  // namespace
+
+ScreenRect render_frame(Technique& technique, const Frame& frame, bool record, bool scene_rect, const Tiling* tiling,
+                        const std::function<void(int)>& after_tile) {
+  // Before the scissor: the pixels the scene cannot reach show the background.
+  const ScreenRect rect = scene_rect ? scene_rect_of(frame) : ScreenRect{0, 0, frame.width, frame.height};
+  const bool tiled = tiling && tiling->plan().tiled();
+  begin_target(frame.target_framebuffer, frame.background, scene_rect && !tiled ? &rect : nullptr);
   frame.clock.begin_frame(record);
   {
     auto total = frame.clock.stage("total");
-    frame.scene.bind();
-    technique.render(frame);
+    if (!tiled) {
+      frame.scene.bind();
+      technique.render(frame);
+      if (after_tile) after_tile(0);
+    } else {
+      for (int i = 0; i < tiling->plan().count(); ++i) {
+        if (render_tile(technique, frame, *tiling, i, scene_rect ? &rect : nullptr) && after_tile) after_tile(i);
+      }
+    }
   }
   frame.clock.end_frame();
   reset_gl_state();
@@ -115,7 +171,8 @@ Harness::LoadedScene& Harness::scene(const std::string& spec, const RawParams& p
 }
 
 const Image& Harness::reference_image(const std::string& scene_spec, const RawParams& scene_params, int width,
-                                      int height, const glm::vec3& background, const std::string& camera) {
+                                      int height, const glm::vec3& background, const std::string& camera,
+                                      std::optional<uint64_t> memory_budget) {
   LoadedScene& loaded = scene(scene_spec, scene_params, "original", camera);
   std::ostringstream key;
   key << loaded.hash << "|" << width << "x" << height << "|" << background.r << "," << background.g << ","
@@ -138,6 +195,7 @@ const Image& Harness::reference_image(const std::string& scene_spec, const RawPa
   spec.clock = ClockKind::wall;
   spec.background = background;
   spec.scene_rect = false;  // the reference does not depend on the harness's shortcuts
+  spec.memory_budget = memory_budget;
   RunResult result;
   result.spec = spec;
   execute(spec, result);
@@ -170,6 +228,11 @@ RunResult Harness::run(const RunSpec& spec) {
       result.message = reason;
       return result;
     }
+    const DepthComplexity& depth = complexity(loaded, spec.width, spec.height);
+    result.scene_fragments = depth.fragments;
+    result.max_depth_complexity = depth.max;
+    result.mean_depth_complexity = depth.mean;
+    result.psi = depth.psi;
     OtherProcessLoad load;
     load.start();
     execute(spec, result);
@@ -177,24 +240,9 @@ RunResult Harness::run(const RunSpec& spec) {
     result.noisy = result.other_process_load > kNoisyLoadThreshold;
     // The scene's size goes with every row so plots against triangles or
     // vertices (carnecky2013 Fig. 15, pastyrik2016 Fig. 9) need only the CSV.
-    result.counters.extra.emplace_back("scene_triangles", double(loaded.scene.triangle_count()));
-    result.counters.extra.emplace_back("scene_vertices", double(loaded.scene.vertices.size()));
-
-    const std::string size_key = std::to_string(spec.width) + "x" + std::to_string(spec.height);
-    auto complexity = loaded.complexity.find(size_key);
-    if (complexity == loaded.complexity.end()) {
-      const glm::mat4 projection = loaded.scene.camera.projection(float(spec.width) / float(spec.height));
-      complexity = loaded.complexity
-                       .emplace(size_key, measure_depth_complexity(*loaded.gpu, loaded.scene.camera.view, projection,
-                                                                   spec.width, spec.height))
-                       .first;
-    }
-    result.scene_fragments = complexity->second.fragments;
-    result.max_depth_complexity = complexity->second.max;
-    result.mean_depth_complexity = complexity->second.mean;
-    result.psi = complexity->second.psi;
-    result.error = compare_images(result.image, reference_image(spec.scene, spec.scene_params, spec.width, spec.height,
-                                                                spec.background, spec.camera));
+    result.counters.extra.push_back({"scene_triangles", double(loaded.scene.triangle_count()), Combine::max});
+    result.counters.extra.push_back({"scene_vertices", double(loaded.scene.vertices.size()), Combine::max});
+    compare_with_reference(spec, result);
   } catch (const MissingModel& e) {
     result.status = RunStatus::skipped;  // an optional model not installed here
     result.message = e.what();
@@ -208,6 +256,43 @@ RunResult Harness::run(const RunSpec& spec) {
   return result;
 }
 
+void Harness::compare_with_reference(const RunSpec& spec, RunResult& result) {
+  try {
+    result.error = compare_images(result.image, reference_image(spec.scene, spec.scene_params, spec.width, spec.height,
+                                                                spec.background, spec.camera, spec.memory_budget));
+  } catch (const std::exception& e) {
+    // The run's timings stand; only its error is unknown.
+    result.message = std::string("no reference image, error columns empty: ") + e.what();
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    reset_gl_state();
+  }
+}
+
+const DepthComplexity& Harness::complexity(LoadedScene& loaded, int width, int height) {
+  const std::string size_key = std::to_string(width) + "x" + std::to_string(height);
+  auto found = loaded.complexity.find(size_key);
+  if (found == loaded.complexity.end()) {
+    const glm::mat4 projection = loaded.scene.camera.projection(float(width) / float(height));
+    found = loaded.complexity
+                .emplace(size_key,
+                         measure_depth_complexity(*loaded.gpu, loaded.scene.camera.view, projection, width, height))
+                .first;
+  }
+  return found->second;
+}
+
+TilePlan Harness::tile_plan(const RunSpec& spec) {
+  const TechniqueDescriptor& descriptor = registry_.get(spec.technique);
+  const ParamSet params(descriptor.params, spec.params, "technique '" + spec.technique + "'");
+  LoadedScene& loaded = scene(spec.scene, spec.scene_params, spec.submission_order, spec.camera);
+  std::function<StorageNeed(const FrameContent&)> need;
+  if (descriptor.storage_need)
+    need = [&](const FrameContent& content) { return descriptor.storage_need(params, content); };
+  const int halo = descriptor.tile_halo ? descriptor.tile_halo(params) : 0;
+  return plan_tiles(need, halo, complexity(loaded, spec.width, spec.height), query_device_limits(spec.memory_budget));
+}
+
 void Harness::execute(const RunSpec& spec, RunResult& result) {
   const TechniqueDescriptor& descriptor = registry_.get(spec.technique);
   const ParamSet params(descriptor.params, spec.params, "technique '" + spec.technique + "'");
@@ -215,8 +300,9 @@ void Harness::execute(const RunSpec& spec, RunResult& result) {
   const ClockKind clock_kind = spec.clock.value_or(default_clock());
   result.clock = clock_kind;
 
+  const Tiling tiling(tile_plan(spec));
   std::unique_ptr<Technique> technique = descriptor.create(params);
-  technique->resize(spec.width, spec.height);
+  technique->resize(tiling.plan().frame_width(), tiling.plan().frame_height());
   RenderTarget target(spec.width, spec.height);
   StageClock clock(clock_kind);
   const float aspect = float(spec.width) / float(spec.height);
@@ -225,14 +311,25 @@ void Harness::execute(const RunSpec& spec, RunResult& result) {
                     target.framebuffer.id(), clock};
   ScreenRect rect;
   for (int i = 0; i < spec.warmup + spec.frames; ++i) {
-    rect = render_frame(*technique, frame, i >= spec.warmup, spec.scene_rect);
+    rect = render_frame(*technique, frame, i >= spec.warmup, spec.scene_rect, &tiling);
     gl_check("frame " + std::to_string(i) + " of " + spec.technique);
   }
-  result.counters = technique->counters();
+  result.tiles = tiling.plan().count();
+  if (tiling.plan().tiled()) {
+    // Counters describe the technique's last frame: one more frame, not
+    // timed, reads them tile by tile.
+    std::vector<TechniqueCounters> tiles;
+    render_frame(*technique, frame, false, spec.scene_rect, &tiling,
+                 [&](int) { tiles.push_back(technique->counters()); });
+    gl_check("the counters frame of " + spec.technique);
+    result.counters = combine_tile_counters(tiles);
+  } else {
+    result.counters = technique->counters();
+  }
   // The harness's own adaptive path: pixels every full-screen pass skipped.
   if (spec.scene_rect) {
-    result.counters.work_saved.emplace_back(kPixelsOutsideSceneRect,
-                                            double(uint64_t(spec.width) * uint64_t(spec.height) - rect.pixels()));
+    result.counters.work_saved.push_back(
+        {kPixelsOutsideSceneRect, double(uint64_t(spec.width) * uint64_t(spec.height) - rect.pixels())});
   }
   result.image = read_texture_rgba32f(target.color.id(), spec.width, spec.height);
   gl_check("reading back the image of " + spec.technique);

@@ -3,6 +3,7 @@
 // statistics, counters, image and its error against the cached exact
 // reference. A run that cannot happen is `skipped` with the reason; a run
 // that fails is `error` with the message. Nothing here knows any technique.
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -16,6 +17,7 @@
 #include "core/scene_rect.h"
 #include "core/statistics.h"
 #include "core/technique.h"
+#include "core/tiling.h"
 
 namespace oit {
 
@@ -42,6 +44,10 @@ struct RunSpec {
   // (render_frame); off renders every pass over the full image. The image
   // is the same either way; the CSV's scene_rect column records it.
   bool scene_rect = true;
+  // Bytes all of a technique's storage may take before the frame is tiled
+  // (core/tiling.h); default: query_device_limits()'s budget. Applies to
+  // the run and to its reference.
+  std::optional<uint64_t> memory_budget;
 };
 
 // The work_saved entry of a run with RunSpec::scene_rect: pixels outside the
@@ -90,6 +96,20 @@ struct RenderTarget {
   RenderTarget(int width, int height);  // throws GlError when incomplete
 };
 
+// The tile target of a technique rendered at one size in tiles: the plan
+// and an RGBA32F target of one tile's window. The technique must have been
+// resized to plan.frame_width() x plan.frame_height().
+class Tiling {
+ public:
+  explicit Tiling(TilePlan plan);
+  const TilePlan& plan() const { return plan_; }
+  GLuint framebuffer() const { return target_ ? target_->framebuffer.id() : 0; }
+
+ private:
+  TilePlan plan_;
+  std::unique_ptr<RenderTarget> target_;  // only when tiled
+};
+
 // One frame exactly as Harness::run renders it: default GL state, the whole
 // target cleared to the background (alpha 0), then, with `scene_rect`, the
 // scissor test enabled on the scene's projected rectangle (scene_rect.h)
@@ -100,7 +120,14 @@ struct RenderTarget {
 // viewer so that it has no rendering path of its own. `record` = false: a
 // warm-up frame. Returns the rectangle the technique was confined to (the
 // full image without `scene_rect`).
-ScreenRect render_frame(Technique& technique, const Frame& frame, bool record, bool scene_rect = true);
+// With a tiled `tiling`, each tile is a frame of its own for the technique
+// (the tile's window and projection, Frame::tile_index), rendered into the
+// tile target and its inner rectangle copied into the frame's target;
+// tiles outside the scene rectangle are skipped; `total` covers every tile.
+// `after_tile(i)` runs after tile i (after the whole frame untiled), for
+// reading counters tile by tile in a frame that is not recorded.
+ScreenRect render_frame(Technique& technique, const Frame& frame, bool record, bool scene_rect = true,
+                        const Tiling* tiling = nullptr, const std::function<void(int)>& after_tile = {});
 // The scene's projected rectangle for this frame's camera and size.
 ScreenRect scene_rect_of(const Frame& frame);
 
@@ -116,8 +143,14 @@ class Harness {
   RunResult run(const RunSpec& spec);
   // The exact image of a scene/size/background, computed once and cached in
   // memory and on disk (ReferenceCache::from_environment()).
+  // Rendered in tiles when its storage exceeds the device's limits or
+  // `memory_budget` (bytes; default: the device's budget).
   const Image& reference_image(const std::string& scene, const RawParams& scene_params, int width, int height,
-                               const glm::vec3& background, const std::string& camera = "default");
+                               const glm::vec3& background, const std::string& camera = "default",
+                               std::optional<uint64_t> memory_budget = std::nullopt);
+  // The tile plan of a technique for a scene at a size: one tile when its
+  // storage fits the device's limits and the budget.
+  TilePlan tile_plan(const RunSpec& spec);
   void set_reference_cache(ReferenceCache cache) { reference_cache_ = std::move(cache); }
   // How this harness got its references so far: rendered, or read from disk.
   int references_rendered() const { return references_rendered_; }
@@ -128,6 +161,9 @@ class Harness {
   LoadedScene& scene(const std::string& spec, const RawParams& params, const std::string& order = "original",
                      const std::string& camera = "default");
   void execute(const RunSpec& spec, RunResult& result);
+  const DepthComplexity& complexity(LoadedScene& loaded, int width, int height);
+  // Sets result.error, or says in result.message why there is no reference.
+  void compare_with_reference(const RunSpec& spec, RunResult& result);
 
   GlContext& context_;
   const TechniqueRegistry& registry_;

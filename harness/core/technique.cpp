@@ -28,6 +28,12 @@ void Frame::bind_target() const {
   glViewport(0, 0, width, height);
 }
 
+std::optional<double> find_figure(const std::vector<Figure>& figures, const std::string& name) {
+  for (const Figure& figure : figures)
+    if (figure.name == name) return figure.value;
+  return std::nullopt;
+}
+
 std::string supports(const TechniqueDescriptor& technique, const ParamSet& params, const DeviceInfo& device,
                      const SceneFacts& scene) {
   if (technique.needs.fp64 && !device.has_fp64) return "device has no double-precision shaders (GL_ARB_gpu_shader_fp64)";

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,6 +19,21 @@
 
 namespace oit {
 
+// How one figure of TechniqueCounters combines over the screen tiles of a
+// frame (core/tiling.h): counts add up; sizes take the largest tile's;
+// ratios (precision, mean errors) average weighted by each tile's stored
+// fragments.
+enum class Combine { sum, max, mean };
+
+struct Figure {
+  std::string name;  // snake_case
+  double value = 0.0;
+  Combine combine = Combine::sum;
+};
+
+// The value of the figure called `name`, if there is one.
+std::optional<double> find_figure(const std::vector<Figure>& figures, const std::string& name);
+
 struct TechniqueCounters {
   uint64_t bytes_allocated = 0;    // GPU memory the technique owns now
   uint64_t fragments_stored = 0;   // fragments kept in the last frame
@@ -27,12 +43,12 @@ struct TechniqueCounters {
   // Technique-specific figures (e.g. neighbour links per direction,
   // neighbour precision), written to the CSV's `extra` column as
   // "name=value name=value". Names are snake_case.
-  std::vector<std::pair<std::string, double>> extra;
+  std::vector<Figure> extra;
   // Work the technique's adaptive paths avoided in the last frame against
   // its non-adaptive path on the same scene (e.g. passes_avoided,
   // fragments_not_sorted, bytes_not_allocated), written to the CSV's
   // `work_saved` column like `extra`. Empty when nothing adapts.
-  std::vector<std::pair<std::string, double>> work_saved;
+  std::vector<Figure> work_saved;
 };
 
 // A per-pixel scalar field a technique can show about its last frame (e.g.
@@ -83,6 +99,11 @@ struct Frame {
   glm::vec3 background;
   GLuint target_framebuffer;  // RGBA32F; compose passes write here
   StageClock& clock;
+  // A tiled frame (core/tiling.h) renders the technique once per screen
+  // tile: width x height and projection are then the tile's, and
+  // `tile_index` tells the tiles apart (e.g. for per-tile pool history).
+  int tile_index = 0;
+  int tile_count = 1;
 
   // Sets whichever shared uniforms `program` uses: the camera of
   // shaders/geometry.vert, u_lit of shading.glsl, u_background of compose.glsl.
@@ -101,6 +122,24 @@ class Technique {
   // Diagnostic fields of the last rendered frame, read back after it
   // (outside the timed frames, like counters()). Default: none.
   virtual std::vector<DiagnosticImage> diagnostic_images() const { return {}; }
+};
+
+// What a frame will hold, known before it renders from the harness's
+// counting pass (core/complexity.h): its size and fragments.
+struct FrameContent {
+  int width = 0, height = 0;
+  uint64_t fragments = 0;
+  uint32_t longest_list = 0;
+  uint64_t pixels() const { return uint64_t(width) * uint64_t(height); }
+};
+
+// GPU storage a technique needs for one frame: its largest single buffer
+// (bounded by the device's largest storage block) and everything together
+// (bounded by the memory budget). The harness tiles the screen until both
+// fit (core/tiling.h).
+struct StorageNeed {
+  uint64_t largest_buffer = 0;
+  uint64_t total = 0;
 };
 
 struct TechniqueDescriptor {
@@ -123,6 +162,12 @@ struct TechniqueDescriptor {
   // Optional extra check; returns "" when the run can happen, else the reason.
   std::function<std::string(const ParamSet&, const SceneFacts&)> extra_support_check;
   std::function<std::unique_ptr<Technique>(const ParamSet&)> create;
+  // Storage for a frame of the given content, for techniques whose storage
+  // grows with the frame beyond a few W x H textures; empty: never tiled.
+  std::function<StorageNeed(const ParamSet&, const FrameContent&)> storage_need;
+  // Pixels of margin a tile needs so that every pixel inside it sees all it
+  // depends on (neighbour searches, diffusion); 0 for per-pixel techniques.
+  std::function<int(const ParamSet&)> tile_halo;
 };
 
 // "" when a run can happen, otherwise the reason it cannot (device features,

@@ -195,9 +195,9 @@ void Viewer::panel_timings(const Slot& slot, const char* label) {
               static_cast<unsigned long long>(c.fragments_dropped));
   ImGui::Text("passes %llu, overflow retries %llu", static_cast<unsigned long long>(c.passes),
               static_cast<unsigned long long>(c.overflow_retries));
-  for (const auto& [name, value] : c.extra) ImGui::Text("%s %.4g", name.c_str(), value);
+  for (const Figure& f : c.extra) ImGui::Text("%s %.4g", f.name.c_str(), f.value);
   // What the adaptive paths avoided (the CSV's work_saved).
-  for (const auto& [name, value] : c.work_saved) ImGui::Text("saved: %s %.4g", name.c_str(), value);
+  for (const Figure& f : c.work_saved) ImGui::Text("saved: %s %.4g", f.name.c_str(), f.value);
   if (slot.live.scene_rect())
     ImGui::Text("saved: %s %llu", kPixelsOutsideSceneRect,
                 static_cast<unsigned long long>(slot.live.pixels_outside_scene_rect()));
