@@ -189,34 +189,34 @@ class BucketedKBuffer final : public Technique {
     const bkb::SlotStatistics s = bkb::slot_statistics(r, int(k), depth_bits_ == 24 ? 8 : 16);
     c.fragments_stored = s.stored;
     c.fragments_dropped = dropped + s.store_misses;
-    c.extra = {{"bits_per_fragment", double(bytes_per_slot() * 8)},
+    c.extra = {{"bits_per_fragment", double(bytes_per_slot() * 8), Combine::max},
                // 1: hash-table buckets (buckets=on, or auto on several objects);
                // 0: brute force (off) or auto's single bucket on one object.
-               {"buckets_used", search_ == Search::hashed ? 1.0 : 0.0},
+               {"buckets_used", search_ == Search::hashed ? 1.0 : 0.0, Combine::max},
                // 1 bucket per pixel (a single object): a bucket is the whole
                // list and buckets=on can only add the hash look-up's cost.
-               {"buckets_per_pixel", s.covered_pixels ? double(s.buckets) / double(s.covered_pixels) : 0.0},
-               {"fragments_per_bucket", s.buckets ? double(s.kept) / double(s.buckets) : 0.0},
+               {"buckets_per_pixel", s.covered_pixels ? double(s.buckets) / double(s.covered_pixels) : 0.0, Combine::mean},
+               {"fragments_per_bucket", s.buckets ? double(s.kept) / double(s.buckets) : 0.0, Combine::mean},
                {"neighbor_links", double(s.links)},
                {"neighbor_links_per_fragment", s.stored ? double(s.links) / double(s.stored) : 0.0},
                {"store_misses", double(s.store_misses)},
                {"depth_near", depth_near_},
                {"depth_far", depth_far_},
                {"depth_step", (depth_far_ - depth_near_) / double((1u << depth_bits_) - 2u)}};
-    c.extra.push_back({"k_used", double(allocated_k_)});
+    c.extra.push_back({"k_used", double(allocated_k_), Combine::max});
     if (auto_k_) {
       // k_capped = 1: the view needed more slots than the cap allows, so the
       // fragments beyond k_used were dropped (and counted) as with a fixed k.
-      c.extra.push_back({"longest_list", double(longest_list_)});
-      c.extra.push_back({"k_cap", double(k_cap_)});
-      c.extra.push_back({"k_capped", longest_list_ > uint32_t(k_cap_) ? 1.0 : 0.0});
+      c.extra.push_back({"longest_list", double(longest_list_), Combine::max});
+      c.extra.push_back({"k_cap", double(k_cap_), Combine::max});
+      c.extra.push_back({"k_capped", longest_list_ > uint32_t(k_cap_) ? 1.0 : 0.0, Combine::max});
     }
     if (measure_) {
       c.extra.push_back({"link_checksum", double(s.link_checksum)});
       r.truth = read_uints(truth_, slots * 4);
       const bkb::LinkAccuracy links = bkb::link_accuracy(r, width_, height_, int(k), bkb::kLinkFootprints);
-      c.extra.push_back({"neighbor_precision", links.precision});
-      c.extra.push_back({"neighbor_recall", links.recall});
+      c.extra.push_back({"neighbor_precision", links.precision, Combine::mean});
+      c.extra.push_back({"neighbor_recall", links.recall, Combine::mean});
       c.extra.push_back({"neighbor_correct_links", double(links.correct_links)});
       c.extra.push_back({"neighbor_true_neighbors", double(links.true_neighbors)});
       if (analytic_curvature_) {
@@ -224,10 +224,10 @@ class BucketedKBuffer final : public Technique {
         r.estimated = read_floats(estimated_, slots);
         const bkb::CurvatureAccuracy a = bkb::curvature_accuracy(r, curvature_scale_);
         c.extra.push_back({"kappa_samples", double(a.samples)});
-        c.extra.push_back({"kappa_mean_error", a.kappa_mean_error});
-        c.extra.push_back({"kappa_max_error", a.kappa_max_error});
-        c.extra.push_back({"curvature_mean_rel_error", a.curvature_mean_relative_error});
-        c.extra.push_back({"curvature_max_rel_error", a.curvature_max_relative_error});
+        c.extra.push_back({"kappa_mean_error", a.kappa_mean_error, Combine::mean});
+        c.extra.push_back({"kappa_max_error", a.kappa_max_error, Combine::max});
+        c.extra.push_back({"curvature_mean_rel_error", a.curvature_mean_relative_error, Combine::mean});
+        c.extra.push_back({"curvature_max_rel_error", a.curvature_max_relative_error, Combine::max});
       }
     }
     return c;

@@ -53,7 +53,11 @@ uint64_t bytes_per_fragment(const Settings& s) {
 
 class IllustrationBuffer final : public Technique {
  public:
-  explicit IllustrationBuffer(const Settings& settings) : s_(settings), counters_(make_buffer(kCounterBytes)) {
+  explicit IllustrationBuffer(const Settings& settings)
+      : s_(settings),
+        counters_(make_buffer(kCounterBytes)),
+        pool_("illustration_buffer", FragmentPool::Sizing::previous_frame, kLargestRecordBytes,
+              [this](uint64_t capacity) { allocate_pool(capacity); }, kSmallestPool) {
     const ShaderDefines measure = s_.measure_accuracy ? ShaderDefines{{"IB_MEASURE", "1"}} : ShaderDefines{};
     fill_ = build_geometry_program("algorithms/illustration_buffer/fill.frag", measure);
     set(fill_.id(), "u_max_per_pixel", s_.max_per_pixel);
@@ -82,7 +86,7 @@ class IllustrationBuffer final : public Technique {
     height_ = height;
     head_ = make_buffer(GLsizeiptr(width) * height * 4);
     count_ = make_buffer(GLsizeiptr(width) * height * 4);
-    allocate_pool(uint64_t(width) * uint64_t(height) * s_.initial_nodes_per_pixel);
+    pool_.reset(uint64_t(width) * uint64_t(height) * s_.initial_nodes_per_pixel);
     empty_framebuffer_ = make_framebuffer();
     glNamedFramebufferParameteri(empty_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
     glNamedFramebufferParameteri(empty_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
@@ -98,7 +102,7 @@ class IllustrationBuffer final : public Technique {
     for (;;) {
       {
         auto stage = frame.clock.stage("clear");
-        if (const uint64_t shrunk = fragment_pool::shrunk_capacity(capacity_, last_produced_)) allocate_pool(shrunk);
+        pool_.before_fill(frame);
         const GLuint nil = 0xffffffffu, zero = 0;
         glClearNamedBufferData(head_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &nil);
         glClearNamedBufferData(count_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -116,11 +120,7 @@ class IllustrationBuffer final : public Technique {
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
       }
-      last_produced_ = counts[0];
-      if (counts[0] <= capacity_) break;
-      // Overflow: nothing is dropped silently; grow to this view's need and render again.
-      ++overflow_retries_;
-      allocate_pool(fragment_pool::capacity_for(counts[0]));
+      if (pool_.fits(frame, counts[0])) break;
     }
     produced_ = counts[0];
     dropped_ = counts[2];
@@ -171,17 +171,17 @@ class IllustrationBuffer final : public Technique {
   TechniqueCounters counters() const override {
     TechniqueCounters c;
     const uint64_t per_fragment = bytes_per_fragment(s_);
-    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * 8 + capacity_ * per_fragment + kCounterBytes +
+    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * 8 + pool_.capacity() * per_fragment + kCounterBytes +
                         triangle_rows_ * 16;
     c.fragments_stored = stored_;
     c.fragments_dropped = dropped_;
     c.passes = passes_;
-    c.overflow_retries = overflow_retries_;
+    c.overflow_retries = pool_.overflow_retries();
     c.extra = {{"lists_truncated", double(truncated_lists_)},
                {"neighbor_passes", modulated() ? 1.0 : 0.0},
                {"stylize_passes", modulated() ? double(1 + s_.iterations) : 0.0}};
     if (modulated() && s_.neighbors == NeighborSearch::triangle_index)
-      c.extra.push_back({"isolated_triangles", double(isolated_triangles_)});
+      c.extra.push_back({"isolated_triangles", double(isolated_triangles_), Combine::max});
     if (modulated()) append_neighbor_statistics(c);
     work_saved(c);
     return c;
@@ -241,7 +241,7 @@ class IllustrationBuffer final : public Technique {
     glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &storage);
     glGetIntegerv(GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT, &texture);
     const GLintptr alignment = std::max({storage, texture, 1});
-    const GLintptr offset = kFieldBytes * GLintptr(capacity_);
+    const GLintptr offset = kFieldBytes * GLintptr(pool_.capacity());
     return (offset + alignment - 1) / alignment * alignment;
   }
 
@@ -268,26 +268,12 @@ class IllustrationBuffer final : public Technique {
   }
 
   void allocate_pool(uint64_t capacity) {
-    capacity = std::max<uint64_t>(capacity, kSmallestPool);
-    GLint64 max_block = 0, max_texels = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    glGetInteger64v(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-    const GLint64 largest_texels = kLargestRecordBytes / 16;  // the largest view (fragData) in texels per record
-    if (capacity > 0x1ffffff0ull || (max_block > 0 && GLint64(capacity) * kLargestRecordBytes > max_block) ||
-        (max_texels > 0 && GLint64(capacity) * largest_texels > max_texels)) {
-      throw std::runtime_error("illustration_buffer: " + std::to_string(capacity) + " fragments (" +
-                               std::to_string(capacity * kLargestRecordBytes >> 20) +
-                               " MiB of fill records) exceed the device's largest storage buffer (" +
-                               std::to_string(max_block >> 20) + " MiB) or buffer texture (" +
-                               std::to_string(max_texels) + " texels); render at a smaller size");
-    }
     next_ = make_buffer(GLsizeiptr(capacity) * kNextBytes);
     data_ = make_buffer(GLsizeiptr(capacity) * kFragmentBytes);
     data2_ = make_buffer(GLsizeiptr(capacity) * kSearchBytes);
     data3_ = make_buffer(GLsizeiptr(capacity) * kShadeBytes);
     if (s_.measure_accuracy) truth_ = make_buffer(GLsizeiptr(capacity) * kTruthBytes);
     gl_check("allocating the illustration buffer's fragment pool");
-    capacity_ = capacity;
     fragment_view_ = make_buffer_texture(data_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kFragmentBytes);
     next_view_ = make_buffer_texture(next_, GL_R32UI, 0, GLsizeiptr(capacity) * kNextBytes);
     search_view_ = make_buffer_texture(data2_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kSearchBytes);
@@ -296,7 +282,7 @@ class IllustrationBuffer final : public Technique {
     fields_view_[0] = make_buffer_texture(data_, GL_RGBA32F, 0, field_bytes);
     fields_view_[1] = make_buffer_texture(data_, GL_RGBA32F, second_field_range(), field_bytes);
     gl_check("creating the illustration buffer's read-only views");
-    set(fill_.id(), "u_capacity", uint32_t(capacity_));
+    set(fill_.id(), "u_capacity", uint32_t(capacity));
   }
 
   void bind_storage() const {
@@ -324,8 +310,9 @@ class IllustrationBuffer final : public Technique {
   const Scene* scene_seen_ = nullptr;
   std::string scene_hash_;
   int width_ = 0, height_ = 0;
-  uint64_t capacity_ = 0, last_produced_ = 0, produced_ = 0, stored_ = 0, dropped_ = 0, truncated_lists_ = 0;
-  uint64_t passes_ = 0, overflow_retries_ = 0, triangle_rows_ = 0, isolated_triangles_ = 0;
+  FragmentPool pool_;
+  uint64_t produced_ = 0, stored_ = 0, dropped_ = 0, truncated_lists_ = 0;
+  uint64_t passes_ = 0, triangle_rows_ = 0, isolated_triangles_ = 0;
 };
 
 // Reads the last frame's lists back (outside the timed frames) and counts
@@ -363,8 +350,8 @@ void IllustrationBuffer::append_neighbor_statistics(TechniqueCounters& c) const 
   for (int d = 0; d < 4; ++d) c.extra.push_back({names[d], double(stats.links[size_t(d)])});
   c.extra.push_back({"silhouette_fragments", double(stats.silhouette_fragments)});
   if (stats.measured) {
-    c.extra.push_back({"neighbor_precision", stats.precision});
-    c.extra.push_back({"neighbor_recall", stats.recall});
+    c.extra.push_back({"neighbor_precision", stats.precision, Combine::mean});
+    c.extra.push_back({"neighbor_recall", stats.recall, Combine::mean});
   }
 }
 

@@ -159,13 +159,13 @@ class KBuffer final : public Technique {
     c.fragments_stored = counts[0];
     c.fragments_dropped = counts[1];
     c.passes = auto_k_ ? 3 : 2;
-    c.extra = {{"k_used", double(allocated_k_)}};
+    c.extra = {{"k_used", double(allocated_k_), Combine::max}};
     if (auto_k_) {
       // k_capped = 1: the view needed more slots than the cap allows, so
       // fragments beyond k_used were dropped (or blended) as with a fixed k.
-      c.extra.push_back({"longest_list", double(longest_list_)});
-      c.extra.push_back({"k_cap", double(k_cap_)});
-      c.extra.push_back({"k_capped", longest_list_ > uint32_t(k_cap_) ? 1.0 : 0.0});
+      c.extra.push_back({"longest_list", double(longest_list_), Combine::max});
+      c.extra.push_back({"k_cap", double(k_cap_), Combine::max});
+      c.extra.push_back({"k_capped", longest_list_ > uint32_t(k_cap_) ? 1.0 : 0.0, Combine::max});
       // Against the worst-case constant k = 64 (the parameter's maximum).
       const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
       c.work_saved = {{"bytes_not_allocated", double(bytes_for(kMaxK)) - double(c.bytes_allocated)},

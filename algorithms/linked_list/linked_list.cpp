@@ -60,6 +60,15 @@ PoolSizing pool_sizing_from(const std::string& name) {
                               "'; choose previous_frame, count or worst_case");
 }
 
+FragmentPool::Sizing pool_kind(PoolSizing sizing) {
+  switch (sizing) {
+    case PoolSizing::previous_frame: return FragmentPool::Sizing::previous_frame;
+    case PoolSizing::count: return FragmentPool::Sizing::exact;
+    case PoolSizing::worst_case: return FragmentPool::Sizing::fixed;
+  }
+  return FragmentPool::Sizing::fixed;
+}
+
 // The length classes (local array sizes) of a frame whose largest array is
 // `array_size`: 1 (lists of 0 or 1 fragments, nothing to sort), the powers
 // of two from kSmallestArray, then `array_size`.
@@ -80,7 +89,8 @@ class LinkedList final : public Technique {
         max_per_pixel_(uint32_t(params.integer("max_per_pixel"))),
         nodes_per_pixel_(uint64_t(params.integer("initial_nodes_per_pixel"))),
         fill_(build_geometry_program("algorithms/linked_list/fill.frag")),
-        counters_(make_buffer(kCounterBytes)) {
+        counters_(make_buffer(kCounterBytes)),
+        pool_("linked_list", pool_kind(pool_sizing_), kNodeBytes, [this](uint64_t capacity) { allocate_pool(capacity); }) {
     linked_list::resolve_defines(sort_, 1);  // rejects an unknown sort before any frame
     glProgramUniform1ui(fill_.id(), kMaxPerPixelLocation, max_per_pixel_);
     if (pool_sizing_ == PoolSizing::count) {
@@ -97,12 +107,11 @@ class LinkedList final : public Technique {
     heads_view_ = make_buffer_texture(heads_, GL_RGBA32UI);  // a pixel's four heads in one texel
     lengths_view_ = make_buffer_texture(lengths_, GL_R32UI);
     gl_check("creating the linked_list heads and lengths views");
-    previous_fragments_ = 0;
     if (length_classes_) classes_.resize(width, height, classes_for(array_size_for(max_per_pixel_)).size());
     switch (pool_sizing_) {
-      case PoolSizing::previous_frame: allocate_pool(uint64_t(width) * uint64_t(height) * nodes_per_pixel_); break;
-      case PoolSizing::count: allocate_pool(1); break;  // the counting pass sizes it before every fill
-      case PoolSizing::worst_case: allocate_pool(worst_case_nodes()); break;
+      case PoolSizing::previous_frame: pool_.reset(uint64_t(width) * uint64_t(height) * nodes_per_pixel_); break;
+      case PoolSizing::count: pool_.reset(1); break;  // the counting pass sizes it before every fill
+      case PoolSizing::worst_case: pool_.reset(worst_case_nodes()); break;
     }
     dummy_framebuffer_ = make_framebuffer();
     glNamedFramebufferParameteri(dummy_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
@@ -118,9 +127,7 @@ class LinkedList final : public Technique {
     for (;;) {
       {
         auto clear = frame.clock.stage("clear");
-        // A pool far larger than the last frame needed shrinks to that need (core/fragment_pool.h).
-        const uint64_t shrunk = fragment_pool::shrunk_capacity(capacity_, previous_fragments_);
-        if (pool_sizing_ == PoolSizing::previous_frame && shrunk > 0) allocate_pool(shrunk);
+        pool_.before_fill(frame);
         const GLuint nil = 0xffffffffu, zero = 0;
         glClearNamedBufferData(heads_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &nil);
         glClearNamedBufferData(lengths_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -138,13 +145,9 @@ class LinkedList final : public Technique {
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
       }
-      previous_fragments_ = counts[0];
-      if (counts[0] <= capacity_) break;
-      // Overflow: nothing is dropped silently; grow to this view's need and
-      // render again. pool_sizing=count never gets here: the counting pass
-      // ran the same geometry, so the fill produces exactly that count.
-      ++overflow_retries_;
-      allocate_pool(pool_sizing_ == PoolSizing::count ? counts[0] : fragment_pool::capacity_for(counts[0]));
+      // pool_sizing=count never overflows: the counting pass ran the same
+      // geometry, so the fill produces exactly that count.
+      if (pool_.fits(frame, counts[0])) break;
     }
     dropped_ = counts[2];
     stored_ = counts[0] - counts[2];
@@ -182,12 +185,12 @@ class LinkedList final : public Technique {
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
-    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * kPixelBytes + capacity_ * uint64_t(kNodeBytes) +
+    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * kPixelBytes + pool_.capacity() * uint64_t(kNodeBytes) +
                         kCounterBytes + (length_classes_ ? classes_.bytes_allocated() : 0);
     c.fragments_stored = stored_;
     c.fragments_dropped = dropped_;
     c.passes = passes_;
-    c.overflow_retries = overflow_retries_;
+    c.overflow_retries = pool_.overflow_retries();
     work_saved(c);
     return c;
   }
@@ -212,7 +215,7 @@ class LinkedList final : public Technique {
     ++passes_;
     GLuint fragments = 0;
     glGetQueryObjectuiv(count_query_.id(), GL_QUERY_RESULT, &fragments);
-    if (std::max<uint64_t>(fragments, 1) != capacity_) allocate_pool(fragments);
+    pool_.set_exact(fragments);
   }
 
   // The sort a resolve of `array_size` elements runs: the network only up to
@@ -227,7 +230,7 @@ class LinkedList final : public Technique {
   // classifies the tiles as classify.comp did.
   void work_saved(TechniqueCounters& c) const {
     const double bytes_not_allocated =
-        pool_sizing_ == PoolSizing::worst_case ? 0.0 : (double(worst_case_nodes()) - double(capacity_)) * kNodeBytes;
+        pool_sizing_ == PoolSizing::worst_case ? 0.0 : (double(worst_case_nodes()) - double(pool_.capacity())) * kNodeBytes;
     c.work_saved.push_back({"bytes_not_allocated", bytes_not_allocated});
     const bool network = sort_ == "network" && array_size_ <= kLargestNetwork;
     uint64_t not_sorted = 0, short_groups = 0, exchanges_avoided = 0;
@@ -294,25 +297,9 @@ class LinkedList final : public Technique {
   }
 
   void allocate_pool(uint64_t capacity) {
-    capacity = std::max<uint64_t>(capacity, 1);
-    GLint64 max_block = 0, max_texels = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    glGetInteger64v(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-    const GLint64 node_texels = GLint64(kNodeBytes / 16);
-    if (capacity > 0x7ffffffeull / uint64_t(node_texels) ||
-        (max_block > 0 && GLint64(capacity) * kNodeBytes > max_block) ||
-        (max_texels > 0 && GLint64(capacity) * node_texels > max_texels)) {
-      throw std::runtime_error("linked_list: a pool of " + std::to_string(capacity) + " fragments (" +
-                               std::to_string(capacity * kNodeBytes >> 20) +
-                               " MiB) exceeds the device's largest storage buffer (" +
-                               std::to_string(max_block >> 20) + " MiB) or buffer texture (" +
-                               std::to_string(max_texels) + " texels); render at a smaller size");
-    }
     nodes_ = make_buffer(GLsizeiptr(capacity) * kNodeBytes);
     nodes_view_ = make_buffer_texture(nodes_, GL_RGBA32UI);
-    gl_check("allocating the linked_list node pool");
-    capacity_ = capacity;
-    glProgramUniform1ui(fill_.id(), kCapacityLocation, GLuint(capacity_));
+    glProgramUniform1ui(fill_.id(), kCapacityLocation, GLuint(capacity));
   }
 
   void bind_storage() const {
@@ -341,7 +328,8 @@ class LinkedList final : public Technique {
   Framebuffer dummy_framebuffer_;
   int width_ = 0, height_ = 0;
   uint32_t longest_ = 0, array_size_ = 0;  // the last frame's longest list and largest local array
-  uint64_t capacity_ = 0, previous_fragments_ = 0, stored_ = 0, dropped_ = 0, passes_ = 0, overflow_retries_ = 0;
+  FragmentPool pool_;
+  uint64_t stored_ = 0, dropped_ = 0, passes_ = 0;
 };
 
 }  // namespace

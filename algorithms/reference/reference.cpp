@@ -37,14 +37,16 @@ class Reference final : public Technique {
   explicit Reference(const ParamSet& params)
       : nodes_per_pixel_(params.integer("initial_nodes_per_pixel")),
         fill_(build_geometry_program("algorithms/reference/fill.frag")),
-        counter_(make_buffer(2 * sizeof(GLuint))) {}
+        counter_(make_buffer(2 * sizeof(GLuint))),
+        pool_("reference", FragmentPool::Sizing::previous_frame, kNodeBytes,
+              [this](uint64_t capacity) { allocate_pool(capacity); }) {}
 
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
     heads_ = make_buffer(GLsizeiptr(width) * height * 4);
     lengths_ = make_buffer(GLsizeiptr(width) * height * 4);
-    allocate_pool(uint64_t(width) * uint64_t(height) * uint64_t(nodes_per_pixel_));
+    pool_.reset(uint64_t(width) * uint64_t(height) * uint64_t(nodes_per_pixel_));
     dummy_framebuffer_ = make_framebuffer();
     glNamedFramebufferParameteri(dummy_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
     glNamedFramebufferParameteri(dummy_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
@@ -55,6 +57,7 @@ class Reference final : public Technique {
     for (;;) {
       {
         auto clear = frame.clock.stage("clear");
+        pool_.before_fill(frame);
         const GLuint nil = 0xffffffffu, zero = 0;
         glClearNamedBufferData(heads_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &nil);
         glClearNamedBufferData(lengths_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -73,13 +76,9 @@ class Reference final : public Technique {
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
       GLuint counts[2] = {0, 0};  // node_count, max_length
       glGetNamedBufferSubData(counter_.id(), 0, sizeof(counts), counts);
-      const GLuint produced = counts[0];
       max_length_ = counts[1];
-      stored_ = produced;
-      if (produced <= capacity_) break;
-      // Overflow: grow to what this view needs (plus slack) and render again.
-      ++overflow_retries_;
-      allocate_pool(fragment_pool::capacity_for(produced));
+      stored_ = counts[0];
+      if (pool_.fits(frame, counts[0])) break;
     }
     auto compose = frame.clock.stage("compose");
     if (max_length_ > kMaxGpuListLength) {
@@ -96,10 +95,10 @@ class Reference final : public Technique {
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
-    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * 8 + capacity_ * uint64_t(kNodeBytes) + 8;
+    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * 8 + pool_.capacity() * uint64_t(kNodeBytes) + 8;
     c.fragments_stored = stored_;
     c.passes = passes_;
-    c.overflow_retries = overflow_retries_;
+    c.overflow_retries = pool_.overflow_retries();
     return c;
   }
 
@@ -113,7 +112,7 @@ class Reference final : public Technique {
     };
     static_assert(sizeof(Node) == kNodeBytes);
     std::vector<uint32_t> heads(size_t(width_) * size_t(height_));
-    std::vector<Node> nodes(std::min<uint64_t>(stored_, capacity_));
+    std::vector<Node> nodes(std::min<uint64_t>(stored_, pool_.capacity()));
     glGetNamedBufferSubData(heads_.id(), 0, GLsizeiptr(heads.size() * 4), heads.data());
     glGetNamedBufferSubData(nodes_.id(), 0, GLsizeiptr(nodes.size() * sizeof(Node)), nodes.data());
     std::vector<float> image(heads.size() * 4);
@@ -163,19 +162,8 @@ class Reference final : public Technique {
   }
 
   void allocate_pool(uint64_t capacity) {
-    capacity = std::max<uint64_t>(capacity, 1);
-    GLint64 max_block = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    if (capacity > 0xfffffffeull || (max_block > 0 && GLint64(capacity) * kNodeBytes > max_block)) {
-      throw std::runtime_error("reference: " + std::to_string(capacity) + " fragments (" +
-                               std::to_string(capacity * kNodeBytes >> 20) +
-                               " MiB) exceed the device's largest storage buffer (" + std::to_string(max_block >> 20) +
-                               " MiB); render at a smaller size");
-    }
     nodes_ = make_buffer(GLsizeiptr(capacity) * kNodeBytes);
-    gl_check("allocating the reference node pool");
-    capacity_ = capacity;
-    glProgramUniform1ui(fill_.id(), kCapacityLocation, GLuint(capacity_));
+    glProgramUniform1ui(fill_.id(), kCapacityLocation, GLuint(capacity));
     glProgramUniform1i(fill_.id(), kWidthLocation, width_);
     for (auto& [size, program] : resolve_) glProgramUniform1i(program.id(), kWidthLocation, width_);
   }
@@ -196,7 +184,8 @@ class Reference final : public Technique {
   Framebuffer cpu_result_framebuffer_;
   int cpu_result_width_ = 0, cpu_result_height_ = 0;
   int width_ = 0, height_ = 0;
-  uint64_t capacity_ = 0, stored_ = 0, passes_ = 0, overflow_retries_ = 0;
+  FragmentPool pool_;
+  uint64_t stored_ = 0, passes_ = 0;
   uint32_t max_length_ = 0;
 };
 

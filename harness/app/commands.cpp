@@ -85,6 +85,11 @@ int run_list(const CommonOptions& common) {
   const DeviceInfo& device = context->device();
   std::printf("Device: %s (%s, %s)%s\n\n", device.renderer.c_str(), device.version.c_str(), platform_text(device).c_str(),
               device.software ? " — software GL: stage clock defaults to wall+glFinish" : "");
+  const DeviceLimits limits = query_device_limits();
+  std::printf("Limits: largest storage block %s; memory budget %s (%s). A technique whose storage for a frame "
+              "exceeds either renders in screen tiles (CSV column `tiles`; --memory-budget sets the budget).\n\n",
+              format_bytes(limits.largest_buffer).c_str(), format_bytes(limits.memory_budget).c_str(),
+              limits.budget_source.c_str());
   std::printf("Techniques:\n");
   for (const auto& t : builtin_techniques().all()) {
     std::string stages;
@@ -124,6 +129,7 @@ int run_render(const CommonOptions& common, const RenderOptions& options) {
     parse_size(options.size, spec.width, spec.height);
     spec.background = parse_background(options.background);
     spec.scene_rect = parse_on_off("--scene-rect", options.scene_rect);
+    if (!options.memory_budget.empty()) spec.memory_budget = parse_memory_size(options.memory_budget);
     spec.warmup = 0;
     spec.frames = 1;
     RunResult result = harness.run(spec);

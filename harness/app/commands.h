@@ -32,6 +32,7 @@ struct RenderOptions {
   // (OUT with _camI before the extension).
   std::string camera = "default";
   std::string scene_rect = "on";  // RunSpec::scene_rect
+  std::string memory_budget;      // RunSpec::memory_budget; empty: the device's default
 };
 
 // `oitbench stats`: the fragment statistics of one scene view (stats_command.cpp).

@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--scene-rect", render.scene_rect,
                          "on (default): confine the technique to the scene's projected rectangle; off: full image")
       ->check(CLI::IsMember({"on", "off"}));
+  render_cmd->add_option("--memory-budget", render.memory_budget, "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G (default: see `list`)");
 
   oit::BenchOptions bench;
   auto* bench_cmd = app.add_subcommand("bench", "time every combination and append long-form CSV rows");
@@ -59,6 +60,7 @@ int main(int argc, char** argv) {
                         "on (default), off or on,off: confine techniques to the scene's projected rectangle")
       ->delimiter(',')
       ->check(CLI::IsMember({"on", "off"}));
+  bench_cmd->add_option("--memory-budget", bench.sweep.memory_budget, "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G (default: see `list`)");
   bench_cmd->add_option("--csv", bench.csv, "CSV file to append to")->required();
   bench_cmd->add_option("--images", bench.images_dir, "directory for one PNG per run");
   bench_cmd->add_option("--baseline", bench.baseline,
@@ -80,6 +82,7 @@ int main(int argc, char** argv) {
   pareto_cmd->add_option("--size", pareto.sweep.sizes, "WIDTHxHEIGHT (repeatable; default 128x128)");
   pareto_cmd->add_option("--frames", pareto.sweep.frames, "timed frames per run")->check(CLI::Range(1, 100000));
   pareto_cmd->add_option("--warmup", pareto.sweep.warmup, "untimed frames first")->check(CLI::Range(0, 1000));
+  pareto_cmd->add_option("--memory-budget", pareto.sweep.memory_budget, "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G (default: see `list`)");
   pareto_cmd->add_option("--csv", pareto.csv, "CSV file to append to")->required();
   pareto_cmd->add_option("--images", pareto.images_dir, "directory for one PNG per run");
   pareto_cmd->add_flag("--resume", pareto.resume,

@@ -128,6 +128,9 @@ std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRe
   for (const auto& text : options.cameras)
     for (const auto& view : expand_camera_spec(text)) cameras.push_back(view);
 
+  std::optional<uint64_t> memory_budget;
+  if (!options.memory_budget.empty()) memory_budget = parse_memory_size(options.memory_budget);
+
   std::vector<bool> scene_rects;
   for (const auto& text : options.scene_rects) scene_rects.push_back(parse_on_off("--scene-rect", text));
 
@@ -157,6 +160,7 @@ std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRe
                 spec.clock = clock;
                 spec.background = background;
                 spec.scene_rect = scene_rect;
+                spec.memory_budget = memory_budget;
                 runs.push_back(spec);
               }
             }

@@ -25,6 +25,8 @@ struct SweepOptions {
   int warmup = 2;
   std::string clock = "auto";
   std::string background = "0,0,0";
+  // RunSpec::memory_budget as text ("512M", "2G"); empty: the device's default.
+  std::string memory_budget;
 };
 
 std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRegistry& registry);

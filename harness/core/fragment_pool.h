@@ -1,20 +1,31 @@
 #pragma once
-// How the fragment pools of the list-based techniques are sized: from the
-// fragments a frame produced, plus slack, so that a similar next frame fits
-// without an overflow re-render; a pool far above the need shrinks, but
-// only past a factor 2, so that it does not reallocate every frame.
+// The fragment pool of the list-based techniques (linked_list, reference,
+// illustration_buffer), in one owner: how many nodes to hold, growing with a
+// re-render when a fill overflows, shrinking when far above the need, the
+// device-limit check, and the history per screen tile (core/tiling.h), so
+// that the tiles of one frame share a pool sized for the largest of them
+// instead of reallocating tile after tile. The technique owns the buffers
+// (their layout is its own): the pool calls `allocate(capacity)` whenever
+// the capacity changes.
 #include <algorithm>
 #include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
 
 #include "core/technique.h"
 
-namespace oit::fragment_pool {
+namespace oit {
+
+namespace fragment_pool {
 
 // Nodes for `fragments` plus 25% slack (+1: never an empty pool).
 constexpr uint64_t capacity_for(uint64_t fragments) { return fragments + fragments / 4 + 1; }
 
-// The capacity to shrink to before a frame whose previous frame produced
-// `previous_fragments` (none known: 0), or 0 to keep `capacity`.
+// The capacity to shrink to when the most fragments any tile of the last
+// frame produced is `previous_fragments` (none known: 0), or 0 to keep
+// `capacity`: only past a factor 2, so that it does not reallocate every
+// frame.
 constexpr uint64_t shrunk_capacity(uint64_t capacity, uint64_t previous_fragments) {
   const uint64_t wanted = capacity_for(previous_fragments);
   return previous_fragments > 0 && capacity > 2 * wanted ? wanted : 0;
@@ -34,4 +45,45 @@ inline uint64_t slots_per_pixel(const FrameContent& content, const ParamSet& par
   return std::clamp<uint64_t>(content.longest_list, 1, uint64_t(max_k));
 }
 
-}  // namespace oit::fragment_pool
+}  // namespace fragment_pool
+
+class FragmentPool {
+ public:
+  // previous_frame: 1.25 x the last frame's fragments, grown on overflow;
+  // exact: set_exact() before every fill (a counting pass), never overflows;
+  // fixed: the capacity given to reset(), never changed.
+  enum class Sizing { previous_frame, exact, fixed };
+
+  // `largest_record_bytes`: the pool's largest per-node buffer, checked
+  // against the device's largest storage block (and, as 16-byte texels,
+  // its largest buffer texture); `smallest` nodes at least.
+  FragmentPool(std::string owner, Sizing sizing, uint64_t largest_record_bytes,
+               std::function<void(uint64_t capacity)> allocate, uint64_t smallest = 1);
+
+  // At the technique's resize(): `nodes` now, and no history.
+  void reset(uint64_t nodes);
+  // Before the fill of `frame` (previous_frame: shrinks a pool far above
+  // every tile's last need).
+  void before_fill(const Frame& frame);
+  // exact: the frame's fragments, from a counting pass.
+  void set_exact(uint64_t fragments);
+  // After the fill: true when its `produced` fragments fit; otherwise the
+  // pool has grown to hold them (a retry is counted) and the caller renders
+  // the fill again.
+  bool fits(const Frame& frame, uint64_t produced);
+
+  uint64_t capacity() const { return capacity_; }
+  uint64_t overflow_retries() const { return overflow_retries_; }
+
+ private:
+  void allocate(uint64_t capacity);
+
+  std::string owner_;
+  Sizing sizing_;
+  uint64_t largest_record_bytes_, smallest_;
+  std::function<void(uint64_t)> allocate_;
+  uint64_t capacity_ = 0, overflow_retries_ = 0;
+  std::vector<uint64_t> produced_by_tile_;  // the last fill of each tile (Frame::tile_index)
+};
+
+}  // namespace oit

@@ -16,11 +16,14 @@ std::string LiveTechnique::configure(const std::string& id, const RawParams& par
       return id + " cannot run here: " + reason;
     }
     // Build everything first so a failure leaves the running one intact.
+    // Resized by the first frame, once its tile plan is known.
     std::unique_ptr<Technique> technique = descriptor.create(values);
-    technique->resize(width, height);
     auto target = std::make_unique<RenderTarget>(width, height);
     gl_check("creating " + id);
     technique_ = std::move(technique);
+    descriptor_ = &descriptor;
+    values_ = std::make_unique<ParamSet>(values);
+    tiling_.reset();
     target_ = std::move(target);
     clock_ = std::make_unique<StageClock>(clock_kind_);
     frames_in_window_ = 0;
@@ -41,13 +44,32 @@ std::string LiveTechnique::configure(const std::string& id, const RawParams& par
 void LiveTechnique::render(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection,
                            const glm::vec3& background) {
   if (!technique_) return;
+  plan_for(scene, view, projection);
   const Frame frame{scene, view, projection, width_, height_, background, target_->framebuffer.id(), *clock_};
-  const ScreenRect rect = render_frame(*technique_, frame, true, scene_rect_);
+  const ScreenRect rect = render_frame(*technique_, frame, true, scene_rect_, tiling_.get());
   pixels_outside_ = scene_rect_ ? uint64_t(width_) * uint64_t(height_) - rect.pixels() : 0;
   gl_check("a viewer frame of " + id_);
   // The very first frame closes a window at once, so timings show up
   // without waiting (and a short --frames run has them too).
   if (++frames_in_window_ == kWindow || timings_.empty()) finish_window();
+}
+
+void LiveTechnique::plan_for(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection) {
+  if (tiling_ && planned_scene_ == &scene && planned_view_ == view && planned_projection_ == projection) return;
+  std::function<StorageNeed(const FrameContent&)> need;
+  if (descriptor_->storage_need)
+    need = [this](const FrameContent& content) { return descriptor_->storage_need(*values_, content); };
+  const int halo = descriptor_->tile_halo ? descriptor_->tile_halo(*values_) : 0;
+  TilePlan plan = plan_tiles(need, halo, measure_depth_complexity(scene, view, projection, width_, height_),
+                             query_device_limits());
+  if (!tiling_ || plan.frame_width() != tiling_->plan().frame_width() ||
+      plan.frame_height() != tiling_->plan().frame_height() || plan.count() != tiling_->plan().count()) {
+    technique_->resize(plan.frame_width(), plan.frame_height());
+  }
+  tiling_ = std::make_unique<Tiling>(std::move(plan));
+  planned_scene_ = &scene;
+  planned_view_ = view;
+  planned_projection_ = projection;
 }
 
 void LiveTechnique::finish_window() {

@@ -28,6 +28,9 @@ class LiveTechnique {
   bool ready() const { return technique_ != nullptr; }
 
   // Renders one frame into target(); throws what the technique throws.
+  // Whenever the view changes, the storage need is measured again (the
+  // harness's counting pass) and the technique re-planned into screen tiles
+  // (core/tiling.h) as a bench run would be.
   void render(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection, const glm::vec3& background);
 
   const RenderTarget& target() const { return *target_; }
@@ -61,7 +64,15 @@ class LiveTechnique {
   const TechniqueRegistry& registry_;
   const DeviceInfo& device_;
   ClockKind clock_kind_;
+  // Plans tiles for this view and resizes the technique when the plan changes.
+  void plan_for(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection);
+
   std::unique_ptr<Technique> technique_;
+  const TechniqueDescriptor* descriptor_ = nullptr;
+  std::unique_ptr<ParamSet> values_;
+  std::unique_ptr<Tiling> tiling_;  // null until the first frame plans it
+  glm::mat4 planned_view_{0.0f}, planned_projection_{0.0f};
+  const SceneGpu* planned_scene_ = nullptr;
   std::unique_ptr<RenderTarget> target_;
   std::unique_ptr<StageClock> clock_;
   int frames_in_window_ = 0;
