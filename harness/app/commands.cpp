@@ -17,7 +17,7 @@ namespace oit {
 namespace {
 
 std::unique_ptr<GlContext> open_context(const CommonOptions& common) {
-  return create_headless_context(parse_device_preference(common.device), common.debug_gl);
+  return create_headless_context(parse_device_choice(common.device), common.debug_gl);
 }
 
 void print_params(const ParamSchema& schema) {
@@ -85,7 +85,9 @@ int run_list(const CommonOptions& common) {
   const DeviceInfo& device = context->device();
   std::printf("Device: %s (%s, %s)%s\n\n", device.renderer.c_str(), device.version.c_str(), platform_text(device).c_str(),
               device.software ? " — software GL: stage clock defaults to wall+glFinish" : "");
-  std::printf("Techniques:\n");
+  std::printf("EGL devices (--device egl:N):\n");
+  for (const auto& line : describe_egl_devices()) std::printf("    %s\n", line.c_str());
+  std::printf("\nTechniques:\n");
   for (const auto& t : builtin_techniques().all()) {
     std::string stages;
     for (const auto& s : t.stages) stages += (stages.empty() ? "" : ", ") + s;
