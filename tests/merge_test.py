@@ -4,8 +4,10 @@ keeps one recording per run and machine (an ok one over an error one, never
 two), keeps the same configuration measured on two devices as two runs,
 matches columns by name across headers that differ, keeps --out's rows and
 rejects a file that is not an oitbench CSV by name; a sweep file line
-becomes bench arguments without --csv, and a bad line names file and line."""
+becomes bench arguments without --csv, a bad line names file and line, and
+a shard job runs every bench with --resume but writes no .done when one fails."""
 import csv
+import json
 import os
 import sys
 import tempfile
@@ -131,6 +133,27 @@ class SweepFileTest(unittest.TestCase):
                 f.write("oitbench render --technique kbuffer --out x.png\n")
             with self.assertRaisesRegex(shards.SweepFileError, r"my sweep\.txt:5: expected 'oitbench bench"):
                 shards.read_sweep_file(path)
+
+    def test_a_shard_job_runs_every_bench_resuming_and_fails_without_done_if_one_fails(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            # A stand-in oitbench: logs its arguments, fails on technique "broken".
+            fake, log = os.path.join(tmp, "oitbench"), os.path.join(tmp, "calls.log")
+            with open(fake, "w") as f:
+                f.write(f"#!/bin/sh\necho \"$*\" >> {log}\ncase \"$*\" in *broken*) exit 3;; esac\n")
+            os.chmod(fake, 0o755)
+            spec, done = os.path.join(tmp, "s.json"), os.path.join(tmp, "s.done")
+            shards.write_json_atomically(spec, [["bench", "--technique", t] for t in ("a", "broken", "c")])
+            arguments = ["run", spec, "--oitbench", fake, "--device", "egl:1", "--csv", "s.csv", "--done", done]
+            with self.assertRaisesRegex(SystemExit, "1 bench invocation"):
+                shards.main(arguments)
+            self.assertFalse(os.path.exists(done))
+            with open(log) as f:
+                self.assertEqual(f.read().splitlines(), [
+                    f"--device egl:1 bench --technique {t} --csv s.csv --resume" for t in ("a", "broken", "c")])
+            shards.write_json_atomically(spec, [["bench", "--technique", "a"]])
+            shards.main(arguments)
+            with open(done) as f:
+                self.assertEqual(json.load(f), {"rows": 0, "status": {}, "devices": [], "csv": "s.csv"})
 
     def test_shards_are_named_by_their_content(self):
         benches = [["bench", "--technique", t] for t in ("a", "b", "c")]
