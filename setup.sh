@@ -19,6 +19,7 @@ packages=(
   python3-matplotlib python3-pandas python3-numpy
   glmark2-data assimp-testmodels
   clang libclang-rt-14-dev
+  snakemake slurm-wlm munge
 )
 
 install_missing_packages() {

@@ -2,7 +2,7 @@
 
 Usage (from the repository root, after `bash setup.sh build`):
     /usr/bin/python3 -m analysis.reproduce [--quick] [--out results/<date>] [--only NAME ...]
-        [--oitbench build/harness/oitbench] [--dry-run]
+        [--oitbench build/harness/oitbench] [--dry-run | --list-commands | --plots-only]
 
 One CSV per sweep under --out (murray_fig10.csv, carnecky_fig14.csv,
 carnecky_fig15.csv, models.csv, layers.csv), heatmaps under --out/heatmaps,
@@ -12,6 +12,11 @@ parameters, scene, swept scene parameters, camera, width, height) that already
 has an ok or skipped row there; a run that failed with an error is tried
 again. Interrupt it at any point and start it again with the same --out.
 
+--list-commands prints the sweeps as JSON (bench and stats invocations, plot
+modules) for other drivers: workflow/Snakefile runs them as cluster jobs.
+--plots-only draws from the CSVs already in --out; a CSV holding several
+(device, platform) pairs is drawn once per pair (file names get a suffix).
+
 --quick: small sizes, 1 warm-up + 3 timed frames, a few models: minutes on 2
 cores with software GL. Without it the sweeps are sized for a real GPU (the
 papers' resolutions and tessellations).
@@ -19,6 +24,7 @@ papers' resolutions and tessellations).
 import argparse
 import csv
 import datetime
+import json
 import os
 import re
 import subprocess
@@ -185,9 +191,11 @@ def batches(points):
     return list(groups.values())
 
 
-def bench_command(oitbench, batch, csv_path, warmup, frames):
+def bench_arguments(batch, warmup, frames):
+    """The `oitbench bench` arguments of one batch, without the binary and
+    --csv (the Snakemake workflow adds its shard's CSV)."""
     first = batch[0]
-    command = [oitbench, "bench"]
+    command = ["bench"]
     for p in batch:
         command += ["--technique", p.technique]
     for key, value in first.tparams:
@@ -196,8 +204,12 @@ def bench_command(oitbench, batch, csv_path, warmup, frames):
     for key, value in first.sparams:
         command += ["--scene-set", f"{key}={value}"]
     command += ["--size", f"{first.width}x{first.height}", "--camera", first.camera, "--warmup", str(warmup),
-                "--frames", str(frames), "--csv", csv_path]
+                "--frames", str(frames)]
     return command
+
+
+def bench_command(oitbench, batch, csv_path, warmup, frames):
+    return [oitbench] + bench_arguments(batch, warmup, frames) + ["--csv", csv_path]
 
 
 def describe(batch):
@@ -233,18 +245,24 @@ def run_sweep(sweep, args, env):
     return started
 
 
+def heatmap_arguments(sweep):
+    """(model, `oitbench stats` arguments without the binary and --heatmap)
+    per model of the models sweep (pastyrik2016 Fig. 10)."""
+    seen = OrderedDict((dict(p.sparams)["name"], p) for p in sweep.points)
+    return [(model, ["stats", "--scene", p.scene, "--scene-set", f"name={model}", "--size", f"{p.width}x{p.height}"])
+            for model, p in seen.items()]
+
+
 def model_heatmaps(sweep, args, env):
-    """`oitbench stats --heatmap` per model of the models sweep (pastyrik2016 Fig. 10)."""
+    """`oitbench stats --heatmap` per model of the models sweep."""
     directory = os.path.join(args.out, "heatmaps")
     os.makedirs(directory, exist_ok=True)
     started = []
-    seen = OrderedDict((dict(p.sparams)["name"], p) for p in sweep.points)
-    for model, p in seen.items():
+    for model, arguments in heatmap_arguments(sweep):
         png = os.path.join(directory, f"heatmap_{model}.png")
         if os.path.exists(png):
             continue
-        command = [args.oitbench, "stats", "--scene", p.scene, "--scene-set", f"name={model}", "--size",
-                   f"{p.width}x{p.height}", "--heatmap", png]
+        command = [args.oitbench] + arguments + ["--heatmap", png]
         started.append(command)
         print(f"[heatmaps] {model}", flush=True)
         if args.dry_run:
@@ -257,9 +275,21 @@ def model_heatmaps(sweep, args, env):
     return started
 
 
+def device_groups(runs):
+    """The rows of each (device, platform), with a file-name suffix: none when
+    the CSV holds one, else a slug of both. Times are only comparable within
+    one device, so a CSV merged from several machines is drawn per device."""
+    groups = list(runs.groupby(["device", "platform"], sort=True))
+    if len(groups) == 1:
+        return [("", groups[0][1])]
+    return [("_" + re.sub(r"[^A-Za-z0-9]+", "-", f"{device} {platform}").strip("-")[:80], part)
+            for (device, platform), part in groups]
+
+
 def draw_plots(sweep, args):
-    """Each plot module's draw() on the sweep's CSV; a plot without data is
-    reported and left out, the others are still drawn."""
+    """Each plot module's draw() on the sweep's CSV, once per device and
+    platform in it; a plot without data is reported and left out, the others
+    are still drawn."""
     import importlib
 
     import matplotlib.pyplot as plt
@@ -267,21 +297,53 @@ def draw_plots(sweep, args):
     from analysis import common
 
     csv_path = os.path.join(args.out, f"{sweep.name}.csv")
+    try:
+        groups = device_groups(common.load(csv_path))
+    except (common.NoData, FileNotFoundError) as e:
+        print(f"  {sweep.name}: no plot drawn: {e}", flush=True)
+        return []
     drawn = []
     for module_name, options in sweep.plots:
-        out = os.path.join(args.out, f"{module_name}.png")
         module = importlib.import_module(f"analysis.{module_name}")
         plot_args = argparse.Namespace(heatmaps=os.path.join(args.out, "heatmaps")) if options.get("heatmaps") else None
-        try:
-            fig = module.draw(common.load(csv_path), plot_args)
-        except (common.NoData, FileNotFoundError) as e:
-            print(f"  {module_name}: not drawn: {e}", flush=True)
-            continue
-        fig.savefig(out, dpi=90)
-        plt.close(fig)
-        drawn.append(out)
-        print(f"  wrote {out}", flush=True)
+        for suffix, runs in groups:
+            out = os.path.join(args.out, f"{module_name}{suffix}.png")
+            try:
+                fig = module.draw(runs, plot_args)
+            except (common.NoData, FileNotFoundError) as e:
+                print(f"  {module_name}{suffix}: not drawn: {e}", flush=True)
+                continue
+            fig.savefig(out, dpi=90)
+            plt.close(fig)
+            drawn.append(out)
+            print(f"  wrote {out}", flush=True)
     return drawn
+
+
+def plan_as_data(sweeps):
+    """The sweeps as plain data (what --list-commands prints as JSON): per
+    sweep its bench invocations and `stats` heatmap invocations as argument
+    lists without the binary, --csv and --heatmap, and its plot modules."""
+    return [{"name": s.name, "skipped": s.skip_reason, "runs": len(s.points),
+             "benches": [bench_arguments(b, s.warmup, s.frames) for b in batches(s.points)],
+             "heatmaps": [{"model": m, "arguments": a} for m, a in heatmap_arguments(s)] if s.name == "models" else [],
+             "plots": [module for module, _ in s.plots]}
+            for s in sweeps]
+
+
+def oitbench_environment(oitbench):
+    """The environment to start oitbench in: Mesa compiles each shader once per
+    machine, not once per bench process (build/harness/oitbench ->
+    build/mesa_shader_cache, where setup.sh and the tests keep it)."""
+    env = dict(os.environ)
+    env.setdefault("MESA_SHADER_CACHE_DIR", os.path.join(os.path.dirname(os.path.dirname(
+        os.path.abspath(oitbench))), "mesa_shader_cache"))
+    return env
+
+
+def catalogue_of(oitbench, env):
+    listing = subprocess.run([oitbench, "list"], capture_output=True, text=True, env=env, check=True).stdout
+    return Catalogue(listing)
 
 
 def main(argv=None):
@@ -292,24 +354,32 @@ def main(argv=None):
     parser.add_argument("--only", nargs="+", default=None, help="sweep names to run (default: all)")
     parser.add_argument("--dry-run", action="store_true", help="print the invocations a run would start, run none")
     parser.add_argument("--no-plots", action="store_true")
+    parser.add_argument("--plots-only", action="store_true",
+                        help="draw the plots from the CSVs already in --out (e.g. merged from several machines), run "
+                             "no bench")
+    parser.add_argument("--list-commands", action="store_true",
+                        help="print every sweep's bench and stats invocations as JSON (the Snakemake workflow's "
+                             "input), run nothing")
     args = parser.parse_args(argv)
     if not os.access(args.oitbench, os.X_OK):
         sys.exit(f"reproduce: {args.oitbench} is not an executable (build first: bash setup.sh build)")
-    os.makedirs(args.out, exist_ok=True)
-    env = dict(os.environ)
-    # Mesa compiles each shader once per machine, not once per bench process.
-    # build/harness/oitbench -> build/mesa_shader_cache, where setup.sh and the tests keep it.
-    env.setdefault("MESA_SHADER_CACHE_DIR", os.path.join(os.path.dirname(os.path.dirname(
-        os.path.abspath(args.oitbench))), "mesa_shader_cache"))
-    listing = subprocess.run([args.oitbench, "list"], capture_output=True, text=True, env=env, check=True).stdout
-    catalogue = Catalogue(listing)
-    sweeps = plan(catalogue, args.quick)
+    env = oitbench_environment(args.oitbench)
+    sweeps = plan(catalogue_of(args.oitbench, env), args.quick)
     if args.only:
         unknown = set(args.only) - {s.name for s in sweeps}
         if unknown:
             sys.exit(f"reproduce: unknown sweep(s) {', '.join(sorted(unknown))}: "
                      f"expected {', '.join(s.name for s in sweeps)}")
         sweeps = [s for s in sweeps if s.name in args.only]
+    if args.list_commands:
+        json.dump({"quick": args.quick, "sweeps": plan_as_data(sweeps)}, sys.stdout)
+        print()
+        return []
+    os.makedirs(args.out, exist_ok=True)
+    if args.plots_only:
+        drawn = [png for sweep in sweeps if not sweep.skip_reason for png in draw_plots(sweep, args)]
+        print(f"reproduce: {len(drawn)} plot(s) in {args.out}", flush=True)
+        return []
     started, drawn = [], []
     for sweep in sweeps:
         if sweep.skip_reason:

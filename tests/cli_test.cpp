@@ -107,6 +107,31 @@ TEST(Cli, BadParameterExitsNonZeroNamingTheKey) {
   EXPECT_NE(size.output.find("8by8"), std::string::npos) << size.output;
 }
 
+// --device egl:N takes the N-th EGL device as `list` numbers them: on the
+// software-GL machines of CI that is Mesa's software device (llvmpipe); an
+// index past the last device and a malformed one are errors naming the value.
+TEST(Cli, DeviceEglIndexPicksThatDeviceAndNamesTheDevicesWhenOutOfRange) {
+  const Outcome listed = run_oitbench("list");
+  ASSERT_EQ(listed.exit_code, 0) << listed.output;
+  const size_t software = listed.output.find("    egl:");
+  ASSERT_NE(software, std::string::npos) << "no EGL device listed:\n" << listed.output;
+  const std::string index = listed.output.substr(software + 8, listed.output.find(' ', software + 8) - software - 8);
+  const Outcome picked = run_oitbench("--device egl:" + index + " list");
+  ASSERT_EQ(picked.exit_code, 0) << picked.output;
+  EXPECT_NE(picked.output.find("Device: llvmpipe"), std::string::npos) << picked.output;
+  EXPECT_NE(picked.output.find(", egl-device, host pages"), std::string::npos) << picked.output;
+
+  const Outcome past = run_oitbench("--device egl:99 list");
+  EXPECT_NE(past.exit_code, 0);
+  EXPECT_NE(past.output.find("--device egl:99: this machine has"), std::string::npos) << past.output;
+  EXPECT_NE(past.output.find("egl:" + index + " software"), std::string::npos) << past.output;
+
+  const Outcome malformed = run_oitbench("--device egl:first list");
+  EXPECT_NE(malformed.exit_code, 0);
+  EXPECT_NE(malformed.output.find("device 'egl:first' is not one of auto, gpu, software, egl:N"), std::string::npos)
+      << malformed.output;
+}
+
 TEST(Cli, BenchKeepsGoingPastAFailingRunAndRecordsIt) {
   const std::string csv = kOut + "/error_row.csv";
   std::filesystem::remove(csv);

@@ -6,6 +6,7 @@ without bucketed_kbuffer leaves murray2016 Fig. 10 out with a message."""
 import contextlib
 import csv
 import io
+import json
 import os
 import sys
 import tempfile
@@ -96,6 +97,32 @@ class ReproduceTest(unittest.TestCase):
         self.assertGreater(len(complete), len(partial))
         duplicates = [k for k, n in Counter(tuple(r[c] for c in KEY) for r in complete).items() if n > 1]
         self.assertEqual(duplicates, [])
+
+    def test_list_commands_prints_the_dry_run_benches_as_json(self):
+        dry, _ = self.reproduce("--dry-run", "--no-plots")
+        _, printed = self.reproduce("--list-commands")
+        listed = json.loads(printed)
+        sweeps = {s["name"]: s for s in listed["sweeps"]}
+        self.assertEqual(list(sweeps), ["murray_fig10", "carnecky_fig14", "carnecky_fig15", "models", "layers"])
+        # The same invocations as a dry run, without the binary and --csv.
+        self.assertEqual(sorted(map(tuple, (b for s in listed["sweeps"] for b in s["benches"]))),
+                         sorted(tuple(c[1:c.index("--csv")]) for c in dry if c[1] == "bench"))
+        self.assertEqual([h["model"] for h in sweeps["models"]["heatmaps"]],
+                         ["wuson", "elephant", "bones", "bunny", "engine"])
+        self.assertEqual(sweeps["layers"]["plots"], ["time_per_fragment"])
+
+    def test_plots_only_draws_each_device_of_a_merged_csv_apart(self):
+        self.reproduce("--only", "layers", "--no-plots")
+        rows = rows_of(self.out, "layers")
+        with open(os.path.join(self.out, "layers.csv"), "a", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=list(rows[0]), lineterminator="\n")
+            writer.writerows(dict(r, device="Other GPU", platform="egl-device") for r in rows)
+        calls = len(self.bench_calls())
+        _, printed = self.reproduce("--only", "layers", "--plots-only")
+        self.assertEqual(len(self.bench_calls()), calls)
+        drawn = sorted(f for f in os.listdir(self.out) if f.endswith(".png"))
+        self.assertEqual(len(drawn), 2, printed)
+        self.assertTrue(any(f.startswith("time_per_fragment_Other-GPU-egl-device") for f in drawn), drawn)
 
     def test_without_bucketed_kbuffer_fig10_is_skipped_with_a_message(self):
         with mock.patch.dict(os.environ, {"FAKE_OITBENCH_NO_BKB": "1"}):

@@ -149,7 +149,7 @@ int run_adaptive(const CommonOptions& common, const AdaptiveOptions& options) {
     parse_scene_spec(text, parsed_scenes.back().first, parsed_scenes.back().second);
   }
 
-  auto context = create_headless_context(parse_device_preference(common.device), common.debug_gl);
+  auto context = create_headless_context(parse_device_choice(common.device), common.debug_gl);
   Harness harness(*context, registry);
   const DeviceInfo& device = harness.device();
   const RunContext csv_context = run_context(device);

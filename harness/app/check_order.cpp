@@ -52,7 +52,7 @@ OrderCheck check_order(Harness& harness, const TechniqueDescriptor& technique, c
 }
 
 int run_check_order(const CommonOptions& common, const CheckOrderOptions& options) {
-  auto context = create_headless_context(parse_device_preference(common.device), common.debug_gl);
+  auto context = create_headless_context(parse_device_choice(common.device), common.debug_gl);
   Harness harness(*context, builtin_techniques());
   RunSpec base;
   base.scene = options.scene;

@@ -17,7 +17,7 @@ namespace oit {
 namespace {
 
 std::unique_ptr<GlContext> open_context(const CommonOptions& common) {
-  return create_headless_context(parse_device_preference(common.device), common.debug_gl);
+  return create_headless_context(parse_device_choice(common.device), common.debug_gl);
 }
 
 void print_params(const ParamSchema& schema) {
@@ -90,7 +90,9 @@ int run_list(const CommonOptions& common) {
               "exceeds either renders in screen tiles (CSV column `tiles`; --memory-budget sets the budget).\n\n",
               format_bytes(limits.largest_buffer).c_str(), format_bytes(limits.memory_budget).c_str(),
               limits.budget_source.c_str());
-  std::printf("Techniques:\n");
+  std::printf("EGL devices (--device egl:N):\n");
+  for (const auto& line : describe_egl_devices()) std::printf("    %s\n", line.c_str());
+  std::printf("\nTechniques:\n");
   for (const auto& t : builtin_techniques().all()) {
     std::string stages;
     for (const auto& s : t.stages) stages += (stages.empty() ? "" : ", ") + s;

@@ -66,10 +66,10 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->check(CLI::IsMember({"on", "off"}));
   app.add_option("--clock", sweep.clock, "auto, gl or wall")->check(CLI::IsMember({"auto", "gl", "wall"}));
-  app.add_option("--device", device, "auto, gpu or software");
+  app.add_option("--device", device, "auto, gpu, software or egl:N");
   CLI11_PARSE(app, argc, argv);
   try {
-    auto context = oit::create_headless_context(oit::parse_device_preference(device));
+    auto context = oit::create_headless_context(oit::parse_device_choice(device));
     oit::Harness harness(*context, oit::builtin_techniques());
     for (const auto& spec : oit::expand_sweep(sweep, oit::builtin_techniques())) {
       benchmark::RegisterBenchmark(benchmark_name(spec).c_str(), run_benchmark, &harness, spec)

@@ -11,6 +11,7 @@
 #include "app/pareto.h"
 #include "app/stress.h"
 #include "app/viewer/view_command.h"
+#include "gl/context.h"
 
 int main(int argc, char** argv) {
   oit::relaunch_with_huge_page_malloc(argv);
@@ -18,8 +19,19 @@ int main(int argc, char** argv) {
                "with the exact image"};
   app.require_subcommand(1);
   oit::CommonOptions common;
-  app.add_option("--device", common.device, "auto (GPU if present, else software), gpu or software")
-      ->check(CLI::IsMember({"auto", "gpu", "software"}));
+  app.add_option("--device", common.device,
+                 "auto (GPU if present, else software; with CUDA_VISIBLE_DEVICES, as SLURM sets it, that GPU), gpu, "
+                 "software, or egl:N (the N-th EGL device `list` prints)")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            try {
+              oit::parse_device_choice(text);
+              return std::string();
+            } catch (const std::invalid_argument& e) {
+              return std::string(e.what());
+            }
+          },
+          "auto|gpu|software|egl:N"));
   app.add_flag("--debug-gl", common.debug_gl, "create a debug context and print KHR_debug messages");
 
   auto* list = app.add_subcommand("list", "techniques with their parameters, scenes, device");

@@ -44,7 +44,7 @@ int run_stats(const CommonOptions& common, const StatsOptions& options) {
   for (const auto& s : options.scene_sets) parse_assignment(s, scene_params);
   const std::vector<std::string> cameras = expand_camera_spec(options.camera);
 
-  auto context = create_headless_context(parse_device_preference(common.device), common.debug_gl);
+  auto context = create_headless_context(parse_device_choice(common.device), common.debug_gl);
   const Scene scene = load_scene(options.scene, scene_params);
   const SceneGpu gpu(scene);
   const float aspect = float(width) / float(height);

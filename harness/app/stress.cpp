@@ -233,7 +233,7 @@ StressOutcome run_stress_case(const CommonOptions& common, const TechniqueDescri
     close(fds[0]);
     std::string line;
     try {
-      auto context = create_headless_context(parse_device_preference(common.device));
+      auto context = create_headless_context(parse_device_choice(common.device));
       Harness harness(*context, builtin_techniques());
       RunSpec spec;
       spec.technique = technique.id;
