@@ -18,9 +18,14 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import pandas as pd  # noqa: E402
 
+# Run as a script, analysis/ is on the path, not the repository root.
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from analysis.results_io import save_figure, whole_runs  # noqa: E402
+
 
 def load_totals(path, metric):
     runs = pd.read_csv(path, keep_default_na=False, na_values={"median_ms": [""], metric: [""]})
+    runs = whole_runs(runs, path)
     runs = runs[(runs["status"] == "ok") & (runs["stage"] == "total")].copy()
     if runs.empty:
         sys.exit(f"{path}: no successful runs with a total stage")
@@ -59,7 +64,7 @@ def plot_scene(points, title, out, metric):
     ax.set_title(title, fontsize=9)
     ax.legend(fontsize=7, loc="lower left")
     fig.tight_layout()
-    fig.savefig(out, dpi=120)
+    save_figure(fig, out, dpi=120)
     plt.close(fig)
     return front
 
