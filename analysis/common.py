@@ -9,7 +9,7 @@ import matplotlib
 matplotlib.use("Agg")
 import pandas as pd  # noqa: E402
 
-from analysis.results_io import save_figure, whole_runs  # noqa: E402
+from analysis.results_io import read_results, save_figure  # noqa: E402
 
 # The fixed stage vocabulary of DESIGN.md, in pipeline order.
 STAGE_ORDER = ["clear", "count", "fill", "store", "peel", "sort", "bucket", "neighbors", "stylize", "compose"]
@@ -36,8 +36,7 @@ def load(path, clock=None):
     (the given one, else the one most rows use: mixing clocks mixes devices'
     notions of time)."""
     paths = [path] if isinstance(path, str) else list(path)
-    frames = [pd.read_csv(p, keep_default_na=False, dtype=str) for p in paths]
-    frames = [whole_runs(frame, p) for frame, p in zip(frames, paths)]
+    frames = [read_results(p, keep_default_na=False, dtype=str) for p in paths]
     runs = pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
     if runs.empty or "status" not in runs:
         raise NoData(f"{', '.join(paths)}: no rows")

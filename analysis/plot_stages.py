@@ -20,14 +20,13 @@ import pandas as pd  # noqa: E402
 
 # Run as a script, analysis/ is on the path, not the repository root.
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from analysis.results_io import save_figure, whole_runs  # noqa: E402
+from analysis.results_io import read_results, save_figure  # noqa: E402
 
 STAGE_ORDER = ["clear", "count", "fill", "store", "peel", "sort", "bucket", "neighbors", "stylize", "compose"]
 
 
 def load_runs(path, scene=None, clock=None):
-    runs = pd.read_csv(path, keep_default_na=False, na_values={"median_ms": [""]})
-    runs = whole_runs(runs, path)
+    runs = read_results(path, keep_default_na=False, na_values={"median_ms": [""]})
     runs = runs[runs["status"] == "ok"]
     if scene:
         runs = runs[runs["scene"] == scene]

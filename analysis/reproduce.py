@@ -17,7 +17,6 @@ cores with software GL. Without it the sweeps are sized for a real GPU (the
 papers' resolutions and tessellations).
 """
 import argparse
-import csv
 import datetime
 import os
 import re
@@ -26,7 +25,7 @@ import sys
 import time
 from collections import OrderedDict, namedtuple
 
-from analysis.results_io import save_figure, whole_run_rows
+from analysis.results_io import read_rows, save_figure
 
 # A run: technique parameters and scene parameters are tuples of (key, value)
 # holding only what the sweep sets; everything else stays at its default.
@@ -167,13 +166,6 @@ def finished(point, rows):
                     all(scene_params.get(k) == v for k, v in point.sparams):
                 return True
     return False
-
-
-def read_rows(path):
-    if not os.path.exists(path) or os.path.getsize(path) == 0:
-        return []
-    with open(path, newline="") as f:
-        return whole_run_rows(list(csv.DictReader(f)))
 
 
 def batches(points):

@@ -4,10 +4,57 @@ written whole or not at all.
 
 Kept free of pandas and matplotlib imports so that reproduce.py can use it
 before it draws anything."""
+import csv
+import io
 import os
 import sys
 import tempfile
 from collections import Counter
+
+
+def whole_text(text, source):
+    """`text` up to the end of its last complete record: a last line cut
+    short (no final newline, or inside a quoted field) is left out, and
+    stderr says so. The harness cuts such an end back itself on its next
+    append; a plot drawn before that must not read it."""
+    lines = text.splitlines(keepends=True)
+    consumed, end = 0, 0
+
+    def feed():
+        nonlocal consumed
+        for line in lines:
+            consumed += 1
+            yield line
+
+    try:
+        for _ in csv.reader(feed(), strict=True):
+            if lines[consumed - 1].endswith(("\n", "\r")):
+                end = consumed
+    except csv.Error:
+        pass
+    if end < len(lines):
+        print(f"{source}: line {end + 1} is cut short (a crash or a full disk while it was appended): left out",
+              file=sys.stderr)
+    return "".join(lines[:end])
+
+
+def read_results(path, **read_csv_arguments):
+    """pandas.read_csv of a results CSV's whole runs only (whole_text, then
+    whole_runs)."""
+    import pandas as pd
+
+    with open(path, newline="") as f:
+        text = whole_text(f.read(), path)
+    return whole_runs(pd.read_csv(io.StringIO(text), **read_csv_arguments), path)
+
+
+def read_rows(path):
+    """csv.DictReader rows of a results CSV's whole runs; none for a missing
+    or empty file."""
+    if not os.path.exists(path) or os.path.getsize(path) == 0:
+        return []
+    with open(path, newline="") as f:
+        return whole_run_rows(list(csv.DictReader(io.StringIO(whole_text(f.read(), path)))))
 
 
 def whole_run_rows(rows):
