@@ -107,6 +107,15 @@ RunResult six_row_run(const std::string& technique, const std::string& message =
   return r;
 }
 
+// A fresh results CSV holding a kbuffer run and a linked_list run of six rows each.
+std::string csv_of_two_runs(const std::string& name) {
+  const std::string csv = fresh_dir(name) + "/runs.csv";
+  CsvWriter writer(csv);
+  writer.write(six_row_run("kbuffer"), context());
+  writer.write(six_row_run("linked_list"), context());
+  return csv;
+}
+
 // ---- every write is checked ----
 
 TEST(Reliability, ALinkToADeviceRefusingWritesIsAnErrorNamingTheFileForPngAndCsv) {
@@ -199,13 +208,7 @@ TEST(Reliability, AFullDiskInTheMiddleOfARunLeavesTheCsvAsItWasAndResumeComplete
 }
 
 TEST(Reliability, ATruncatedCsvIsCutBackToTheLastWholeRunWhichResumeThenIgnores) {
-  const std::string dir = fresh_dir("truncated");
-  const std::string csv = dir + "/runs.csv";
-  {
-    CsvWriter writer(csv);
-    writer.write(six_row_run("kbuffer"), context());
-    writer.write(six_row_run("linked_list"), context());
-  }
+  const std::string csv = csv_of_two_runs("truncated");
   const std::string whole = contents_of(csv);
   const auto contents = parse_csv(whole, csv);
   ASSERT_EQ(contents.records.size(), 13u);
@@ -243,13 +246,7 @@ TEST(Reliability, ATruncatedCsvIsCutBackToTheLastWholeRunWhichResumeThenIgnores)
 }
 
 TEST(Reliability, RowsOfTheWrongWidthAreReportedWithLineNumbersAndNeverCount) {
-  const std::string dir = fresh_dir("wrong_width");
-  const std::string csv = dir + "/runs.csv";
-  {
-    CsvWriter writer(csv);
-    writer.write(six_row_run("kbuffer"), context());
-    writer.write(six_row_run("linked_list"), context());
-  }
+  const std::string csv = csv_of_two_runs("wrong_width");
   const std::string text = contents_of(csv);
   const size_t second_line = text.find('\n') + 1;
   const size_t third_line = text.find('\n', second_line) + 1;

@@ -70,14 +70,18 @@ CsvContents parse_csv(std::string_view text, const std::string& path) {
   return contents;
 }
 
-std::vector<std::vector<std::string>> read_csv(const std::string& path) {
+CsvContents read_csv_file(const std::string& path, const std::string& kind) {
   if (!std::filesystem::exists(path)) return {};
-  require_regular_file(path, "CSV");
+  require_regular_file(path, kind);
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read CSV '" + path + "'");
+  if (!in) throw std::runtime_error("cannot read " + kind + " '" + path + "'");
   std::stringstream text;
   text << in.rdbuf();
-  CsvContents contents = parse_csv(text.str(), path);
+  return parse_csv(text.str(), path);
+}
+
+std::vector<std::vector<std::string>> read_csv(const std::string& path) {
+  CsvContents contents = read_csv_file(path, "CSV");
   std::vector<std::vector<std::string>> records;
   for (auto& record : contents.records) records.push_back(std::move(record.fields));
   if (contents.torn) records.push_back(std::move(contents.torn->fields));

@@ -31,6 +31,10 @@ struct CsvContents {
 // Throws naming `path` when libcsv cannot read `text`.
 CsvContents parse_csv(std::string_view text, const std::string& path);
 
+// The file at `path` (a `kind` such as "results CSV", named in errors);
+// nothing when it is missing. Throws unless it is a readable regular file.
+CsvContents read_csv_file(const std::string& path, const std::string& kind);
+
 // Every record of a CSV file, header first, a torn last one included. A
 // missing or empty file has none. Throws naming the path.
 std::vector<std::vector<std::string>> read_csv(const std::string& path);

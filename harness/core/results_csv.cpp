@@ -162,13 +162,7 @@ std::string CsvWriter::write(const RunResult& result, const RunContext& context)
 std::set<RunKey> CsvWriter::finished_runs() const { return oit::finished_runs(csv_.read(), path()); }
 
 std::set<RunKey> finished_runs(const std::string& path) {
-  if (!std::filesystem::exists(path)) return {};
-  require_regular_file(path, "results CSV");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read results CSV '" + path + "'");
-  std::stringstream text;
-  text << in.rdbuf();
-  return finished_runs(parse_csv(text.str(), path), path);
+  return finished_runs(read_csv_file(path, "results CSV"), path);
 }
 
 std::set<RunKey> finished_runs(const CsvContents& contents, const std::string& path,
