@@ -220,8 +220,8 @@ TEST(Reliability, ATruncatedCsvIsCutBackToTheLastWholeRunWhichResumeThenIgnores)
   {
     CsvWriter writer(csv);
     EXPECT_EQ(writer.repair_note(),
-              "results CSV '" + csv + "' ended in an incomplete unit (lines 8-9, the last cut short without a "
-              "newline): cut back to the last complete one (line 7); the " + std::to_string(cut - first_run_end) +
+              "results CSV '" + csv + "' ended in an incomplete run (lines 8-9, the last cut short without a "
+              "newline): cut back to the last complete run (line 7); the " + std::to_string(cut - first_run_end) +
               " bytes cut are kept in '" + csv + ".torn'");
     EXPECT_EQ(contents_of(csv), whole.substr(0, first_run_end));
     EXPECT_EQ(contents_of(csv + ".torn"), whole.substr(first_run_end, cut - first_run_end));
@@ -239,10 +239,22 @@ TEST(Reliability, ATruncatedCsvIsCutBackToTheLastWholeRunWhichResumeThenIgnores)
   EXPECT_NE(problems[0].find("line 8: run '"), std::string::npos) << problems[0];
   EXPECT_NE(problems[0].find("' has 2 row(s) of 6"), std::string::npos) << problems[0];
   CsvWriter repaired(csv);
-  EXPECT_NE(repaired.repair_note().find("(lines 8-9): cut back to the last complete one (line 7)"),
+  EXPECT_NE(repaired.repair_note().find("(lines 8-9): cut back to the last complete run (line 7)"),
             std::string::npos)
       << repaired.repair_note();
   EXPECT_EQ(contents_of(csv), whole.substr(0, first_run_end));
+}
+
+TEST(Reliability, AStressCsvWithATornLastRowIsCutBackToItsLastWholeRow) {
+  const std::string path = fresh_dir("torn_rows") + "/stress.csv";
+  std::ofstream(path, std::ios::binary) << "case,verdict\nfirst,pass\nsecond,\"cut in a quo";
+  CsvAppender csv(path, {"case", "verdict"}, "stress CSV");
+  EXPECT_EQ(csv.repair_note(), "stress CSV '" + path + "' ended in an incomplete row (line 3, the last cut short "
+                               "without a newline): cut back to the last complete row (line 2); the 20 bytes cut "
+                               "are kept in '" + path + ".torn'");
+  csv.append({{"third", "FAIL"}});
+  EXPECT_EQ(contents_of(path), "case,verdict\nfirst,pass\nthird,FAIL\n");
+  EXPECT_EQ(contents_of(path + ".torn"), "second,\"cut in a quo");
 }
 
 TEST(Reliability, RowsOfTheWrongWidthAreReportedWithLineNumbersAndNeverCount) {

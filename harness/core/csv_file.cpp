@@ -115,12 +115,12 @@ std::vector<std::string> field_count_problems(const CsvContents& contents) {
 }
 
 CsvAppender::CsvAppender(const std::string& path, std::vector<std::string> columns, std::string kind,
-                         CompletePrefix complete_prefix)
+                         std::string unit, CompletePrefix complete_prefix)
     : file_(path), columns_(std::move(columns)), kind_(std::move(kind)) {
-  check_header_and_repair(complete_prefix);
+  check_header_and_repair(unit, complete_prefix);
 }
 
-void CsvAppender::check_header_and_repair(const CompletePrefix& complete_prefix) {
+void CsvAppender::check_header_and_repair(const std::string& unit, const CompletePrefix& complete_prefix) {
   const auto lock = file_.lock_exclusive();
   const std::string header = csv_line(columns_);
   const std::string text = file_.read_all();
@@ -147,9 +147,9 @@ void CsvAppender::check_header_and_repair(const CompletePrefix& complete_prefix)
     kept.append(text.substr(cut));
   }
   file_.truncate(cut);
-  repair_note_ = kind_ + " '" + path() + "' ended in an incomplete unit (" + lines_text(first_line, last_line) +
-                 (contents.torn ? ", the last cut short without a newline" : "") +
-                 "): cut back to the last complete one (line " +
+  repair_note_ = kind_ + " '" + path() + "' ended in an incomplete " + unit + " (" +
+                 lines_text(first_line, last_line) + (contents.torn ? ", the last cut short without a newline" : "") +
+                 "): cut back to the last complete " + unit + " (line " +
                  std::to_string(keep == 0 ? contents.records.front().line : rows[keep - 1].line) + "); the " +
                  std::to_string(text.size() - cut) + " bytes cut are kept in '" + torn_path + "'";
   std::fprintf(stderr, "oitbench: %s\n", repair_note_.c_str());

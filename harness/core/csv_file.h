@@ -51,14 +51,14 @@ std::vector<std::string> field_count_problems(const CsvContents& contents);
 // lock and then: writes the header into an empty file; refuses a file whose
 // first line is another header (naming the file and `kind`); and cuts a torn
 // end back to the last complete unit, keeping the bytes cut in PATH.torn and
-// saying so on stderr and in repair_note(). A unit is a record unless
-// `complete_prefix` (given the records after the header) says how many of
-// them form complete units.
+// saying so on stderr and in repair_note(). A unit (named `unit` in
+// messages) is a record unless `complete_prefix` (given the records after
+// the header) says how many of them form complete units.
 class CsvAppender {
  public:
   using CompletePrefix = std::function<size_t(const std::vector<CsvRecord>& rows)>;
   CsvAppender(const std::string& path, std::vector<std::string> columns, std::string kind,
-              CompletePrefix complete_prefix = {});
+              std::string unit = "row", CompletePrefix complete_prefix = {});
 
   // The records as one unit: one write under the exclusive lock, synced;
   // nothing of them stays when it fails. Throws naming the file.
@@ -69,7 +69,7 @@ class CsvAppender {
   const std::string& repair_note() const { return repair_note_; }
 
  private:
-  void check_header_and_repair(const CompletePrefix& complete_prefix);
+  void check_header_and_repair(const std::string& unit, const CompletePrefix& complete_prefix);
 
   SharedAppendFile file_;
   std::vector<std::string> columns_;

@@ -147,7 +147,7 @@ std::string new_run_id() {
   return prefix + "-" + std::to_string(++counter);
 }
 
-CsvWriter::CsvWriter(const std::string& path) : csv_(path, csv_columns(), "results CSV", whole_runs_prefix) {
+CsvWriter::CsvWriter(const std::string& path) : csv_(path, csv_columns(), "results CSV", "run", whole_runs_prefix) {
   oit::finished_runs(csv_.read(), path, &problems_);
   for (const auto& problem : problems_)
     std::fprintf(stderr, "oitbench: results CSV '%s', %s: not counted as a run\n", path.c_str(), problem.c_str());
