@@ -234,7 +234,8 @@ std::optional<RunClaims::Claim> RunClaims::try_claim(const RunKey& key) {
   const std::string text = key.technique + '\x1f' + key.params + '\x1f' + key.scene + '\x1f' + key.scene_params +
                            '\x1f' + key.camera + '\x1f' + std::to_string(key.width) + 'x' +
                            std::to_string(key.height) + (key.scene_rect ? "" : "\x1foff");
-  // A byte of the file per run (the lock, not the byte, is the claim).
+  // A byte of the file per run (the lock, not the byte, is the claim);
+  // libstdc++'s string hash is fixed, so every process finds the same byte.
   const int64_t offset = int64_t(std::hash<std::string>{}(text) & ((uint64_t(1) << 62) - 1));
   struct flock range = claim_range(F_WRLCK, offset);
   while (::fcntl(fd_, F_OFD_SETLK, &range) != 0) {
