@@ -9,6 +9,8 @@ import matplotlib
 matplotlib.use("Agg")
 import pandas as pd  # noqa: E402
 
+from analysis.results_io import read_results, save_figure  # noqa: E402
+
 # The fixed stage vocabulary of DESIGN.md, in pipeline order.
 STAGE_ORDER = ["clear", "count", "fill", "store", "peel", "sort", "bucket", "neighbors", "stylize", "compose"]
 NUMERIC = ["width", "height", "median_ms", "fragments", "max_depth_complexity", "mean_depth_complexity", "psi",
@@ -34,7 +36,7 @@ def load(path, clock=None):
     (the given one, else the one most rows use: mixing clocks mixes devices'
     notions of time)."""
     paths = [path] if isinstance(path, str) else list(path)
-    frames = [pd.read_csv(p, keep_default_na=False, dtype=str) for p in paths]
+    frames = [read_results(p, keep_default_na=False, dtype=str) for p in paths]
     runs = pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
     if runs.empty or "status" not in runs:
         raise NoData(f"{', '.join(paths)}: no rows")
@@ -103,7 +105,7 @@ def cli(description, draw, extra_arguments=None):
         fig = draw(load(args.csv, args.clock), args)
     except NoData as e:
         sys.exit(f"{description.split(':')[0]}: {e}")
-    fig.savefig(args.out, dpi=110)
+    save_figure(fig, args.out, dpi=110)
     print(f"wrote {args.out}")
 
 

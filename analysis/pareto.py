@@ -16,11 +16,14 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import pandas as pd  # noqa: E402
+
+# Run as a script, analysis/ is on the path, not the repository root.
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from analysis.results_io import read_results, save_figure  # noqa: E402
 
 
 def load_totals(path, metric):
-    runs = pd.read_csv(path, keep_default_na=False, na_values={"median_ms": [""], metric: [""]})
+    runs = read_results(path, keep_default_na=False, na_values={"median_ms": [""], metric: [""]})
     runs = runs[(runs["status"] == "ok") & (runs["stage"] == "total")].copy()
     if runs.empty:
         sys.exit(f"{path}: no successful runs with a total stage")
@@ -59,7 +62,7 @@ def plot_scene(points, title, out, metric):
     ax.set_title(title, fontsize=9)
     ax.legend(fontsize=7, loc="lower left")
     fig.tight_layout()
-    fig.savefig(out, dpi=120)
+    save_figure(fig, out, dpi=120)
     plt.close(fig)
     return front
 
@@ -73,7 +76,7 @@ def main():
     out_dir = args.out_dir or os.path.dirname(os.path.abspath(args.csv))
     os.makedirs(out_dir, exist_ok=True)
     totals = load_totals(args.csv, args.metric)
-    devices = pd.read_csv(args.csv, keep_default_na=False)["device"].unique()
+    devices = read_results(args.csv, keep_default_na=False)["device"].unique()
     for (scene, scene_params, size, clock), points in totals.groupby(["scene", "scene_params", "size", "clock"]):
         name = f"pareto_{os.path.basename(scene).replace('.', '_')}_{size}.png"
         title = f"{scene} {scene_params} {size}, clock {clock}\n{', '.join(devices)}"

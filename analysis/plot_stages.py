@@ -9,6 +9,7 @@ is at most the total). The device and clock are in the title, because times
 are only comparable within one device and one clock.
 """
 import argparse
+import os
 import sys
 
 import matplotlib
@@ -17,11 +18,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import pandas as pd  # noqa: E402
 
+# Run as a script, analysis/ is on the path, not the repository root.
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from analysis.results_io import read_results, save_figure  # noqa: E402
+
 STAGE_ORDER = ["clear", "count", "fill", "store", "peel", "sort", "bucket", "neighbors", "stylize", "compose"]
 
 
 def load_runs(path, scene=None, clock=None):
-    runs = pd.read_csv(path, keep_default_na=False, na_values={"median_ms": [""]})
+    runs = read_results(path, keep_default_na=False, na_values={"median_ms": [""]})
     runs = runs[runs["status"] == "ok"]
     if scene:
         runs = runs[runs["scene"] == scene]
@@ -55,7 +60,7 @@ def plot(runs, out):
     ax.tick_params(axis="x", labelsize=7)
     ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(out, dpi=120)
+    save_figure(fig, out, dpi=120)
     print(f"wrote {out}")
 
 

@@ -8,9 +8,9 @@ One CSV per sweep under --out (murray_fig10.csv, carnecky_fig14.csv,
 carnecky_fig15.csv, models.csv, layers.csv), heatmaps under --out/heatmaps,
 the PNG plots next to them. Resumable: before starting a bench the driver
 reads the sweep's CSV and leaves out every run (technique, its swept
-parameters, scene, swept scene parameters, camera, width, height) that already
-has an ok or skipped row there; a run that failed with an error is tried
-again. Interrupt it at any point and start it again with the same --out.
+parameters, scene, swept scene parameters, camera, width, height) that the CSV
+already holds whole (all its rows) with status ok or skipped; a run that failed
+with an error, or was cut short, is tried again. Interrupt it at any point and start it again with the same --out.
 
 --list-commands prints the sweeps as JSON (bench and stats invocations, plot
 modules) for other drivers: workflow/Snakefile runs them as cluster jobs.
@@ -22,7 +22,6 @@ cores with software GL. Without it the sweeps are sized for a real GPU (the
 papers' resolutions and tessellations).
 """
 import argparse
-import csv
 import datetime
 import json
 import os
@@ -31,6 +30,8 @@ import subprocess
 import sys
 import time
 from collections import OrderedDict, namedtuple
+
+from analysis.results_io import read_rows, save_figure
 
 # A run: technique parameters and scene parameters are tuples of (key, value)
 # holding only what the sweep sets; everything else stays at its default.
@@ -173,13 +174,6 @@ def finished(point, rows):
     return False
 
 
-def read_rows(path):
-    if not os.path.exists(path) or os.path.getsize(path) == 0:
-        return []
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
 def batches(points):
     """Missing runs grouped into bench invocations: runs that differ only by
     technique share one process (one GL context, one reference image); runs
@@ -313,7 +307,7 @@ def draw_plots(sweep, args):
             except (common.NoData, FileNotFoundError) as e:
                 print(f"  {module_name}{suffix}: not drawn: {e}", flush=True)
                 continue
-            fig.savefig(out, dpi=90)
+            save_figure(fig, out, dpi=90)
             plt.close(fig)
             drawn.append(out)
             print(f"  wrote {out}", flush=True)

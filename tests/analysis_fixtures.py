@@ -2,6 +2,7 @@
 writes: the column list is read from harness/core/results_csv.cpp itself, so
 a new column there cannot leave the fixtures silently out of date."""
 import csv
+import itertools
 import os
 import re
 
@@ -28,8 +29,24 @@ def row(technique, stage, median_ms, params="", scene="quads", scene_params="lay
     return values
 
 
+_calls = itertools.count()
+
+
+def with_run_columns(rows):
+    """run_id and run_rows as the harness writes them, where a row lacks them:
+    the rows of one configuration in one call are one run."""
+    call = next(_calls)
+    key = lambda r: tuple(r.get(k) for k in ("technique", "params", "scene", "scene_params", "camera", "width",
+                                             "height"))
+    groups = list(dict.fromkeys(key(r) for r in rows))
+    sizes = {g: sum(1 for r in rows if key(r) == g) for g in groups}
+    return [{"run_id": f"fixture{os.getpid()}-{call}-{groups.index(key(r))}", "run_rows": str(sizes[key(r)]), **r}
+            for r in rows]
+
+
 def write_csv(path, rows, append=False):
     columns = csv_columns()
+    rows = with_run_columns(rows)
     new = not append or not os.path.exists(path) or os.path.getsize(path) == 0
     with open(path, "a" if append else "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=columns, restval="", lineterminator="\n")

@@ -13,6 +13,12 @@ sys.path.insert(0, os.path.join(HERE, "..", "analysis"))
 import pareto  # noqa: E402
 import plot_stages  # noqa: E402
 import pandas as pd  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.join(HERE, ".."))
+sys.path.insert(0, HERE)
+import analysis_fixtures as fx  # noqa: E402
+from analysis import reproduce, results_io  # noqa: E402
 
 COLUMNS = ("timestamp,git_revision,device,gl_version,platform,technique,params,scene,scene_params,camera,width,height,"
            "clock,stage,median_ms,min_ms,p05_ms,p95_ms,mean_ms,frames,warmup,status,message,fragments,"
@@ -83,6 +89,70 @@ class ParetoTest(unittest.TestCase):
                                     check=True, capture_output=True, text=True)
             self.assertIn("front = unsorted, kbuffer k=4, kbuffer k=32", result.stdout)
             self.assertTrue(os.path.exists(os.path.join(tmp, "pareto_quads_64x64.png")))
+
+
+class ResultsIoTest(unittest.TestCase):
+    """Plots are written whole or not at all; only whole runs are read."""
+
+    def figure(self):
+        fig, ax = plt.subplots()
+        ax.plot([0, 1], [1, 0])
+        return fig
+
+    def test_a_plot_is_written_whole_with_no_temporary_left(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "plots", "fig.png")
+            results_io.save_figure(self.figure(), out, dpi=50)
+            with open(out, "rb") as f:
+                self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+            self.assertEqual(os.listdir(os.path.dirname(out)), ["fig.png"])
+            self.assertEqual(os.stat(out).st_mode & 0o077, 0o666 & ~self.umask() & 0o077)
+
+    def umask(self):
+        mask = os.umask(0)
+        os.umask(mask)
+        return mask
+
+    def test_a_link_to_a_device_refusing_writes_raises_naming_the_file(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "fig.png")
+            os.symlink("/dev/full", out)
+            with self.assertRaises(OSError) as raised:
+                results_io.save_figure(self.figure(), out)
+            self.assertIn(f"cannot write '{out}': it is not a regular file", str(raised.exception))
+            self.assertTrue(os.path.islink(out))
+
+    def test_a_full_disk_raises_naming_the_file_and_leaves_nothing(self):
+        # A file-size limit on a child process: its writes fail as on a full disk.
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "fig.png")
+            code = ("import resource, signal, sys; sys.path.insert(0, sys.argv[2]);"
+                    "signal.signal(signal.SIGXFSZ, signal.SIG_IGN);"
+                    "resource.setrlimit(resource.RLIMIT_FSIZE, (1000, 1000));"
+                    "import matplotlib; matplotlib.use('Agg'); import matplotlib.pyplot as plt;"
+                    "from analysis import results_io;"
+                    "fig, ax = plt.subplots(); ax.plot([0, 1], [1, 0]); results_io.save_figure(fig, sys.argv[1])")
+            result = subprocess.run([sys.executable, "-c", code, out, os.path.join(HERE, "..")], capture_output=True,
+                                    text=True)
+            self.assertNotEqual(result.returncode, 0)
+            self.assertIn(f"cannot write '{out}': [Errno 27] File too large", result.stderr)
+            self.assertEqual(os.listdir(tmp), [])
+
+    def test_readers_keep_only_whole_runs(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            csv_path = os.path.join(tmp, "runs.csv")
+            fx.write_csv(csv_path, [fx.row("unsorted", s, 1.0) for s in ("fill", "compose", "total")] +
+                         [fx.row("kbuffer", s, 2.0, params="k=8") for s in ("fill", "compose", "total")])
+            with open(csv_path) as f:
+                lines = f.readlines()
+            with open(csv_path, "w") as f:  # the kbuffer run cut after 2 of its 3 rows, the second mid-line
+                f.writelines(lines[:-2])
+                f.write(lines[-2][:40])
+            runs = plot_stages.load_runs(csv_path)
+            self.assertEqual(sorted(runs["technique"].unique()), ["unsorted"])
+            self.assertEqual(len(runs), 3)
+            rows = reproduce.read_rows(csv_path)
+            self.assertEqual([r["technique"] for r in rows], ["unsorted"] * 3)
 
 
 if __name__ == "__main__":

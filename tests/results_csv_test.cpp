@@ -148,15 +148,19 @@ TEST(ResultsCsv, ReaderReturnsWhatTheWriterWroteAndFinishedRunsLeaveErrorsOut) {
   skipped.message = " leading and trailing spaces ";
   RunResult without_rect = skipped;  // the same run with the scene rectangle off is another run
   without_rect.spec.scene_rect = false;
+  std::vector<std::string> run_ids;
   {
     CsvWriter writer(path);
-    for (const RunResult* r : {&ok, &failed, &skipped, &without_rect}) writer.write(*r, context());
+    for (const RunResult* r : {&ok, &failed, &skipped, &without_rect}) run_ids.push_back(writer.write(*r, context()));
   }
   const auto records = read_csv(path);
   ASSERT_EQ(records.size(), 1u + 6u + 1u + 1u + 1u);
   EXPECT_EQ(records[0], csv_columns());
-  EXPECT_EQ(records[1], csv_rows(ok, context())[0]);
-  EXPECT_EQ(records[7], csv_rows(failed, context())[0]);
+  EXPECT_EQ(records[1], csv_rows(ok, context(), run_ids[0])[0]);
+  EXPECT_EQ(records[7], csv_rows(failed, context(), run_ids[1])[0]);
+  EXPECT_NE(run_ids[0], run_ids[1]);
+  EXPECT_EQ(records[6][column("run_rows")], "6");
+  EXPECT_EQ(records[8][column("run_rows")], "1");
   EXPECT_EQ(records[7][column("message")], "pool, \"full\"\nsecond line");
   EXPECT_EQ(records[8][column("message")], " leading and trailing spaces ");
 

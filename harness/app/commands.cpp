@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <set>
 
 #include "app/huge_page_malloc.h"
@@ -154,16 +155,17 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
   auto context = open_context(common);
   Harness harness(*context, builtin_techniques());
   const std::vector<RunSpec> runs = expand_sweep(options.sweep, builtin_techniques());
-  // Read before appending: only what earlier invocations wrote counts.
-  const std::set<RunKey> finished = options.resume ? finished_runs(options.csv) : std::set<RunKey>{};
-  CsvWriter csv(options.csv);
+  CsvWriter csv(options.csv);  // repairs a torn end first, so only whole runs count
+  const std::set<RunKey> finished = options.resume ? csv.finished_runs() : std::set<RunKey>{};
+  std::optional<RunClaims> claims;
+  if (options.resume) claims.emplace(options.csv);
   const RunContext ctx = run_context(harness.device());
   std::fprintf(stderr, "oitbench bench: %zu runs on %s, clock %s -> %s%s\n", runs.size(),
                harness.device().renderer.c_str(),
                options.sweep.clock == "auto" ? to_string(harness.default_clock()).c_str() : options.sweep.clock.c_str(),
                options.csv.c_str(), options.resume ? " (resuming: runs already there are not run again)" : "");
   std::vector<RunResult> results;
-  size_t resumed = 0;
+  size_t resumed = 0, elsewhere = 0;
   for (size_t i = 0; i < runs.size(); ++i) {
     const RunSpec& spec = runs[i];
     std::string params;
@@ -172,7 +174,16 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
                  params.c_str(), spec.scene.c_str(), spec.width, spec.height,
                  spec.camera == "default" ? "" : (" camera " + spec.camera).c_str(),
                  spec.scene_rect ? "" : " scene_rect off");
-    if (const auto key = resume_key(spec, builtin_techniques()); key && finished.count(*key)) {
+    const auto key = options.resume ? resume_key(spec, builtin_techniques()) : std::nullopt;
+    // Claimed before it runs, then looked up again: another --resume process
+    // on this file may have run it meanwhile, or be running it now.
+    const auto claim = key && !finished.count(*key) ? claims->try_claim(*key) : std::nullopt;
+    if (key && !finished.count(*key) && !claim) {
+      std::fprintf(stderr, "being run by another bench --resume on %s, left to it\n", options.csv.c_str());
+      ++elsewhere;
+      continue;
+    }
+    if (key && (finished.count(*key) || csv.finished_runs().count(*key))) {
       std::fprintf(stderr, "already in %s, not run again\n", options.csv.c_str());
       ++resumed;
       continue;
@@ -210,6 +221,9 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
   if (resumed > 0)
     std::printf("(%zu run%s already in %s from an earlier invocation: not in this table)\n", resumed,
                 resumed == 1 ? "" : "s", options.csv.c_str());
+  if (elsewhere > 0)
+    std::printf("(%zu run%s left to another bench --resume on %s: not in this table)\n", elsewhere,
+                elsewhere == 1 ? "" : "s", options.csv.c_str());
   std::printf("\ndevice: %s (%s) | clock: %s | rows appended to %s\n", harness.device().renderer.c_str(),
               platform_text(harness.device()).c_str(),
               options.sweep.clock == "auto" ? to_string(harness.default_clock()).c_str() : options.sweep.clock.c_str(),

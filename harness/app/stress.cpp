@@ -11,7 +11,6 @@
 #include <tuple>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -302,16 +301,15 @@ int run_stress(const CommonOptions& common, const StressOptions& options) {
   std::vector<StressOutcome> outcomes;
   std::vector<StressCase> case_order;  // for the table
   std::map<std::string, std::map<std::string, const StressOutcome*>> table;
-  std::ofstream csv;
   const std::string timestamp = utc_timestamp();
-  if (!options.csv.empty()) {
-    const bool fresh = !std::ifstream(options.csv).good();
-    csv.open(options.csv, std::ios::app);
-    if (!csv) throw std::runtime_error("cannot open stress CSV '" + options.csv + "'");
-    if (fresh)
-      csv << "timestamp,git_revision,device,technique,case,scene,scene_params,width,height,technique_params,"
-             "expectation,verdict,status,error_max,fragments_dropped,note\n";
-  }
+  // bench's safeguards: its own header only, one locked and checked append per case.
+  std::optional<CsvAppender> csv;
+  if (!options.csv.empty())
+    csv.emplace(options.csv,
+                std::vector<std::string>{"timestamp", "git_revision", "device", "technique", "case", "scene",
+                                         "scene_params", "width", "height", "technique_params", "expectation",
+                                         "verdict", "status", "error_max", "fragments_dropped", "note"},
+                "stress CSV");
   std::string device = "unknown";
   size_t failures = 0, done = 0;
   std::vector<std::pair<const TechniqueDescriptor*, StressCase>> runs;
@@ -336,9 +334,7 @@ int run_stress(const CommonOptions& common, const StressOptions& options) {
           timestamp, OIT_GIT_REVISION, device, t->id, c.name, c.scene, scene_params, std::to_string(c.width),
           std::to_string(c.height), params, c.expectation, to_string(o.verdict), o.status,
           o.error >= 0 ? std::to_string(o.error) : "", std::to_string(o.dropped), o.note};
-      std::string line;
-      for (const auto& field : row) line += (line.empty() ? "" : ",") + csv_escape(field);
-      csv << line << "\n" << std::flush;
+      csv->append({row});
     }
   }
   // Table: cases x techniques (shared cases only; parameter edges listed after).

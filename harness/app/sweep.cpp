@@ -1,6 +1,7 @@
 #include "app/sweep.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -84,9 +85,10 @@ glm::vec3 parse_background(const std::string& text) {
     try {
       size_t used = 0;
       color[i] = std::stof(parts[size_t(i)], &used);
-      if (used != parts[size_t(i)].size()) throw std::invalid_argument("");
+      if (used != parts[size_t(i)].size() || !std::isfinite(color[i])) throw std::invalid_argument("");
     } catch (const std::exception&) {
-      throw std::invalid_argument("background '" + text + "': '" + parts[size_t(i)] + "' is not a number");
+      // nan or inf would turn every error metric into nonsense.
+      throw std::invalid_argument("--background '" + text + "': '" + parts[size_t(i)] + "' is not a finite number");
     }
   }
   return color;

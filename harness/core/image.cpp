@@ -10,6 +10,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "core/output_file.h"
+
 namespace oit {
 
 Image read_texture_rgba32f(GLuint texture, int width, int height) {
@@ -20,7 +22,11 @@ Image read_texture_rgba32f(GLuint texture, int width, int height) {
 
 namespace {
 
-void write_png(const Image& image, const std::string& path) {
+void append_bytes(void* context, void* data, int size) {
+  static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+}
+
+std::string png_bytes(const Image& image, const std::string& path) {
   std::vector<uint8_t> bytes(image.rgba.size());
   for (int y = 0; y < image.height; ++y) {
     const int source_row = image.height - 1 - y;  // PNG is top row first
@@ -30,36 +36,35 @@ void write_png(const Image& image, const std::string& path) {
       bytes[size_t(y) * size_t(image.width) * 4 + size_t(x)] = uint8_t(std::lround(clamped * 255.0f));
     }
   }
-  if (!stbi_write_png(path.c_str(), image.width, image.height, 4, bytes.data(), image.width * 4)) {
-    throw std::runtime_error("cannot write PNG '" + path + "'");
-  }
+  std::string encoded;
+  if (!stbi_write_png_to_func(append_bytes, &encoded, image.width, image.height, 4, bytes.data(), image.width * 4))
+    throw std::runtime_error("cannot encode PNG '" + path + "' (" + std::to_string(image.width) + "x" +
+                             std::to_string(image.height) + ")");
+  return encoded;
 }
 
-void write_pfm(const Image& image, const std::string& path) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error("cannot open '" + path + "' for writing");
+std::string pfm_bytes(const Image& image) {
   // Negative scale = little endian; PFM rows are bottom-up, as GL's are.
-  out << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
-  std::vector<float> rgb;
-  rgb.reserve(size_t(image.width) * size_t(image.height) * 3);
-  for (size_t i = 0; i < image.rgba.size(); i += 4) rgb.insert(rgb.end(), &image.rgba[i], &image.rgba[i] + 3);
-  out.write(reinterpret_cast<const char*>(rgb.data()), std::streamsize(rgb.size() * sizeof(float)));
-  if (!out) throw std::runtime_error("failed writing '" + path + "'");
+  std::string bytes = "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
+  const size_t header = bytes.size();
+  bytes.resize(header + size_t(image.width) * size_t(image.height) * 3 * sizeof(float));
+  char* out = bytes.data() + header;
+  for (size_t i = 0; i < image.rgba.size(); i += 4, out += 3 * sizeof(float))
+    std::memcpy(out, &image.rgba[i], 3 * sizeof(float));
+  return bytes;
 }
 
 }  // namespace
 
 void write_image(const Image& image, const std::string& path) {
   const std::string extension = std::filesystem::path(path).extension().string();
-  if (const auto parent = std::filesystem::path(path).parent_path(); !parent.empty()) {
-    std::filesystem::create_directories(parent);
-  }
-  if (extension == ".png") return write_png(image, path);
-  if (extension == ".pfm") return write_pfm(image, path);
+  if (extension == ".png") return write_file_atomically(path, png_bytes(image, path));
+  if (extension == ".pfm") return write_file_atomically(path, pfm_bytes(image));
   throw std::invalid_argument("output '" + path + "' must end in .png or .pfm");
 }
 
 Image read_pfm(const std::string& path) {
+  require_regular_file(path, "PFM image");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open '" + path + "'");
   std::string magic;

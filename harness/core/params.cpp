@@ -65,6 +65,9 @@ ParamValue parse_value(const ParamSpec& spec, const std::string& text, const std
                                        : "does not exist");
       }
       if (std::filesystem::is_directory(status)) throw fail("is a directory, not a file");
+      // A FIFO would block its reader forever, a device feed it endlessly.
+      if (!std::filesystem::is_regular_file(status))
+        throw fail("is not a regular file (a FIFO, device or socket); give a file");
       if (!std::ifstream(text, std::ios::binary)) throw fail("cannot be opened for reading");
       return text;
     }

@@ -1,11 +1,15 @@
 #include "core/reference_cache.h"
 
-#include <unistd.h>
-
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string_view>
+
+#include "core/output_file.h"
 
 #include "gl/embedded_shaders.h"
 #include "oit_revision.h"
@@ -13,11 +17,26 @@
 namespace oit {
 namespace {
 
-constexpr char kMagic[8] = {'O', 'I', 'T', 'R', 'E', 'F', '1', '\n'};
+// Version 2 ends in a checksum of everything before it.
+constexpr char kMagic[8] = {'O', 'I', 'T', 'R', 'E', 'F', '2', '\n'};
 
-uint64_t fnv1a(const std::string& text, uint64_t hash = 1469598103934665603ull) {
+uint64_t fnv1a(std::string_view text, uint64_t hash = 1469598103934665603ull) {
   for (unsigned char c : text) hash = (hash ^ c) * 1099511628211ull;
   return hash;
+}
+
+template <typename T>
+void put(std::string& bytes, const T& value) {
+  bytes.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+// Reads a T at `offset` and moves past it; false when the bytes run out.
+template <typename T>
+bool take(std::string_view bytes, size_t& offset, T& value) {
+  if (bytes.size() - offset < sizeof value) return false;
+  std::memcpy(&value, bytes.data() + offset, sizeof value);
+  offset += sizeof value;
+  return true;
 }
 
 // Every embedded shader takes part: the reference's own and the shared ones
@@ -56,41 +75,48 @@ std::optional<Image> ReferenceCache::load(const std::string& key) const {
   if (!enabled()) return std::nullopt;
   std::ifstream in(path_for(key), std::ios::binary);
   if (!in) return std::nullopt;
-  char magic[8];
-  int32_t size[2];
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // A flipped byte, a cut or a payload written by anything else fails the checksum.
+  uint64_t checksum = 0;
+  size_t offset = bytes.size() - std::min(bytes.size(), sizeof checksum);
+  if (!take(std::string_view(bytes), offset, checksum) ||
+      fnv1a(std::string_view(bytes).substr(0, bytes.size() - sizeof checksum)) != checksum)
+    return std::nullopt;
+  const std::string_view body(bytes.data(), bytes.size() - sizeof checksum);
+  offset = sizeof kMagic;
   uint32_t key_length = 0;
-  if (!in.read(magic, 8) || std::memcmp(magic, kMagic, 8) != 0) return std::nullopt;
-  if (!in.read(reinterpret_cast<char*>(&key_length), 4) || key_length > 1 << 20) return std::nullopt;
-  std::string stored_key(key_length, '\0');
-  if (!in.read(stored_key.data(), key_length) || stored_key != key) return std::nullopt;  // hash collision
-  if (!in.read(reinterpret_cast<char*>(size), sizeof size)) return std::nullopt;
-  if (size[0] < 1 || size[1] < 1 || size[0] > 16384 || size[1] > 16384) return std::nullopt;
-  Image image{size[0], size[1], std::vector<float>(size_t(size[0]) * size_t(size[1]) * 4)};
-  if (!in.read(reinterpret_cast<char*>(image.rgba.data()), std::streamsize(image.rgba.size() * 4))) return std::nullopt;
+  int32_t width = 0, height = 0;
+  if (body.size() < sizeof kMagic || std::memcmp(body.data(), kMagic, sizeof kMagic) != 0) return std::nullopt;
+  if (!take(body, offset, key_length) || body.size() - offset < key_length) return std::nullopt;
+  if (body.substr(offset, key_length) != key) return std::nullopt;  // hash collision
+  offset += key_length;
+  if (!take(body, offset, width) || !take(body, offset, height)) return std::nullopt;
+  if (width < 1 || height < 1 || width > 16384 || height > 16384) return std::nullopt;
+  Image image{width, height, std::vector<float>(size_t(width) * size_t(height) * 4)};
+  if (body.size() - offset != image.rgba.size() * sizeof(float)) return std::nullopt;
+  std::memcpy(image.rgba.data(), body.data() + offset, body.size() - offset);
+  // The exact reference is a blend of finite colours: anything else is damage.
+  for (float v : image.rgba)
+    if (!std::isfinite(v)) return std::nullopt;
   return image;
 }
 
 void ReferenceCache::store(const std::string& key, const Image& image) const {
   if (!enabled()) return;
-  std::error_code error;
-  std::filesystem::create_directories(directory_, error);
-  const std::string path = path_for(key);
-  const std::string temporary = path + ".tmp" + std::to_string(getpid());
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    const auto key_length = uint32_t(key.size());
-    const int32_t size[2] = {image.width, image.height};
-    out.write(kMagic, 8);
-    out.write(reinterpret_cast<const char*>(&key_length), 4);
-    out.write(key.data(), std::streamsize(key.size()));
-    out.write(reinterpret_cast<const char*>(size), sizeof size);
-    out.write(reinterpret_cast<const char*>(image.rgba.data()), std::streamsize(image.rgba.size() * 4));
-    if (!out) {
-      std::filesystem::remove(temporary, error);
-      return;
-    }
+  std::string bytes(kMagic, sizeof kMagic);
+  put(bytes, uint32_t(key.size()));
+  bytes += key;
+  put(bytes, int32_t(image.width));
+  put(bytes, int32_t(image.height));
+  bytes.append(reinterpret_cast<const char*>(image.rgba.data()), image.rgba.size() * sizeof(float));
+  put(bytes, fnv1a(bytes));
+  try {
+    write_file_atomically(path_for(key), bytes);
+  } catch (const std::exception& e) {
+    // The run itself is whole without the cache; the next one renders again.
+    std::fprintf(stderr, "oitbench: reference cache not written (the reference will be rendered again next "
+                         "time): %s\n", e.what());
   }
-  std::filesystem::rename(temporary, path, error);
 }
 
 }  // namespace oit

@@ -22,10 +22,12 @@ class ReferenceCache {
   bool enabled() const { return !directory_.empty(); }
   const std::string& directory() const { return directory_; }
   std::string path_for(const std::string& key) const;
-  // A missing, unreadable or malformed file is a miss, never an error.
+  // A missing, unreadable or malformed file is a miss, never an error; so is
+  // one whose checksum does not match or whose image holds non-finite values.
   std::optional<Image> load(const std::string& key) const;
-  // Written to a temporary file and renamed, so a crash leaves no half file.
-  // Failure to write only costs the cache, so it is silent.
+  // Written through write_file_atomically with a checksum at the end, so a
+  // crash leaves no half file and damage is found. A failure to write only
+  // costs the cache: it is reported on stderr, the run goes on.
   void store(const std::string& key, const Image& image) const;
 
  private:

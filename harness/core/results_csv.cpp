@@ -1,12 +1,22 @@
 #include "core/results_csv.h"
 
-#include <csv.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <charconv>
+#include <cstring>
+#include <functional>
+#include <map>
+#include <random>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -21,15 +31,8 @@ const std::vector<std::string>& csv_columns() {
       "fragments", "max_depth_complexity", "mean_depth_complexity", "psi",
       "bytes_allocated", "fragments_stored", "fragments_dropped", "passes", "overflow_retries",
       "error_max", "error_rmse", "psnr", "ssim", "pixels_over_1_255",
-      "other_cpu_load", "noisy", "clock_disagreement", "work_saved", "extra"};
+      "other_cpu_load", "noisy", "clock_disagreement", "work_saved", "extra", "run_id", "run_rows"};
   return columns;
-}
-
-std::string csv_escape(const std::string& field) {
-  if (field.find_first_of(",\"\n\r") == std::string::npos) return field;
-  std::string escaped = "\"";
-  for (char c : field) escaped += (c == '"') ? std::string("\"\"") : std::string(1, c);
-  return escaped + "\"";
 }
 
 std::string utc_timestamp() {
@@ -61,36 +64,45 @@ std::string extra_text(const std::vector<Figure>& extra) {
   return text;
 }
 
-std::string header_line() {
-  std::string line;
-  for (const auto& column : csv_columns()) line += (line.empty() ? "" : ",") + column;
-  return line;
+size_t column(const std::string& name) {
+  const auto& columns = csv_columns();
+  return size_t(std::find(columns.begin(), columns.end(), name) - columns.begin());
 }
 
 std::runtime_error foreign_header(const std::string& path) {
-  return std::runtime_error("CSV '" + path + "' exists with different columns; choose another --csv file");
+  return std::runtime_error("results CSV '" + path + "' exists with different columns; choose another file");
 }
 
-// libcsv callbacks: a field ends, a record ends.
-struct Records {
-  std::vector<std::vector<std::string>> rows;
-  std::vector<std::string> current;
-};
-void end_field(void* text, size_t length, void* data) {
-  auto& current = static_cast<Records*>(data)->current;
-  current.push_back(length ? std::string(static_cast<const char*>(text), length) : std::string());
+// The run_rows a well-formed row declares; 0 for a row that is not one.
+size_t declared_rows(const CsvRecord& row) {
+  if (row.fields.size() != csv_columns().size() || row.fields[column("run_id")].empty()) return 0;
+  const std::string& text = row.fields[column("run_rows")];
+  size_t value = 0;
+  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() && end == text.data() + text.size() ? value : 0;
 }
-void end_record(int, void* data) {
-  auto* records = static_cast<Records*>(data);
-  records->rows.push_back(std::move(records->current));
-  records->current.clear();
+
+std::string run_id_of(const CsvRecord& row) {
+  return row.fields.size() > column("run_id") ? row.fields[column("run_id")] : std::string();
 }
-// Spaces around an unquoted field are data (libcsv trims them by default).
-int no_space(unsigned char) { return 0; }
+
+// How many leading rows form whole runs: the rows of the last run_id at the
+// end are cut unless all of them are there (an append cut short by a crash).
+size_t whole_runs_prefix(const std::vector<CsvRecord>& rows) {
+  if (rows.empty()) return 0;
+  const std::string last = run_id_of(rows.back());
+  size_t begin = rows.size();
+  while (begin > 0 && run_id_of(rows[begin - 1]) == last) --begin;
+  const size_t count = rows.size() - begin;
+  for (size_t i = begin; i < rows.size(); ++i)
+    if (declared_rows(rows[i]) != count) return begin;
+  return rows.size();
+}
 
 }  // namespace
 
-std::vector<std::vector<std::string>> csv_rows(const RunResult& r, const RunContext& context) {
+std::vector<std::vector<std::string>> csv_rows(const RunResult& r, const RunContext& context,
+                                               const std::string& run_id) {
   const bool ran = r.status == RunStatus::ok;
   auto per_run = [&](const std::string& clock, const std::string& stage, const Summary* s) {
     std::vector<std::string> row = {
@@ -114,85 +126,130 @@ std::vector<std::vector<std::string>> csv_rows(const RunResult& r, const RunCont
     return row;
   };
   std::vector<std::vector<std::string>> rows;
-  if (!ran || r.stages.empty()) {
-    rows.push_back(per_run(to_string(r.clock), "", nullptr));
-    return rows;
+  if (!ran || r.stages.empty()) rows.push_back(per_run(to_string(r.clock), "", nullptr));
+  else
+    for (const auto& stage : r.stages) rows.push_back(per_run(stage.clock, stage.stage, &stage.summary));
+  for (auto& row : rows) {
+    row.push_back(run_id);
+    row.push_back(std::to_string(rows.size()));
   }
-  for (const auto& stage : r.stages) rows.push_back(per_run(stage.clock, stage.stage, &stage.summary));
   return rows;
 }
 
-CsvWriter::CsvWriter(const std::string& path) : path_(path) {
-  const std::filesystem::path file(path);
-  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
-  bool write_header = true;
-  if (std::filesystem::exists(file) && std::filesystem::file_size(file) > 0) {
-    std::ifstream existing(path);
-    std::string first;
-    std::getline(existing, first);
-    if (first != header_line()) throw foreign_header(path);
-    write_header = false;
-  }
-  out_.open(path, std::ios::app);
-  if (!out_) throw std::runtime_error("cannot open CSV '" + path + "' for appending");
-  if (write_header) out_ << header_line() << "\n" << std::flush;
+std::string new_run_id() {
+  static const std::string prefix = [] {
+    std::random_device random;
+    char text[32];
+    std::snprintf(text, sizeof text, "%08x%04x", random(), random() & 0xffffu);
+    return std::string(text);
+  }();
+  static std::atomic<uint64_t> counter{0};
+  return prefix + "-" + std::to_string(++counter);
 }
 
-void CsvWriter::write(const RunResult& result, const RunContext& context) {
-  for (const auto& row : csv_rows(result, context)) {
-    std::string line;
-    for (size_t i = 0; i < row.size(); ++i) line += (i ? "," : "") + csv_escape(row[i]);
-    out_ << line << "\n";
-  }
-  out_.flush();
-  if (!out_) throw std::runtime_error("failed writing CSV '" + path_ + "'");
+CsvWriter::CsvWriter(const std::string& path) : csv_(path, csv_columns(), "results CSV", "run", whole_runs_prefix) {
+  oit::finished_runs(csv_.read(), path, &problems_);
+  for (const auto& problem : problems_)
+    std::fprintf(stderr, "oitbench: results CSV '%s', %s: not counted as a run\n", path.c_str(), problem.c_str());
 }
 
-std::vector<std::vector<std::string>> read_csv(const std::string& path) {
-  if (!std::filesystem::exists(path) || std::filesystem::file_size(path) == 0) return {};
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read CSV '" + path + "'");
-  csv_parser parser;
-  if (csv_init(&parser, 0) != 0) throw std::runtime_error("cannot read CSV '" + path + "': libcsv init failed");
-  csv_set_space_func(&parser, no_space);
-  Records records;
-  char block[1 << 16];
-  bool failed = false;
-  while (!failed && in) {
-    in.read(block, sizeof block);
-    const size_t got = static_cast<size_t>(in.gcount());
-    failed = csv_parse(&parser, block, got, end_field, end_record, &records) != got;
-  }
-  failed = failed || csv_fini(&parser, end_field, end_record, &records) != 0;
-  const std::string why = failed ? csv_strerror(csv_error(&parser)) : "";
-  csv_free(&parser);
-  if (failed) throw std::runtime_error("cannot read CSV '" + path + "': " + why);
-  return records.rows;
+std::string CsvWriter::write(const RunResult& result, const RunContext& context) {
+  const std::string run_id = new_run_id();
+  csv_.append(csv_rows(result, context, run_id));
+  return run_id;
 }
+
+std::set<RunKey> CsvWriter::finished_runs() const { return oit::finished_runs(csv_.read(), path()); }
 
 std::set<RunKey> finished_runs(const std::string& path) {
-  const auto rows = read_csv(path);
+  return finished_runs(read_csv_file(path, "results CSV"), path);
+}
+
+std::set<RunKey> finished_runs(const CsvContents& contents, const std::string& path,
+                               std::vector<std::string>* problems) {
   std::set<RunKey> finished;
-  if (rows.empty()) return finished;
-  if (rows.front() != csv_columns()) throw foreign_header(path);
-  auto at = [](const std::string& name) {
-    const auto& columns = csv_columns();
-    return size_t(std::find(columns.begin(), columns.end(), name) - columns.begin());
+  std::vector<std::string> found;
+  if (contents.records.empty() && !contents.torn) return finished;
+  if (contents.records.empty() || contents.records.front().fields != csv_columns()) throw foreign_header(path);
+  // Rows grouped by run: a run counts once all its rows are there.
+  struct Run {
+    size_t rows = 0, declared = 0, line = 0;
+    const CsvRecord* first = nullptr;
   };
-  const size_t technique = at("technique"), params = at("params"), scene = at("scene"),
-               scene_params = at("scene_params"), camera = at("camera"), width = at("width"), height = at("height"),
-               status = at("status"), scene_rect = at("scene_rect");
-  for (size_t i = 1; i < rows.size(); ++i) {
-    const auto& row = rows[i];
-    if (row.size() != csv_columns().size() || (row[status] != "ok" && row[status] != "skipped")) continue;
+  std::map<std::string, Run> runs;
+  for (size_t i = 1; i < contents.records.size(); ++i) {
+    const CsvRecord& row = contents.records[i];
+    if (row.fields.size() != csv_columns().size()) continue;  // field_count_problems reports it
+    Run& run = runs[row.fields[column("run_id")]];
+    if (!run.first) run = {0, declared_rows(row), row.line, &row};
+    run.rows += 1;
+    if (declared_rows(row) != run.declared) run.declared = 0;
+  }
+  found = field_count_problems(contents);
+  if (contents.torn) found.push_back("line " + std::to_string(contents.torn->line) + ": cut short (no final newline)");
+  for (const auto& [id, run] : runs) {
+    if (run.declared == 0 || run.rows != run.declared) {
+      found.push_back("line " + std::to_string(run.line) + ": run '" + id + "' has " + std::to_string(run.rows) +
+                      " row(s)" + (run.declared ? " of " + std::to_string(run.declared) : " without a valid run_rows"));
+      continue;
+    }
+    const auto& f = run.first->fields;
+    if (f[column("status")] != "ok" && f[column("status")] != "skipped") continue;
     try {
-      finished.insert({row[technique], row[params], row[scene], row[scene_params], row[camera], std::stoi(row[width]),
-                       std::stoi(row[height]), row[scene_rect] != "off"});
+      finished.insert({f[column("technique")], f[column("params")], f[column("scene")], f[column("scene_params")],
+                       f[column("camera")], std::stoi(f[column("width")]), std::stoi(f[column("height")]),
+                       f[column("scene_rect")] != "off"});
     } catch (const std::exception&) {
-      // A size that is not a number is no row of ours: nothing to resume.
+      found.push_back("line " + std::to_string(run.line) + ": width or height is not a number");
     }
   }
+  if (problems) *problems = std::move(found);
   return finished;
+}
+
+RunClaims::RunClaims(const std::string& csv_path) : path_(csv_path + ".claims") {
+  fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NONBLOCK, 0666);
+  if (fd_ < 0) throw std::runtime_error("cannot open the claims file '" + path_ + "': " + std::strerror(errno));
+  struct stat info{};
+  if (::fstat(fd_, &info) != 0 || !S_ISREG(info.st_mode)) {
+    ::close(fd_);
+    throw std::runtime_error("the claims file '" + path_ + "' is not a regular file");
+  }
+}
+
+RunClaims::~RunClaims() { ::close(fd_); }
+
+namespace {
+struct flock claim_range(short type, int64_t offset) {
+  struct flock range{};
+  range.l_type = type;
+  range.l_whence = SEEK_SET;
+  range.l_start = offset;
+  range.l_len = 1;
+  return range;
+}
+}  // namespace
+
+std::optional<RunClaims::Claim> RunClaims::try_claim(const RunKey& key) {
+  const std::string text = key.technique + '\x1f' + key.params + '\x1f' + key.scene + '\x1f' + key.scene_params +
+                           '\x1f' + key.camera + '\x1f' + std::to_string(key.width) + 'x' +
+                           std::to_string(key.height) + (key.scene_rect ? "" : "\x1foff");
+  // A byte of the file per run (the lock, not the byte, is the claim);
+  // libstdc++'s string hash is fixed, so every process finds the same byte.
+  const int64_t offset = int64_t(std::hash<std::string>{}(text) & ((uint64_t(1) << 62) - 1));
+  struct flock range = claim_range(F_WRLCK, offset);
+  while (::fcntl(fd_, F_OFD_SETLK, &range) != 0) {
+    if (errno == EAGAIN || errno == EACCES) return std::nullopt;
+    if (errno != EINTR)
+      throw std::runtime_error("cannot lock the claims file '" + path_ + "': " + std::strerror(errno));
+  }
+  return Claim(fd_, offset);
+}
+
+RunClaims::Claim::~Claim() {
+  if (fd_ < 0) return;
+  struct flock range = claim_range(F_UNLCK, offset_);
+  ::fcntl(fd_, F_OFD_SETLK, &range);
 }
 
 }  // namespace oit

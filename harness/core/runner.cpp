@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/memory_failure.h"
 #include "core/system_load.h"
 #include "gl/check.h"
 #include "model_files.h"
@@ -63,7 +64,7 @@ RenderTarget::RenderTarget(int width, int height) {
   glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, color.id(), 0);
   if (glCheckNamedFramebufferStatus(framebuffer.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     throw GlError("RGBA32F render target of " + std::to_string(width) + "x" + std::to_string(height) +
-                  " is incomplete");
+                  " is incomplete (the device could not allocate it)");
   }
 }
 
@@ -248,7 +249,7 @@ RunResult Harness::run(const RunSpec& spec) {
     result.message = e.what();
   } catch (const std::exception& e) {
     result.status = RunStatus::error;
-    result.message = e.what();
+    result.message = explain_failure(e, spec.width, spec.height);  // a memory failure names the size and remedy
     while (glGetError() != GL_NO_ERROR) {
     }
     reset_gl_state();

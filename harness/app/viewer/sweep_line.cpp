@@ -1,7 +1,6 @@
 #include "app/viewer/sweep_line.h"
 
-#include <fstream>
-#include <stdexcept>
+#include "core/output_file.h"
 
 namespace oit {
 namespace {
@@ -33,11 +32,9 @@ std::string bench_command_line(const ViewConfig& config, const std::string& csv)
 }
 
 void append_to_sweep_file(const std::string& path, const std::string& line, const std::string& comment) {
-  std::ofstream out(path, std::ios::app);
-  if (!out) throw std::runtime_error("cannot open sweep file '" + path + "' for appending");
-  if (!comment.empty()) out << "# " << comment << "\n";
-  out << line << "\n";
-  if (!out) throw std::runtime_error("failed writing sweep file '" + path + "'");
+  SharedAppendFile file(path);
+  const auto lock = file.lock_exclusive();
+  file.append((comment.empty() ? "" : "# " + comment + "\n") + line + "\n");
 }
 
 }  // namespace oit
