@@ -1,0 +1,185 @@
+// stochastic_transparency: stochastic transparency (Enderton, Sintorn,
+// Shirley & Luebke 2010). A multisampled depth pass lets each fragment
+// cover a random alpha-sized subset of the pixel's samples (gl_SampleMask);
+// an accumulation pass weights each fragment's colour with the share of
+// samples it is not hidden at, an unbiased estimate of its transmittance;
+// compose applies the paper's alpha correction (the exact total coverage).
+// Order-independent, noisy; the noise falls with samples x passes.
+#include <stdexcept>
+#include <string>
+
+#include "core/technique.h"
+#include "gl/check.h"
+#include "gl/shader_program.h"
+#include "../../shaders/bindings.h"
+
+namespace oit {
+namespace {
+
+constexpr GLuint kStochasticDepthUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
+constexpr GLuint kAccumulationUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
+constexpr GLuint kTotalTransmittanceUnit = OIT_FIRST_TECHNIQUE_BINDING + 2;
+constexpr GLint kSeedLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
+constexpr GLint kFirstPassLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
+
+GLint get_integer(GLenum name) {
+  GLint value = 0;
+  glGetIntegerv(name, &value);
+  return value;
+}
+
+// "" when the device can make a multisampled depth texture of `samples`
+// samples, otherwise the reason (the runner turns it into a skipped row).
+std::string sample_count_support(int samples) {
+  const GLint max_samples = get_integer(GL_MAX_SAMPLES);
+  const GLint max_depth_samples = get_integer(GL_MAX_DEPTH_TEXTURE_SAMPLES);
+  if (samples <= max_samples && samples <= max_depth_samples) return "";
+  return "stochastic_transparency: samples=" + std::to_string(samples) +
+         " is more than the device supports (GL_MAX_SAMPLES " + std::to_string(max_samples) +
+         ", GL_MAX_DEPTH_TEXTURE_SAMPLES " + std::to_string(max_depth_samples) + ")";
+}
+
+class StochasticTransparency final : public Technique {
+ public:
+  explicit StochasticTransparency(const ParamSet& params)
+      : samples_(std::stoi(params.choice("samples"))),
+        passes_(int(params.integer("passes"))),
+        seed_(uint32_t(params.integer("seed"))),
+        depth_(build_geometry_program("algorithms/stochastic_transparency/depth.frag", defines())),
+        accumulate_(build_geometry_program("algorithms/stochastic_transparency/accumulate.frag", defines())),
+        compose_(build_fullscreen_program("algorithms/stochastic_transparency/compose.frag")) {
+    if (std::string reason = sample_count_support(samples_); !reason.empty()) throw std::runtime_error(reason);
+  }
+
+  void resize(int width, int height) override {
+    width_ = width;
+    height_ = height;
+    GLuint depth_id = 0;
+    glCreateTextures(GL_TEXTURE_2D_MULTISAMPLE, 1, &depth_id);
+    stochastic_depth_ = Texture(depth_id);
+    glTextureStorage2DMultisample(depth_id, samples_, GL_DEPTH_COMPONENT32F, width, height, GL_TRUE);
+    gl_check("allocating a " + std::to_string(samples_) + "-sample depth texture");
+    GLint actual = 0;
+    glGetTextureLevelParameteriv(stochastic_depth_.id(), 0, GL_TEXTURE_SAMPLES, &actual);
+    if (actual != samples_)
+      throw GlError("stochastic_transparency: asked for " + std::to_string(samples_) + " samples, the device made " +
+                    std::to_string(actual));
+    depth_framebuffer_ = make_framebuffer();
+    glNamedFramebufferTexture(depth_framebuffer_.id(), GL_DEPTH_ATTACHMENT, stochastic_depth_.id(), 0);
+    glNamedFramebufferDrawBuffer(depth_framebuffer_.id(), GL_NONE);
+    check_complete(depth_framebuffer_, "multisampled depth");
+
+    accumulation_ = make_texture_2d(GL_RGBA32F, width, height);
+    total_transmittance_ = make_texture_2d(GL_R32F, width, height);
+    accumulation_framebuffer_ = make_framebuffer();
+    glNamedFramebufferTexture(accumulation_framebuffer_.id(), GL_COLOR_ATTACHMENT0, accumulation_.id(), 0);
+    glNamedFramebufferTexture(accumulation_framebuffer_.id(), GL_COLOR_ATTACHMENT1, total_transmittance_.id(), 0);
+    const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(accumulation_framebuffer_.id(), 2, attachments);
+    check_complete(accumulation_framebuffer_, "accumulation");
+  }
+
+  void render(const Frame& frame) override {
+    {
+      auto clear = frame.clock.stage("clear");
+      const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f}, one[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+      glClearNamedFramebufferfv(accumulation_framebuffer_.id(), GL_COLOR, 0, zero);
+      glClearNamedFramebufferfv(accumulation_framebuffer_.id(), GL_COLOR, 1, one);
+    }
+    for (int pass = 0; pass < passes_; ++pass) {
+      {
+        auto fill = frame.clock.stage("fill");
+        const GLfloat far = 1.0f;
+        glClearNamedFramebufferfv(depth_framebuffer_.id(), GL_DEPTH, 0, &far);
+        glProgramUniform1ui(depth_.id(), kSeedLocation, seed_ + uint32_t(pass) * 0x9e3779b9u);
+        glEnable(GL_MULTISAMPLE);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        draw_geometry(frame, depth_, depth_framebuffer_);
+        glDisable(GL_DEPTH_TEST);
+      }
+      glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+      {
+        auto store = frame.clock.stage("store");
+        glBindTextureUnit(kStochasticDepthUnit, stochastic_depth_.id());
+        glProgramUniform1i(accumulate_.id(), kFirstPassLocation, pass == 0 ? 1 : 0);
+        glEnablei(GL_BLEND, 0);
+        glEnablei(GL_BLEND, 1);
+        glBlendFunci(0, GL_ONE, GL_ONE);
+        glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
+        draw_geometry(frame, accumulate_, accumulation_framebuffer_);
+        glDisable(GL_BLEND);
+      }
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    {
+      auto compose = frame.clock.stage("compose");
+      frame.bind_target();
+      glBindTextureUnit(kAccumulationUnit, accumulation_.id());
+      glBindTextureUnit(kTotalTransmittanceUnit, total_transmittance_.id());
+      glUseProgram(compose_.id());
+      frame.set_shared_uniforms(compose_.id());
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+  }
+
+  TechniqueCounters counters() const override {
+    TechniqueCounters c;
+    // D32F per sample + RGBA32F accumulation + R32F total transmittance.
+    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * (4u * uint64_t(samples_) + 16u + 4u);
+    c.passes = 2 * uint64_t(passes_);
+    c.extra = {{"effective_samples", double(samples_ * passes_)}};
+    return c;
+  }
+
+ private:
+  ShaderDefines defines() const { return {{"SAMPLES", std::to_string(samples_)}}; }
+
+  void check_complete(const Framebuffer& framebuffer, const char* what) const {
+    if (glCheckNamedFramebufferStatus(framebuffer.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw GlError(std::string("stochastic_transparency: ") + what + " framebuffer (" + std::to_string(samples_) +
+                    " samples) is incomplete");
+  }
+
+  void draw_geometry(const Frame& frame, const Program& program, const Framebuffer& framebuffer) const {
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+    glViewport(0, 0, width_, height_);
+    glUseProgram(program.id());
+    frame.set_shared_uniforms(program.id());
+    frame.scene.draw();
+  }
+
+  int samples_, passes_;
+  uint32_t seed_;
+  Program depth_, accumulate_, compose_;
+  Texture stochastic_depth_, accumulation_, total_transmittance_;
+  Framebuffer depth_framebuffer_, accumulation_framebuffer_;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace
+
+void register_technique_stochastic_transparency(TechniqueRegistry& registry) {
+  TechniqueDescriptor d;
+  d.id = "stochastic_transparency";
+  d.display_name = "Stochastic transparency";
+  d.paper = "Enderton, Sintorn, Shirley & Luebke 2010, Stochastic Transparency, I3D 2010";
+  d.params = {ParamSpec::choice("samples", "4", {"4", "8", "16"},
+                                "MSAA samples per pixel of the stochastic depth pass (a count the device lacks is a "
+                                "skipped run)"),
+              ParamSpec::integer("passes", 1, 1, 64,
+                                 "depth + accumulation pass pairs with different seeds, averaged: samples x passes "
+                                 "effective samples"),
+              ParamSpec::integer("seed", 1, 0, 0xffffffffLL, "seed of the per-fragment coverage masks")};
+  d.stages = {"clear", "fill", "store", "compose"};
+  d.exactness = Exactness::approximate;
+  d.quality_sweep = {{"samples", {"4", "8", "16"}}, {"passes", {"1", "2", "4", "8"}}};
+  d.extra_support_check = [](const ParamSet& params, const SceneFacts&) {
+    return sample_count_support(std::stoi(params.choice("samples")));
+  };
+  d.create = [](const ParamSet& params) { return std::make_unique<StochasticTransparency>(params); };
+  registry.add(std::move(d));
+}
+
+}  // namespace oit
