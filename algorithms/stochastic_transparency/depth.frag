@@ -2,9 +2,7 @@
 // Stochastic depth pass (Enderton et al. 2010, section 3): each fragment
 // covers a random subset of the pixel's SAMPLES samples, each sample with
 // probability alpha, through gl_SampleMask; the depth test (LESS) keeps, per
-// sample, the nearest fragment that covered it. The fragment's window depth
-// is written for all its samples alike (gl_FragDepth), so that the
-// accumulation pass compares exactly the same value.
+// sample, the nearest fragment that covered it (its depth at that sample).
 #include "shaders/shading.glsl"
 
 layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform uint u_seed;
@@ -42,5 +40,4 @@ void main() {
     mask |= 1u << picked;
   }
   gl_SampleMask[0] = int(mask);
-  gl_FragDepth = gl_FragCoord.z;
 }

@@ -1,10 +1,12 @@
 // stochastic_transparency: stochastic transparency (Enderton, Sintorn,
 // Shirley & Luebke 2010). A multisampled depth pass lets each fragment
 // cover a random alpha-sized subset of the pixel's samples (gl_SampleMask);
-// an accumulation pass weights each fragment's colour with the share of
-// samples it is not hidden at, an unbiased estimate of its transmittance;
-// compose applies the paper's alpha correction (the exact total coverage).
-// Order-independent, noisy; the noise falls with samples x passes.
+// a multisampled accumulation pass, depth-tested against it, adds each
+// fragment's colour at the samples it is not hidden at, so the samples'
+// average weights it by an unbiased estimate of its transmittance; compose
+// applies the paper's alpha correction with the exact total coverage from
+// a third, single-sampled pass. Order-independent, noisy; the noise falls
+// with samples x passes.
 #include <stdexcept>
 #include <string>
 
@@ -16,11 +18,9 @@
 namespace oit {
 namespace {
 
-constexpr GLuint kStochasticDepthUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
 constexpr GLuint kAccumulationUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
 constexpr GLuint kTotalTransmittanceUnit = OIT_FIRST_TECHNIQUE_BINDING + 2;
 constexpr GLint kSeedLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
-constexpr GLint kFirstPassLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
 
 GLint get_integer(GLenum name) {
   GLint value = 0;
@@ -28,15 +28,33 @@ GLint get_integer(GLenum name) {
   return value;
 }
 
-// "" when the device can make a multisampled depth texture of `samples`
-// samples, otherwise the reason (the runner turns it into a skipped row).
+// "" when the device can make multisampled depth and colour textures of
+// `samples` samples, otherwise the reason (the runner makes it a skipped row).
 std::string sample_count_support(int samples) {
   const GLint max_samples = get_integer(GL_MAX_SAMPLES);
   const GLint max_depth_samples = get_integer(GL_MAX_DEPTH_TEXTURE_SAMPLES);
-  if (samples <= max_samples && samples <= max_depth_samples) return "";
+  const GLint max_color_samples = get_integer(GL_MAX_COLOR_TEXTURE_SAMPLES);
+  if (samples <= max_samples && samples <= max_depth_samples && samples <= max_color_samples) return "";
   return "stochastic_transparency: samples=" + std::to_string(samples) +
          " is more than the device supports (GL_MAX_SAMPLES " + std::to_string(max_samples) +
-         ", GL_MAX_DEPTH_TEXTURE_SAMPLES " + std::to_string(max_depth_samples) + ")";
+         ", GL_MAX_DEPTH_TEXTURE_SAMPLES " + std::to_string(max_depth_samples) + ", GL_MAX_COLOR_TEXTURE_SAMPLES " +
+         std::to_string(max_color_samples) + ")";
+}
+
+// A multisampled 2D texture of exactly `samples` samples (GL may give more).
+Texture make_multisample_texture(GLenum format, int samples, int width, int height) {
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_2D_MULTISAMPLE, 1, &id);
+  Texture texture(id);
+  glTextureStorage2DMultisample(id, samples, format, width, height, GL_TRUE);
+  gl_check("allocating a " + std::to_string(samples) + "-sample texture of " + std::to_string(width) + "x" +
+           std::to_string(height));
+  GLint actual = 0;
+  glGetTextureLevelParameteriv(id, 0, GL_TEXTURE_SAMPLES, &actual);
+  if (actual != samples)
+    throw GlError("stochastic_transparency: asked for " + std::to_string(samples) + " samples, the device made " +
+                  std::to_string(actual));
+  return texture;
 }
 
 class StochasticTransparency final : public Technique {
@@ -46,37 +64,31 @@ class StochasticTransparency final : public Technique {
         passes_(int(params.integer("passes"))),
         seed_(uint32_t(params.integer("seed"))),
         depth_(build_geometry_program("algorithms/stochastic_transparency/depth.frag", defines())),
-        accumulate_(build_geometry_program("algorithms/stochastic_transparency/accumulate.frag", defines())),
-        compose_(build_fullscreen_program("algorithms/stochastic_transparency/compose.frag")) {
+        accumulate_(build_geometry_program("algorithms/stochastic_transparency/accumulate.frag")),
+        total_(build_geometry_program("algorithms/stochastic_transparency/total.frag")),
+        compose_(build_fullscreen_program("algorithms/stochastic_transparency/compose.frag", defines())) {
     if (std::string reason = sample_count_support(samples_); !reason.empty()) throw std::runtime_error(reason);
   }
 
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
-    GLuint depth_id = 0;
-    glCreateTextures(GL_TEXTURE_2D_MULTISAMPLE, 1, &depth_id);
-    stochastic_depth_ = Texture(depth_id);
-    glTextureStorage2DMultisample(depth_id, samples_, GL_DEPTH_COMPONENT32F, width, height, GL_TRUE);
-    gl_check("allocating a " + std::to_string(samples_) + "-sample depth texture");
-    GLint actual = 0;
-    glGetTextureLevelParameteriv(stochastic_depth_.id(), 0, GL_TEXTURE_SAMPLES, &actual);
-    if (actual != samples_)
-      throw GlError("stochastic_transparency: asked for " + std::to_string(samples_) + " samples, the device made " +
-                    std::to_string(actual));
+    stochastic_depth_ = make_multisample_texture(GL_DEPTH_COMPONENT32F, samples_, width, height);
     depth_framebuffer_ = make_framebuffer();
     glNamedFramebufferTexture(depth_framebuffer_.id(), GL_DEPTH_ATTACHMENT, stochastic_depth_.id(), 0);
     glNamedFramebufferDrawBuffer(depth_framebuffer_.id(), GL_NONE);
     check_complete(depth_framebuffer_, "multisampled depth");
 
-    accumulation_ = make_texture_2d(GL_RGBA32F, width, height);
-    total_transmittance_ = make_texture_2d(GL_R32F, width, height);
+    accumulation_ = make_multisample_texture(GL_RGBA32F, samples_, width, height);
     accumulation_framebuffer_ = make_framebuffer();
     glNamedFramebufferTexture(accumulation_framebuffer_.id(), GL_COLOR_ATTACHMENT0, accumulation_.id(), 0);
-    glNamedFramebufferTexture(accumulation_framebuffer_.id(), GL_COLOR_ATTACHMENT1, total_transmittance_.id(), 0);
-    const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(accumulation_framebuffer_.id(), 2, attachments);
-    check_complete(accumulation_framebuffer_, "accumulation");
+    glNamedFramebufferTexture(accumulation_framebuffer_.id(), GL_DEPTH_ATTACHMENT, stochastic_depth_.id(), 0);
+    check_complete(accumulation_framebuffer_, "multisampled accumulation");
+
+    total_transmittance_ = make_texture_2d(GL_R32F, width, height);
+    total_framebuffer_ = make_framebuffer();
+    glNamedFramebufferTexture(total_framebuffer_.id(), GL_COLOR_ATTACHMENT0, total_transmittance_.id(), 0);
+    check_complete(total_framebuffer_, "total transmittance");
   }
 
   void render(const Frame& frame) override {
@@ -84,33 +96,39 @@ class StochasticTransparency final : public Technique {
       auto clear = frame.clock.stage("clear");
       const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f}, one[4] = {1.0f, 1.0f, 1.0f, 1.0f};
       glClearNamedFramebufferfv(accumulation_framebuffer_.id(), GL_COLOR, 0, zero);
-      glClearNamedFramebufferfv(accumulation_framebuffer_.id(), GL_COLOR, 1, one);
+      glClearNamedFramebufferfv(total_framebuffer_.id(), GL_COLOR, 0, one);
     }
+    glEnable(GL_MULTISAMPLE);
     for (int pass = 0; pass < passes_; ++pass) {
       {
         auto fill = frame.clock.stage("fill");
         const GLfloat far = 1.0f;
         glClearNamedFramebufferfv(depth_framebuffer_.id(), GL_DEPTH, 0, &far);
         glProgramUniform1ui(depth_.id(), kSeedLocation, seed_ + uint32_t(pass) * 0x9e3779b9u);
-        glEnable(GL_MULTISAMPLE);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glDepthMask(GL_TRUE);
         draw_geometry(frame, depth_, depth_framebuffer_);
-        glDisable(GL_DEPTH_TEST);
       }
-      glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
       {
         auto store = frame.clock.stage("store");
-        glBindTextureUnit(kStochasticDepthUnit, stochastic_depth_.id());
-        glProgramUniform1i(accumulate_.id(), kFirstPassLocation, pass == 0 ? 1 : 0);
-        glEnablei(GL_BLEND, 0);
-        glEnablei(GL_BLEND, 1);
-        glBlendFunci(0, GL_ONE, GL_ONE);
-        glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
+        glDepthFunc(GL_LEQUAL);
+        glDepthMask(GL_FALSE);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE);
         draw_geometry(frame, accumulate_, accumulation_framebuffer_);
         glDisable(GL_BLEND);
+        glDisable(GL_DEPTH_TEST);
+        glDepthMask(GL_TRUE);
       }
+    }
+    {
+      // The alpha correction's exact coverage: one more pass, not per seed.
+      auto store = frame.clock.stage("store");
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
+      draw_geometry(frame, total_, total_framebuffer_);
+      glDisable(GL_BLEND);
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     {
@@ -126,9 +144,9 @@ class StochasticTransparency final : public Technique {
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
-    // D32F per sample + RGBA32F accumulation + R32F total transmittance.
-    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * (4u * uint64_t(samples_) + 16u + 4u);
-    c.passes = 2 * uint64_t(passes_);
+    // Per sample D32F depth and RGBA32F accumulation, per pixel R32F total transmittance.
+    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * (20u * uint64_t(samples_) + 4u);
+    c.passes = 2 * uint64_t(passes_) + 1;
     c.extra = {{"effective_samples", double(samples_ * passes_)}};
     return c;
   }
@@ -152,9 +170,9 @@ class StochasticTransparency final : public Technique {
 
   int samples_, passes_;
   uint32_t seed_;
-  Program depth_, accumulate_, compose_;
+  Program depth_, accumulate_, total_, compose_;
   Texture stochastic_depth_, accumulation_, total_transmittance_;
-  Framebuffer depth_framebuffer_, accumulation_framebuffer_;
+  Framebuffer depth_framebuffer_, accumulation_framebuffer_, total_framebuffer_;
   int width_ = 0, height_ = 0;
 };
 
