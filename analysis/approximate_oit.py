@@ -4,7 +4,7 @@ with the Pareto front marked, and an image grid of one view per technique with
 its error heatmap under it.
 
 Usage:
-  python3 -m analysis.approximate_oit table PARETO.csv [-o TABLE.md] [--metric error_rmse|error_max]
+  python3 -m analysis.approximate_oit table PARETO.csv [-o TABLE.md] [--metric error_rmse|error_max] [--short]
   python3 -m analysis.approximate_oit grid --oitbench build/harness/oitbench [--scene SCENE]
         [--scene-set k=v]... [--size WxH] [--technique ID[:k=v,...]]... -o GRID.png
 
@@ -50,17 +50,35 @@ def read_pfm(path):
     return np.flipud(data.reshape(height, width, channels))
 
 
+def varying_params(points):
+    """Each run's params reduced to the keys whose value differs between runs of its technique."""
+    params = points["label"].str.slice_replace(0, 0, "").combine(points["technique"], lambda l, t: l[len(t):].split())
+    reduced = {}
+    for technique, rows in params.groupby(points["technique"]):
+        values = [dict(item.partition("=")[::2] for item in items) for items in rows]
+        varying = {key for v in values for key in v if len({u.get(key) for u in values}) > 1}
+        for index, v in zip(rows.index, values):
+            reduced[index] = " ".join(f"{k}={v[k]}" for k in v if k in varying)
+    return pd.Series(reduced)
+
+
 def table(args):
     totals = load_totals(args.csv, args.metric)
-    lines = [f"Run time against {args.metric} from `{os.path.basename(args.csv)}`; "
-             "`front` = on the Pareto front of its scene (no run is both faster and more accurate).", ""]
+    what = ("each technique's fastest and most accurate run" if args.short else "every run")
+    lines = [f"Run time against {args.metric} from `{os.path.basename(args.csv)}`, {what}; params show the swept "
+             "knobs; `front` = on the Pareto front of its scene (no run of any technique is both faster and more "
+             "accurate).", ""]
     for (scene, scene_params, size), points in totals.groupby(["scene", "scene_params", "size"]):
         front = set(pareto_front(points).index)
+        params = varying_params(points)
+        if args.short:
+            ends = [rows.sort_values(key).index[0] for _, rows in points.groupby("technique")
+                    for key in (["time_ms", "error"], ["error", "time_ms"])]
+            points = points.loc[sorted(set(ends))]
         lines += [f"### {scene} {scene_params} {size}", "",
                   f"| technique | params | median total ms | {args.metric} | front |", "|---|---|---|---|---|"]
         for index, row in points.sort_values(["time_ms", "error"]).iterrows():
-            params = row["label"][len(row["technique"]):].strip()
-            lines.append(f"| {row['technique']} | {params} | {row['time_ms']:.2f} | {row['error']:.3g} | "
+            lines.append(f"| {row['technique']} | {params[index]} | {row['time_ms']:.2f} | {row['error']:.3g} | "
                          f"{'front' if index in front else ''} |")
         lines.append("")
     text = "\n".join(lines)
@@ -120,6 +138,7 @@ def main(argv=None):
     table_parser.add_argument("csv")
     table_parser.add_argument("-o", "--out", default=None)
     table_parser.add_argument("--metric", default="error_rmse", choices=["error_rmse", "error_max"])
+    table_parser.add_argument("--short", action="store_true", help="each technique's fastest and most accurate run")
     grid_parser = commands.add_parser("grid", help="image and error heatmap per technique")
     grid_parser.add_argument("--oitbench", default="build/harness/oitbench")
     grid_parser.add_argument("--scene", default="spheres")
