@@ -93,6 +93,15 @@ inline void expect_no_lock_failures(const RunResult& r) {
   EXPECT_EQ(extra_counter(r, "interlock"), ordered_access_extension().empty() ? 0.0 : 1.0);
 }
 
+// One frame of a technique with ordered per-pixel access, which must be
+// `ok` and have lost no fragment to its lock.
+inline RunResult run_ordered(const std::string& technique, const RawParams& params, const std::string& scene,
+                             const RawParams& scene_params, int size, const std::string& order = "original") {
+  RunResult r = run_ok(one_frame(technique, params, scene, scene_params, size, order));
+  expect_no_lock_failures(r);
+  return r;
+}
+
 // `oitbench check-order`'s verdict for one technique and parameter set on
 // `scene` (original order twice, reversed, shuffled:1, objects_shuffled:1).
 inline OrderCheck order_check(const std::string& technique, const RawParams& params, const std::string& scene,

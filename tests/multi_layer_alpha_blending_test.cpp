@@ -11,17 +11,12 @@
 namespace oit {
 namespace {
 
-using test::one_frame;
-using test::run_ok;
-
 constexpr int kSize = 32;
 const char* const kTechnique = "multi_layer_alpha_blending";
 
 RunResult mlab(const RawParams& params, const std::string& scene, const RawParams& scene_params,
                const std::string& order = "original") {
-  RunResult r = run_ok(one_frame(kTechnique, params, scene, scene_params, kSize, order));
-  test::expect_no_lock_failures(r);
-  return r;
+  return test::run_ordered(kTechnique, params, scene, scene_params, kSize, order);
 }
 
 TEST(MultiLayerAlphaBlending, ExactWhenKCoversTheDepthComplexityInAnyOrder) {

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/passes.h"
 #include "core/technique.h"
 #include "gl/check.h"
 #include "gl/shader_program.h"
@@ -55,19 +56,11 @@ class HybridTransparency final : public Technique {
     gl_check("allocating the hybrid transparency core of " + std::to_string(width) + "x" + std::to_string(height) +
              "x" + std::to_string(k_));
 
-    // Fill writes no colour: an attachment-less framebuffer of the right size.
-    no_attachments_ = make_framebuffer();
-    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
-    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+    no_attachments_ = make_attachmentless_framebuffer(width, height);  // fill writes no colour
     tail_sum_ = make_texture_2d(GL_RGBA32F, width, height);
     tail_count_ = make_texture_2d(GL_R32F, width, height);
-    tail_framebuffer_ = make_framebuffer();
-    glNamedFramebufferTexture(tail_framebuffer_.id(), GL_COLOR_ATTACHMENT0, tail_sum_.id(), 0);
-    glNamedFramebufferTexture(tail_framebuffer_.id(), GL_COLOR_ATTACHMENT1, tail_count_.id(), 0);
-    const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(tail_framebuffer_.id(), 2, attachments);
-    if (glCheckNamedFramebufferStatus(tail_framebuffer_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw GlError("hybrid_transparency: tail framebuffer (RGBA32F + R32F) is incomplete");
+    tail_framebuffer_ =
+        make_target_framebuffer({&tail_sum_, &tail_count_}, "hybrid_transparency: tail framebuffer (RGBA32F + R32F)");
   }
 
   void render(const Frame& frame) override {
@@ -86,25 +79,22 @@ class HybridTransparency final : public Technique {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountersBinding, counters_.id());
     {
       auto fill = frame.clock.stage("fill");
-      draw_geometry(frame, fill_, no_attachments_);
+      draw_scene_pass(frame, fill_, no_attachments_);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     {
       auto store = frame.clock.stage("store");
       glEnable(GL_BLEND);
       glBlendFunc(GL_ONE, GL_ONE);
-      draw_geometry(frame, store_, tail_framebuffer_);
+      draw_scene_pass(frame, store_, tail_framebuffer_);
       glDisable(GL_BLEND);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     {
       auto compose = frame.clock.stage("compose");
-      frame.bind_target();
       glBindTextureUnit(kTailSumUnit, tail_sum_.id());
       glBindTextureUnit(kTailCountUnit, tail_count_.id());
-      glUseProgram(compose_.id());
-      frame.set_shared_uniforms(compose_.id());
-      glDrawArrays(GL_TRIANGLES, 0, 3);
+      draw_fullscreen_pass(frame, compose_);
     }
   }
 
@@ -132,14 +122,6 @@ class HybridTransparency final : public Technique {
                                " MiB per core buffer, more than the device's largest storage block (" +
                                std::to_string(max_block >> 20) + " MiB); lower k or the size");
     }
-  }
-
-  void draw_geometry(const Frame& frame, const Program& program, const Framebuffer& framebuffer) const {
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
-    glViewport(0, 0, width_, height_);
-    glUseProgram(program.id());
-    frame.set_shared_uniforms(program.id());
-    frame.scene.draw();
   }
 
   int k_;

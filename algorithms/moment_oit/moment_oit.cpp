@@ -10,7 +10,9 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "core/passes.h"
 #include "core/technique.h"
 #include "gl/check.h"
 #include "gl/shader_program.h"
@@ -97,18 +99,12 @@ class MomentOit final : public Technique {
     if (config_.moments > 4) moments_5_8_ = make_texture_2d(high_moments_format(), width, height);
     accumulation_ = make_texture_2d(half_ ? GL_RGBA16F : GL_RGBA32F, width, height);
 
-    moments_framebuffer_ = make_framebuffer();
-    glNamedFramebufferTexture(moments_framebuffer_.id(), GL_COLOR_ATTACHMENT0, zeroth_.id(), 0);
-    glNamedFramebufferTexture(moments_framebuffer_.id(), GL_COLOR_ATTACHMENT1, moments_1_4_.id(), 0);
-    if (config_.moments > 4)
-      glNamedFramebufferTexture(moments_framebuffer_.id(), GL_COLOR_ATTACHMENT2, moments_5_8_.id(), 0);
-    const GLenum attachments[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    glNamedFramebufferDrawBuffers(moments_framebuffer_.id(), config_.moments > 4 ? 3 : 2, attachments);
-    check_complete(moments_framebuffer_, "moment");
-
-    accumulation_framebuffer_ = make_framebuffer();
-    glNamedFramebufferTexture(accumulation_framebuffer_.id(), GL_COLOR_ATTACHMENT0, accumulation_.id(), 0);
-    check_complete(accumulation_framebuffer_, "accumulation");
+    std::vector<const Texture*> moment_targets = {&zeroth_, &moments_1_4_};
+    if (config_.moments > 4) moment_targets.push_back(&moments_5_8_);
+    moments_framebuffer_ =
+        make_target_framebuffer(moment_targets, "moment_oit: moment framebuffer (" + precision_text() + ")");
+    accumulation_framebuffer_ =
+        make_target_framebuffer({&accumulation_}, "moment_oit: accumulation framebuffer (" + precision_text() + ")");
   }
 
   void render(const Frame& frame) override {
@@ -124,23 +120,20 @@ class MomentOit final : public Technique {
     glBlendFunc(GL_ONE, GL_ONE);
     {
       auto fill = frame.clock.stage("fill");
-      draw_geometry(frame, fill_, moments_framebuffer_);
+      draw_scene_pass(frame, fill_, moments_framebuffer_);
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     bind_moments();
     {
       auto store = frame.clock.stage("store");
-      draw_geometry(frame, store_, accumulation_framebuffer_);
+      draw_scene_pass(frame, store_, accumulation_framebuffer_);
     }
     glDisable(GL_BLEND);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     {
       auto compose = frame.clock.stage("compose");
-      frame.bind_target();
       glBindTextureUnit(kAccumulationUnit, accumulation_.id());
-      glUseProgram(compose_.id());
-      frame.set_shared_uniforms(compose_.id());
-      glDrawArrays(GL_TRIANGLES, 0, 3);
+      draw_fullscreen_pass(frame, compose_);
     }
   }
 
@@ -165,11 +158,7 @@ class MomentOit final : public Technique {
     return half_ ? GL_RGBA16F : GL_RGBA32F;
   }
 
-  void check_complete(const Framebuffer& framebuffer, const char* what) const {
-    if (glCheckNamedFramebufferStatus(framebuffer.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw GlError(std::string("moment_oit: ") + what + " framebuffer (" + (half_ ? "16" : "32") +
-                    "-bit float) is incomplete");
-  }
+  std::string precision_text() const { return half_ ? "16-bit float" : "32-bit float"; }
 
   // Depths are warped onto [-1, 1] between the projection's planes:
   // logarithmically under perspective (the paper's warp: relative depth
@@ -183,14 +172,6 @@ class MomentOit final : public Technique {
       glProgramUniform2f(program, kDepthWarpLocation, near_far.x, 1.0f / (near_far.y - near_far.x));
       glProgramUniform1i(program, kLogDepthLocation, perspective ? 1 : 0);
     }
-  }
-
-  void draw_geometry(const Frame& frame, const Program& program, const Framebuffer& framebuffer) const {
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
-    glViewport(0, 0, width_, height_);
-    glUseProgram(program.id());
-    frame.set_shared_uniforms(program.id());
-    frame.scene.draw();
   }
 
   void bind_moments() const {

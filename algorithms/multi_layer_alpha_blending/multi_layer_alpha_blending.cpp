@@ -9,9 +9,10 @@
 // back; otherwise the result depends on the rasterisation order.
 #include <string>
 
+#include "core/passes.h"
+#include "core/pixel_locks.h"
 #include "core/technique.h"
 #include "gl/check.h"
-#include "gl/shader_capabilities.h"
 #include "gl/shader_program.h"
 #include "../../shaders/bindings.h"
 
@@ -27,8 +28,8 @@ constexpr GLint kLayersLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
 
 // Per layer: RGBA32F (premultiplied rgb, transmittance) + 32-bit float depth.
 constexpr uint64_t kLayerBytes = 16 + 4;
-// Per pixel: the layer count and the lock word; plus one counter word each.
-constexpr uint64_t kPixelBytes = 4 + 4;
+// Per pixel: the layer count (after one word of merges); the locks are PixelLocks'.
+constexpr uint64_t kCountBytes = 4;
 
 class MultiLayerAlphaBlending final : public Technique {
  public:
@@ -47,12 +48,10 @@ class MultiLayerAlphaBlending final : public Technique {
     colors_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_) * 16));
     depths_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_) * 4));
     counts_ = make_buffer(GLsizeiptr(4 + pixels * 4));
-    locks_ = make_buffer(GLsizeiptr(4 + pixels * 4));
+    locks_.resize(width, height);
     gl_check("allocating " + std::to_string(k_) + " layers of " + std::to_string(width) + "x" +
              std::to_string(height));
-    no_attachments_ = make_framebuffer();
-    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
-    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+    no_attachments_ = make_attachmentless_framebuffer(width, height);
   }
 
   void render(const Frame& frame) override {
@@ -60,51 +59,42 @@ class MultiLayerAlphaBlending final : public Technique {
       auto clear = frame.clock.stage("clear");
       const GLuint zero = 0;
       glClearNamedBufferData(counts_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-      glClearNamedBufferData(locks_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      locks_.clear();
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kColorsBinding, colors_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDepthsBinding, depths_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountsBinding, counts_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLocksBinding, locks_.id());
+    locks_.bind(kLocksBinding);
     {
       auto fill = frame.clock.stage("fill");
-      glBindFramebuffer(GL_FRAMEBUFFER, no_attachments_.id());
-      glViewport(0, 0, width_, height_);
-      glUseProgram(fill_.id());
-      frame.set_shared_uniforms(fill_.id());
-      frame.scene.draw();
+      draw_scene_pass(frame, fill_, no_attachments_);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     {
       auto compose = frame.clock.stage("compose");
-      frame.bind_target();
-      glUseProgram(compose_.id());
-      frame.set_shared_uniforms(compose_.id());
-      glDrawArrays(GL_TRIANGLES, 0, 3);
+      draw_fullscreen_pass(frame, compose_);
     }
   }
 
   TechniqueCounters counters() const override {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    GLuint merges = 0, lock_failures = 0;
+    GLuint merges = 0;
     glGetNamedBufferSubData(counts_.id(), 0, 4, &merges);
-    glGetNamedBufferSubData(locks_.id(), 0, 4, &lock_failures);
     TechniqueCounters c;
     const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
-    c.bytes_allocated = pixels * (uint64_t(k_) * kLayerBytes + kPixelBytes) + 8;
-    c.fragments_dropped = lock_failures;  // fragments whose critical section never ran
+    c.bytes_allocated = pixels * (uint64_t(k_) * kLayerBytes + kCountBytes) + 4 + locks_.bytes();
+    c.fragments_dropped = locks_.failures();  // fragments whose critical section never ran
     c.passes = 1;
-    const std::string extension = ordered_access_extension();
-    c.extra = {{"merges", double(merges)},
-               {"lock_failures", double(lock_failures)},
-               {"interlock", extension.empty() ? 0.0 : 1.0}};
+    c.extra = {{"merges", double(merges)}};
+    for (auto& counter : locks_.counters()) c.extra.push_back(std::move(counter));
     return c;
   }
 
  private:
   int k_;
   Program fill_, compose_;
-  Buffer colors_, depths_, counts_, locks_;
+  Buffer colors_, depths_, counts_;
+  PixelLocks locks_;
   Framebuffer no_attachments_;
   int width_ = 0, height_ = 0;
 };

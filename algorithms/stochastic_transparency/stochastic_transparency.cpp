@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/passes.h"
 #include "core/technique.h"
 #include "gl/check.h"
 #include "gl/shader_program.h"
@@ -74,21 +75,17 @@ class StochasticTransparency final : public Technique {
     width_ = width;
     height_ = height;
     stochastic_depth_ = make_multisample_texture(GL_DEPTH_COMPONENT32F, samples_, width, height);
-    depth_framebuffer_ = make_framebuffer();
-    glNamedFramebufferTexture(depth_framebuffer_.id(), GL_DEPTH_ATTACHMENT, stochastic_depth_.id(), 0);
-    glNamedFramebufferDrawBuffer(depth_framebuffer_.id(), GL_NONE);
-    check_complete(depth_framebuffer_, "multisampled depth");
+    depth_framebuffer_ = make_target_framebuffer(
+        {}, "stochastic_transparency: depth framebuffer (" + samples_text() + ")", &stochastic_depth_);
 
     accumulation_ = make_multisample_texture(GL_RGBA32F, samples_, width, height);
-    accumulation_framebuffer_ = make_framebuffer();
-    glNamedFramebufferTexture(accumulation_framebuffer_.id(), GL_COLOR_ATTACHMENT0, accumulation_.id(), 0);
-    glNamedFramebufferTexture(accumulation_framebuffer_.id(), GL_DEPTH_ATTACHMENT, stochastic_depth_.id(), 0);
-    check_complete(accumulation_framebuffer_, "multisampled accumulation");
+    accumulation_framebuffer_ = make_target_framebuffer(
+        {&accumulation_}, "stochastic_transparency: accumulation framebuffer (" + samples_text() + ")",
+        &stochastic_depth_);
 
     total_transmittance_ = make_texture_2d(GL_R32F, width, height);
-    total_framebuffer_ = make_framebuffer();
-    glNamedFramebufferTexture(total_framebuffer_.id(), GL_COLOR_ATTACHMENT0, total_transmittance_.id(), 0);
-    check_complete(total_framebuffer_, "total transmittance");
+    total_framebuffer_ = make_target_framebuffer({&total_transmittance_},
+                                                 "stochastic_transparency: total transmittance framebuffer (R32F)");
   }
 
   void render(const Frame& frame) override {
@@ -108,7 +105,7 @@ class StochasticTransparency final : public Technique {
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glDepthMask(GL_TRUE);
-        draw_geometry(frame, depth_, depth_framebuffer_);
+        draw_scene_pass(frame, depth_, depth_framebuffer_);
       }
       {
         auto store = frame.clock.stage("store");
@@ -116,7 +113,7 @@ class StochasticTransparency final : public Technique {
         glDepthMask(GL_FALSE);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_ONE);
-        draw_geometry(frame, accumulate_, accumulation_framebuffer_);
+        draw_scene_pass(frame, accumulate_, accumulation_framebuffer_);
         glDisable(GL_BLEND);
         glDisable(GL_DEPTH_TEST);
         glDepthMask(GL_TRUE);
@@ -127,18 +124,15 @@ class StochasticTransparency final : public Technique {
       auto store = frame.clock.stage("store");
       glEnable(GL_BLEND);
       glBlendFunc(GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
-      draw_geometry(frame, total_, total_framebuffer_);
+      draw_scene_pass(frame, total_, total_framebuffer_);
       glDisable(GL_BLEND);
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     {
       auto compose = frame.clock.stage("compose");
-      frame.bind_target();
       glBindTextureUnit(kAccumulationUnit, accumulation_.id());
       glBindTextureUnit(kTotalTransmittanceUnit, total_transmittance_.id());
-      glUseProgram(compose_.id());
-      frame.set_shared_uniforms(compose_.id());
-      glDrawArrays(GL_TRIANGLES, 0, 3);
+      draw_fullscreen_pass(frame, compose_);
     }
   }
 
@@ -154,19 +148,7 @@ class StochasticTransparency final : public Technique {
  private:
   ShaderDefines defines() const { return {{"SAMPLES", std::to_string(samples_)}}; }
 
-  void check_complete(const Framebuffer& framebuffer, const char* what) const {
-    if (glCheckNamedFramebufferStatus(framebuffer.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw GlError(std::string("stochastic_transparency: ") + what + " framebuffer (" + std::to_string(samples_) +
-                    " samples) is incomplete");
-  }
-
-  void draw_geometry(const Frame& frame, const Program& program, const Framebuffer& framebuffer) const {
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
-    glViewport(0, 0, width_, height_);
-    glUseProgram(program.id());
-    frame.set_shared_uniforms(program.id());
-    frame.scene.draw();
-  }
+  std::string samples_text() const { return std::to_string(samples_) + " samples"; }
 
   int samples_, passes_;
   uint32_t seed_;
