@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <map>
 #include <set>
+#include <utility>
 
 #include "gl/gl.h"
 
@@ -35,12 +36,30 @@ bool ballot_enabled() {
   return extensions.count("GL_ARB_shader_ballot") > 0 && extensions.count("GL_ARB_gpu_shader_int64") > 0;
 }
 
+// Each ordered-access extension and the define that selects it, in order of preference.
+const std::pair<const char*, const char*> kOrderedAccess[] = {
+    {"GL_ARB_fragment_shader_interlock", "OIT_INTERLOCK_ARB"},
+    {"GL_NV_fragment_shader_interlock", "OIT_INTERLOCK_NV"},
+    {"GL_INTEL_fragment_shader_ordering", "OIT_ORDERING_INTEL"}};
+
 }  // namespace
 
 ShaderDefines capability_defines() {
   ShaderDefines defines;
   if (ballot_enabled()) defines.emplace_back("OIT_SHADER_BALLOT", "1");
+  for (const auto& [extension, define] : kOrderedAccess) {
+    if (current_extensions().count(extension) > 0) {
+      defines.emplace_back(define, "1");
+      break;
+    }
+  }
   return defines;
+}
+
+std::string ordered_access_extension() {
+  for (const auto& [extension, define] : kOrderedAccess)
+    if (current_extensions().count(extension) > 0) return extension;
+  return "";
 }
 
 std::string atomics_path() { return ballot_enabled() ? "subgroup atomics" : "plain atomics"; }

@@ -1,0 +1,135 @@
+// adaptive_transparency: adaptive transparency (Salvi, Montgomery & Lefohn
+// 2011). Pass 1 (fill) builds per pixel an adaptive visibility function of
+// at most k nodes, compressing it by the smallest area change when a
+// fragment adds one node too many; this read-modify-write runs in the
+// pixel's ordered critical section (shaders/ordered_access.glsl: fragment
+// shader interlock where the driver has it, else a bounded spin lock).
+// Pass 2 (store) weights every fragment with the visibility at its depth;
+// compose renormalises to the exact total coverage. Exact when k >= the
+// depth complexity; otherwise it depends on the rasterisation order.
+#include <string>
+
+#include "core/passes.h"
+#include "core/pixel_locks.h"
+#include "core/technique.h"
+#include "gl/check.h"
+#include "gl/shader_program.h"
+#include "../../shaders/bindings.h"
+
+namespace oit {
+namespace {
+
+constexpr GLuint kNodesBinding = OIT_FIRST_TECHNIQUE_BINDING + 0;
+constexpr GLuint kCountsBinding = OIT_FIRST_TECHNIQUE_BINDING + 1;
+constexpr GLuint kLocksBinding = OIT_FIRST_TECHNIQUE_BINDING + 2;
+constexpr GLuint kAccumulationUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
+constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
+constexpr GLint kNodesLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
+
+// Per node: (depth, transmittance) as two 32-bit floats; k + 1 nodes per
+// pixel (one spare for the insertion before compression).
+constexpr uint64_t kNodeBytes = 8;
+// Per pixel: node count (after one word of removals), RGBA32F accumulation;
+// the locks are PixelLocks'.
+constexpr uint64_t kPixelBytes = 4 + 16;
+
+class AdaptiveTransparency final : public Technique {
+ public:
+  explicit AdaptiveTransparency(const ParamSet& params)
+      : k_(int(params.integer("k"))),
+        fill_(build_geometry_program("algorithms/adaptive_transparency/fill.frag")),
+        store_(build_geometry_program("algorithms/adaptive_transparency/store.frag")),
+        compose_(build_fullscreen_program("algorithms/adaptive_transparency/compose.frag")) {
+    for (GLuint program : {fill_.id(), store_.id(), compose_.id()}) glProgramUniform1i(program, kNodesLocation, k_);
+  }
+
+  void resize(int width, int height) override {
+    width_ = width;
+    height_ = height;
+    for (GLuint program : {fill_.id(), store_.id(), compose_.id()}) glProgramUniform1i(program, kWidthLocation, width);
+    const uint64_t pixels = uint64_t(width) * uint64_t(height);
+    nodes_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_ + 1) * kNodeBytes));
+    counts_ = make_buffer(GLsizeiptr(4 + pixels * 4));
+    locks_.resize(width, height);
+    gl_check("allocating " + std::to_string(k_) + "-node visibility functions of " + std::to_string(width) + "x" +
+             std::to_string(height));
+    no_attachments_ = make_attachmentless_framebuffer(width, height);
+    accumulation_ = make_texture_2d(GL_RGBA32F, width, height);
+    accumulation_framebuffer_ =
+        make_target_framebuffer({&accumulation_}, "adaptive_transparency: accumulation framebuffer (RGBA32F)");
+  }
+
+  void render(const Frame& frame) override {
+    {
+      auto clear = frame.clock.stage("clear");
+      const GLuint zero = 0;
+      glClearNamedBufferData(counts_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      locks_.clear();
+      const GLfloat transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+      glClearNamedFramebufferfv(accumulation_framebuffer_.id(), GL_COLOR, 0, transparent);
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNodesBinding, nodes_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountsBinding, counts_.id());
+    locks_.bind(kLocksBinding);
+    {
+      auto fill = frame.clock.stage("fill");
+      draw_scene_pass(frame, fill_, no_attachments_);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    {
+      auto store = frame.clock.stage("store");
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_ONE, GL_ONE);
+      draw_scene_pass(frame, store_, accumulation_framebuffer_);
+      glDisable(GL_BLEND);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    {
+      auto compose = frame.clock.stage("compose");
+      glBindTextureUnit(kAccumulationUnit, accumulation_.id());
+      draw_fullscreen_pass(frame, compose_);
+    }
+  }
+
+  TechniqueCounters counters() const override {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GLuint removals = 0;
+    glGetNamedBufferSubData(counts_.id(), 0, 4, &removals);
+    TechniqueCounters c;
+    const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
+    c.bytes_allocated = pixels * (uint64_t(k_ + 1) * kNodeBytes + kPixelBytes) + 4 + locks_.bytes();
+    c.fragments_dropped = locks_.failures();  // fragments missing from the visibility function
+    c.passes = 2;
+    c.extra = {{"node_removals", double(removals)}};
+    for (auto& counter : locks_.counters()) c.extra.push_back(std::move(counter));
+    return c;
+  }
+
+ private:
+  int k_;
+  Program fill_, store_, compose_;
+  Buffer nodes_, counts_;
+  PixelLocks locks_;
+  Texture accumulation_;
+  Framebuffer no_attachments_, accumulation_framebuffer_;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace
+
+void register_technique_adaptive_transparency(TechniqueRegistry& registry) {
+  TechniqueDescriptor d;
+  d.id = "adaptive_transparency";
+  d.display_name = "Adaptive transparency";
+  d.paper = "Salvi, Montgomery & Lefohn 2011, Adaptive Transparency, HPG 2011";
+  d.params = {ParamSpec::integer("k", 4, 1, 32,
+                                 "nodes of each pixel's visibility function; one more is compressed away by the "
+                                 "smallest area change")};
+  d.stages = {"clear", "fill", "store", "compose"};
+  d.exactness = Exactness::approximate;
+  d.quality_sweep = {{"k", {"1", "2", "4", "8", "16"}}};
+  d.create = [](const ParamSet& params) { return std::make_unique<AdaptiveTransparency>(params); };
+  registry.add(std::move(d));
+}
+
+}  // namespace oit

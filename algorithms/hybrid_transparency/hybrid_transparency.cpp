@@ -1,0 +1,152 @@
+// hybrid_transparency: hybrid transparency (Maule, Comba, Torchelsen &
+// Bastos 2013). The k nearest fragments of each pixel (the core) are kept
+// in a k-buffer and composed exactly, front to back; every fragment behind
+// them (the tail) is accumulated order-independently as a weighted average
+// and composed behind the core as one layer. Two geometry passes: fill keeps
+// the k nearest depth keys, store writes the core colours and accumulates
+// the tail. Exact (up to the RGBA8 core colours) when k >= the depth
+// complexity; otherwise only the tail is approximate.
+#include <stdexcept>
+#include <string>
+
+#include "core/passes.h"
+#include "core/technique.h"
+#include "gl/check.h"
+#include "gl/shader_program.h"
+#include "../../shaders/bindings.h"
+
+namespace oit {
+namespace {
+
+constexpr GLuint kKeysBinding = OIT_FIRST_TECHNIQUE_BINDING + 0;
+constexpr GLuint kColorsBinding = OIT_FIRST_TECHNIQUE_BINDING + 1;
+constexpr GLuint kCountersBinding = OIT_FIRST_TECHNIQUE_BINDING + 2;
+constexpr GLuint kTailSumUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
+constexpr GLuint kTailCountUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
+constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
+constexpr GLint kSlotsLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
+constexpr GLuint kEmpty = 0xffffffffu;
+
+// Per core slot: 4 (depth key) + 4 (RGBA8 colour).
+constexpr uint64_t kSlotBytes = 8;
+// Per pixel for the tail: RGBA32F sum + R32F count.
+constexpr uint64_t kTailBytesPerPixel = 16 + 4;
+constexpr uint64_t kCounterBytes = 8;
+constexpr GLuint kZeroCounters[2] = {0, 0};
+
+class HybridTransparency final : public Technique {
+ public:
+  explicit HybridTransparency(const ParamSet& params)
+      : k_(int(params.integer("k"))),
+        fill_(build_geometry_program("algorithms/hybrid_transparency/fill.frag")),
+        store_(build_geometry_program("algorithms/hybrid_transparency/store.frag")),
+        compose_(build_fullscreen_program("algorithms/hybrid_transparency/compose.frag")),
+        counters_(make_buffer(kCounterBytes, kZeroCounters)) {
+    for (GLuint program : {fill_.id(), store_.id(), compose_.id()}) glProgramUniform1i(program, kSlotsLocation, k_);
+  }
+
+  void resize(int width, int height) override {
+    width_ = width;
+    height_ = height;
+    for (GLuint program : {fill_.id(), store_.id(), compose_.id()}) glProgramUniform1i(program, kWidthLocation, width);
+    const uint64_t slots = uint64_t(width) * uint64_t(height) * uint64_t(k_);
+    check_fits(slots * 4);
+    keys_ = make_buffer(GLsizeiptr(slots * 4));
+    colors_ = make_buffer(GLsizeiptr(slots * 4));
+    gl_check("allocating the hybrid transparency core of " + std::to_string(width) + "x" + std::to_string(height) +
+             "x" + std::to_string(k_));
+
+    no_attachments_ = make_attachmentless_framebuffer(width, height);  // fill writes no colour
+    tail_sum_ = make_texture_2d(GL_RGBA32F, width, height);
+    tail_count_ = make_texture_2d(GL_R32F, width, height);
+    tail_framebuffer_ =
+        make_target_framebuffer({&tail_sum_, &tail_count_}, "hybrid_transparency: tail framebuffer (RGBA32F + R32F)");
+  }
+
+  void render(const Frame& frame) override {
+    {
+      auto clear = frame.clock.stage("clear");
+      const GLuint empty = kEmpty, zero = 0;
+      glClearNamedBufferData(keys_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
+      glClearNamedBufferData(colors_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      const GLfloat transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+      glClearTexImage(tail_sum_.id(), 0, GL_RGBA, GL_FLOAT, transparent);
+      glClearTexImage(tail_count_.id(), 0, GL_RED, GL_FLOAT, transparent);
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kKeysBinding, keys_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kColorsBinding, colors_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountersBinding, counters_.id());
+    {
+      auto fill = frame.clock.stage("fill");
+      draw_scene_pass(frame, fill_, no_attachments_);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    {
+      auto store = frame.clock.stage("store");
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_ONE, GL_ONE);
+      draw_scene_pass(frame, store_, tail_framebuffer_);
+      glDisable(GL_BLEND);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    {
+      auto compose = frame.clock.stage("compose");
+      glBindTextureUnit(kTailSumUnit, tail_sum_.id());
+      glBindTextureUnit(kTailCountUnit, tail_count_.id());
+      draw_fullscreen_pass(frame, compose_);
+    }
+  }
+
+  TechniqueCounters counters() const override {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GLuint counts[2] = {0, 0};  // stored, tied_to_tail
+    glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
+    TechniqueCounters c;
+    const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
+    c.bytes_allocated = pixels * (uint64_t(k_) * kSlotBytes + kTailBytesPerPixel) + kCounterBytes;
+    c.fragments_stored = counts[0];
+    c.fragments_dropped = 0;  // the tail composes every fragment beyond the core
+    c.passes = 2;
+    c.extra = {{"tied_to_tail", double(counts[1])}};
+    return c;
+  }
+
+ private:
+  void check_fits(uint64_t buffer_bytes) const {
+    GLint64 max_block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    if (max_block > 0 && buffer_bytes > uint64_t(max_block)) {
+      throw std::runtime_error("hybrid_transparency: k=" + std::to_string(k_) + " at " + std::to_string(width_) + "x" +
+                               std::to_string(height_) + " needs " + std::to_string(buffer_bytes >> 20) +
+                               " MiB per core buffer, more than the device's largest storage block (" +
+                               std::to_string(max_block >> 20) + " MiB); lower k or the size");
+    }
+  }
+
+  int k_;
+  Program fill_, store_, compose_;
+  Buffer counters_, keys_, colors_;
+  Texture tail_sum_, tail_count_;
+  Framebuffer no_attachments_, tail_framebuffer_;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace
+
+void register_technique_hybrid_transparency(TechniqueRegistry& registry) {
+  TechniqueDescriptor d;
+  d.id = "hybrid_transparency";
+  d.display_name = "Hybrid transparency";
+  d.paper = "Maule, Comba, Torchelsen & Bastos 2013, Hybrid Transparency, I3D 2013";
+  d.params = {ParamSpec::integer("k", 4, 1, 64,
+                                 "core layers per pixel: the k nearest fragments are composed exactly, the rest as "
+                                 "one weighted-average tail behind them")};
+  d.stages = {"clear", "fill", "store", "compose"};
+  d.exactness = Exactness::approximate;
+  d.quality_sweep = {{"k", {"1", "2", "4", "8", "16"}}};
+  d.create = [](const ParamSet& params) { return std::make_unique<HybridTransparency>(params); };
+  registry.add(std::move(d));
+}
+
+}  // namespace oit

@@ -1,0 +1,118 @@
+// multi_layer_alpha_blending: multi-layer alpha blending (Salvi &
+// Vaidyanathan 2014). One geometry pass keeps, per pixel, k layers sorted
+// by depth and merges the two farthest with the over operator whenever a
+// fragment makes it k + 1; compose blends the layers front to back. The
+// per-pixel read-modify-write needs ordered access: fragment shader
+// interlock where the driver has it, else a bounded per-pixel spin lock
+// (shaders/ordered_access.glsl; README: why it cannot hang on llvmpipe).
+// Exact when k >= the depth complexity or when fragments arrive front to
+// back; otherwise the result depends on the rasterisation order.
+#include <string>
+
+#include "core/passes.h"
+#include "core/pixel_locks.h"
+#include "core/technique.h"
+#include "gl/check.h"
+#include "gl/shader_program.h"
+#include "../../shaders/bindings.h"
+
+namespace oit {
+namespace {
+
+constexpr GLuint kColorsBinding = OIT_FIRST_TECHNIQUE_BINDING + 0;
+constexpr GLuint kDepthsBinding = OIT_FIRST_TECHNIQUE_BINDING + 1;
+constexpr GLuint kCountsBinding = OIT_FIRST_TECHNIQUE_BINDING + 2;
+constexpr GLuint kLocksBinding = OIT_FIRST_TECHNIQUE_BINDING + 3;
+constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
+constexpr GLint kLayersLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
+
+// Per layer: RGBA32F (premultiplied rgb, transmittance) + 32-bit float depth.
+constexpr uint64_t kLayerBytes = 16 + 4;
+// Per pixel: the layer count (after one word of merges); the locks are PixelLocks'.
+constexpr uint64_t kCountBytes = 4;
+
+class MultiLayerAlphaBlending final : public Technique {
+ public:
+  explicit MultiLayerAlphaBlending(const ParamSet& params)
+      : k_(int(params.integer("k"))),
+        fill_(build_geometry_program("algorithms/multi_layer_alpha_blending/fill.frag")),
+        compose_(build_fullscreen_program("algorithms/multi_layer_alpha_blending/compose.frag")) {
+    for (GLuint program : {fill_.id(), compose_.id()}) glProgramUniform1i(program, kLayersLocation, k_);
+  }
+
+  void resize(int width, int height) override {
+    width_ = width;
+    height_ = height;
+    for (GLuint program : {fill_.id(), compose_.id()}) glProgramUniform1i(program, kWidthLocation, width);
+    const uint64_t pixels = uint64_t(width) * uint64_t(height);
+    colors_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_) * 16));
+    depths_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_) * 4));
+    counts_ = make_buffer(GLsizeiptr(4 + pixels * 4));
+    locks_.resize(width, height);
+    gl_check("allocating " + std::to_string(k_) + " layers of " + std::to_string(width) + "x" +
+             std::to_string(height));
+    no_attachments_ = make_attachmentless_framebuffer(width, height);
+  }
+
+  void render(const Frame& frame) override {
+    {
+      auto clear = frame.clock.stage("clear");
+      const GLuint zero = 0;
+      glClearNamedBufferData(counts_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      locks_.clear();
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kColorsBinding, colors_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDepthsBinding, depths_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountsBinding, counts_.id());
+    locks_.bind(kLocksBinding);
+    {
+      auto fill = frame.clock.stage("fill");
+      draw_scene_pass(frame, fill_, no_attachments_);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    {
+      auto compose = frame.clock.stage("compose");
+      draw_fullscreen_pass(frame, compose_);
+    }
+  }
+
+  TechniqueCounters counters() const override {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GLuint merges = 0;
+    glGetNamedBufferSubData(counts_.id(), 0, 4, &merges);
+    TechniqueCounters c;
+    const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
+    c.bytes_allocated = pixels * (uint64_t(k_) * kLayerBytes + kCountBytes) + 4 + locks_.bytes();
+    c.fragments_dropped = locks_.failures();  // fragments whose critical section never ran
+    c.passes = 1;
+    c.extra = {{"merges", double(merges)}};
+    for (auto& counter : locks_.counters()) c.extra.push_back(std::move(counter));
+    return c;
+  }
+
+ private:
+  int k_;
+  Program fill_, compose_;
+  Buffer colors_, depths_, counts_;
+  PixelLocks locks_;
+  Framebuffer no_attachments_;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace
+
+void register_technique_multi_layer_alpha_blending(TechniqueRegistry& registry) {
+  TechniqueDescriptor d;
+  d.id = "multi_layer_alpha_blending";
+  d.display_name = "Multi-layer alpha blending";
+  d.paper = "Salvi & Vaidyanathan 2014, Multi-layer Alpha Blending, I3D 2014";
+  d.params = {ParamSpec::integer("k", 4, 1, 32,
+                                 "layers per pixel; a fragment that makes k + 1 merges the two farthest")};
+  d.stages = {"clear", "fill", "compose"};
+  d.exactness = Exactness::approximate;
+  d.quality_sweep = {{"k", {"1", "2", "4", "8", "16"}}};
+  d.create = [](const ParamSet& params) { return std::make_unique<MultiLayerAlphaBlending>(params); };
+  registry.add(std::move(d));
+}
+
+}  // namespace oit

@@ -1,0 +1,113 @@
+#pragma once
+// What the tests of the approximate techniques (moment_oit,
+// hybrid_transparency, stochastic_transparency) share: one untimed frame of
+// a configuration, and checks on its image.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "app/check_order.h"
+#include "gl_fixture.h"
+#include "gl/shader_capabilities.h"
+
+namespace oit::test {
+
+inline RunSpec one_frame(const std::string& technique, const RawParams& params, const std::string& scene,
+                         const RawParams& scene_params, int size, const std::string& order = "original") {
+  RunSpec spec;
+  spec.technique = technique;
+  spec.params = params;
+  spec.scene = scene;
+  spec.scene_params = scene_params;
+  spec.submission_order = order;
+  spec.width = size;
+  spec.height = size;
+  spec.warmup = 0;
+  spec.frames = 1;
+  return spec;
+}
+
+// The run, which must be `ok` and compared with the reference.
+inline RunResult run_ok(const RunSpec& spec) {
+  RunResult r = harness().run(spec);
+  EXPECT_EQ(r.status, RunStatus::ok) << spec.technique << ": " << r.message;
+  EXPECT_TRUE(r.error.has_value()) << spec.technique;
+  return r;
+}
+
+inline double max_abs_difference(const Image& a, const Image& b) {
+  EXPECT_EQ(a.rgba.size(), b.rgba.size());
+  double worst = 0.0;
+  for (size_t i = 0; i < a.rgba.size() && i < b.rgba.size(); ++i)
+    worst = std::max(worst, std::abs(double(a.rgba[i]) - double(b.rgba[i])));
+  return worst;
+}
+
+// Channel values that are not finite or lie outside [0, 1] (the stress
+// suite's garbage test, with the same float margins).
+inline size_t garbage_values(const Image& image) {
+  size_t garbage = 0;
+  for (float v : image.rgba) garbage += !(std::isfinite(v) && v >= -1e-4f && v <= 1.0f + 1e-3f);
+  return garbage;
+}
+
+// The RMSE against the reference of one run per value of `knob` (the other
+// parameters as in `params`), in the order given.
+inline std::vector<double> rmse_per_value(const std::string& technique, RawParams params, const std::string& knob,
+                                          const std::vector<std::string>& values, const std::string& scene,
+                                          const RawParams& scene_params, int size) {
+  std::vector<double> errors;
+  for (const std::string& value : values) {
+    params[knob] = value;
+    const RunResult r = run_ok(one_frame(technique, params, scene, scene_params, size));
+    errors.push_back(r.error ? r.error->rmse : -1.0);
+  }
+  return errors;
+}
+
+// Each value strictly below the one before it.
+inline void expect_falling(const std::vector<double>& errors, const std::string& what) {
+  for (size_t i = 1; i < errors.size(); ++i)
+    EXPECT_LT(errors[i], errors[i - 1]) << what << ": step " << i << " of " << ::testing::PrintToString(errors);
+}
+
+// A technique-specific counter from TechniqueCounters::extra (NaN and a
+// failure when absent).
+inline double extra_counter(const RunResult& r, const std::string& name) {
+  for (const auto& [key, value] : r.counters.extra)
+    if (key == name) return value;
+  ADD_FAILURE() << r.spec.technique << " reports no counter '" << name << "'";
+  return std::nan("");
+}
+
+// The techniques with ordered per-pixel access (multi_layer_alpha_blending,
+// adaptive_transparency): no fragment may miss its critical section. With
+// the spin-lock fallback that is the claim of the README's proof for
+// llvmpipe, checked on every run; with interlock there is no lock at all.
+inline void expect_no_lock_failures(const RunResult& r) {
+  EXPECT_EQ(extra_counter(r, "lock_failures"), 0.0) << r.spec.technique << " on " << r.spec.scene;
+  EXPECT_EQ(r.counters.fragments_dropped, 0u);
+  EXPECT_EQ(extra_counter(r, "interlock"), ordered_access_extension().empty() ? 0.0 : 1.0);
+}
+
+// One frame of a technique with ordered per-pixel access, which must be
+// `ok` and have lost no fragment to its lock.
+inline RunResult run_ordered(const std::string& technique, const RawParams& params, const std::string& scene,
+                             const RawParams& scene_params, int size, const std::string& order = "original") {
+  RunResult r = run_ok(one_frame(technique, params, scene, scene_params, size, order));
+  expect_no_lock_failures(r);
+  return r;
+}
+
+// `oitbench check-order`'s verdict for one technique and parameter set on
+// `scene` (original order twice, reversed, shuffled:1, objects_shuffled:1).
+inline OrderCheck order_check(const std::string& technique, const RawParams& params, const std::string& scene,
+                              const RawParams& scene_params, int size) {
+  RunSpec spec = one_frame(technique, params, scene, scene_params, size);
+  return check_order(harness(), builtin_techniques().get(technique), spec, 1);
+}
+
+}  // namespace oit::test
