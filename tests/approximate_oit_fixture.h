@@ -77,8 +77,7 @@ inline void expect_falling(const std::vector<double>& errors, const std::string&
 // A technique-specific counter from TechniqueCounters::extra (NaN and a
 // failure when absent).
 inline double extra_counter(const RunResult& r, const std::string& name) {
-  for (const auto& [key, value] : r.counters.extra)
-    if (key == name) return value;
+  if (auto value = find_figure(r.counters.extra, name)) return *value;
   ADD_FAILURE() << r.spec.technique << " reports no counter '" << name << "'";
   return std::nan("");
 }

@@ -25,8 +25,8 @@ uint32_t PixelLocks::failures() const {
   return failures;
 }
 
-std::vector<std::pair<std::string, double>> PixelLocks::counters() const {
-  return {{"lock_failures", double(failures())}, {"interlock", ordered_access_extension().empty() ? 0.0 : 1.0}};
+std::vector<Figure> PixelLocks::counters() const {
+  return {{"lock_failures", double(failures())}, {"interlock", ordered_access_extension().empty() ? 0.0 : 1.0, Combine::max}};
 }
 
 }  // namespace oit

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/technique.h"
 #include "gl/handles.h"
 
 namespace oit {
@@ -25,7 +26,7 @@ class PixelLocks {
   uint32_t failures() const;
   // `extra` counters: lock_failures, interlock (1 when the shaders were
   // built with a fragment shader interlock extension, 0 on the fallback).
-  std::vector<std::pair<std::string, double>> counters() const;
+  std::vector<Figure> counters() const;
 
  private:
   Buffer buffer_;
