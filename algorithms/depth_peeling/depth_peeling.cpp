@@ -236,6 +236,8 @@ void register_technique_depth_peeling(TechniqueRegistry& registry) {
   d.quality_sweep = {{"max_passes", {"2", "4", "8", "16", "32", "64"}}};
   d.adaptive_switches = {{"early_exit", "stops peeling at the first pass that an occlusion query finds empty (depth complexity + 1 passes)",
                           {{"early_exit", "true"}}, {{"early_exit", "false"}}}};
+  // Per-pixel textures only (tie_break=triangle_id's 56 bytes, the larger variant): tiled only under a small --memory-budget.
+  d.storage_need = [](const ParamSet&, const FrameContent& content) { return StorageNeed{0, content.pixels() * 56}; };
   d.create = [](const ParamSet& params) -> std::unique_ptr<Technique> {
     const int max_passes = int(params.integer("max_passes"));
     const bool early_exit = params.boolean("early_exit");

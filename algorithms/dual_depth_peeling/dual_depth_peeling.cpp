@@ -209,6 +209,8 @@ void register_technique_dual_depth_peeling(TechniqueRegistry& registry) {
   d.quality_sweep = {{"max_passes", {"2", "3", "5", "9", "17", "33"}}};
   d.adaptive_switches = {{"early_exit", "stops peeling when an occlusion query finds a pass empty (about half the depth complexity + 1 passes)",
                           {{"early_exit", "true"}}, {{"early_exit", "false"}}}};
+  // Per-pixel textures only (tie_break=triangle_id's 96 bytes, the larger variant): tiled only under a small --memory-budget.
+  d.storage_need = [](const ParamSet&, const FrameContent& content) { return StorageNeed{0, content.pixels() * 96}; };
   d.create = [](const ParamSet& params) -> std::unique_ptr<Technique> {
     const int max_passes = int(params.integer("max_passes"));
     const bool early_exit = params.boolean("early_exit");

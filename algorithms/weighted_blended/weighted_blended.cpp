@@ -117,6 +117,8 @@ void register_technique_weighted_blended(TechniqueRegistry& registry) {
   d.exactness = Exactness::approximate;
   d.quality_sweep = {{"weight", {"eq7", "eq8", "eq9", "eq10"}}};
   d.create = [](const ParamSet& params) { return std::make_unique<WeightedBlended>(params); };
+  // Two accumulation textures (precision=float's 20 bytes per pixel, the larger).
+  d.storage_need = [](const ParamSet&, const FrameContent& content) { return StorageNeed{0, content.pixels() * 20}; };
   registry.add(std::move(d));
 }
 

@@ -110,7 +110,9 @@ uint64_t parse_memory_size(const std::string& text) {
 std::string format_bytes(uint64_t bytes) {
   char text[32];
   if (bytes >= (uint64_t(1) << 30)) std::snprintf(text, sizeof text, "%.1f GiB", double(bytes) / double(1 << 30));
-  else std::snprintf(text, sizeof text, "%.0f MiB", double(bytes) / double(1 << 20));
+  else if (bytes >= (uint64_t(1) << 20)) std::snprintf(text, sizeof text, "%.0f MiB", double(bytes) / double(1 << 20));
+  else if (bytes >= 1024) std::snprintf(text, sizeof text, "%.0f KiB", double(bytes) / 1024.0);
+  else std::snprintf(text, sizeof text, "%llu bytes", static_cast<unsigned long long>(bytes));
   return text;
 }
 
