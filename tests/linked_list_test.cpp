@@ -432,3 +432,45 @@ TEST(LinkedList, UnknownPoolSizingIsAnErrorNamingTheParameter) {
 
 }  // namespace
 }  // namespace oit
+
+// ---- storage=compact: 12-byte nodes (depth, RGBA8, next) ----------------
+
+namespace oit {
+namespace {
+
+// packUnorm4x8 rounds each straight channel to the nearest 1/255: delta =
+// 0.5/255. Front to back, C = sum T_i a_i c_i: the colour errors add up to
+// at most delta (sum T_i a_i <= 1); an alpha error moves C by at most
+// delta T_i per layer, and sum T_i <= 1/a for a constant alpha a. Hence
+// |error| <= delta (1 + 1/a), plus delta for the composite's own rounding.
+double compact_bound(double alpha) { return 0.5 / 255.0 * (2.0 + 1.0 / alpha); }
+
+TEST(LinkedListCompact, WithinTheRgba8BoundOnThirtyTwoQuadsForEverySort) {
+  for (const std::string sort : {"insertion", "selection", "network"}) {
+    const RunResult compact =
+        test::render_once("linked_list", {{"sort", sort}, {"storage", "compact"}}, "quads", {{"layers", "32"}}, 48, 40);
+    const RunResult full = test::render_once("linked_list", {{"sort", sort}}, "quads", {{"layers", "32"}}, 48, 40);
+    ASSERT_TRUE(compact.error && full.error);
+    EXPECT_LE(compact.error->max_abs, compact_bound(0.3)) << sort;
+    EXPECT_GT(compact.error->max_abs, full.error->max_abs) << sort << ": colours were not quantised";
+    // The same fragments in 12 instead of 32 bytes a node: per pixel
+    // 20 + 40 x 12 against 20 + 40 x 32 bytes (a pool of 1.25 x 32 nodes).
+    EXPECT_EQ(compact.counters.fragments_stored, full.counters.fragments_stored);
+    EXPECT_LT(double(compact.counters.bytes_allocated), 0.4 * double(full.counters.bytes_allocated)) << sort;
+  }
+}
+
+TEST(LinkedListCompact, TruncationAndMeshesStayWithinTheBound) {
+  // max_per_pixel=8 on 32 layers: the truncating draw reads compact nodes too.
+  const RunResult compact = test::render_once("linked_list", {{"storage", "compact"}, {"max_per_pixel", "8"}}, "quads",
+                                              {{"layers", "32"}}, 40, 32);
+  const RunResult full = test::render_once("linked_list", {{"max_per_pixel", "8"}}, "quads", {{"layers", "32"}}, 40, 32);
+  EXPECT_EQ(compact.counters.fragments_dropped, full.counters.fragments_dropped);
+  EXPECT_LE(compare_images(compact.image, full.image).max_abs, compact_bound(0.3));
+  const RunResult spheres = test::render_once("linked_list", {{"storage", "compact"}}, "spheres", {}, 48, 48);
+  ASSERT_TRUE(spheres.error);
+  EXPECT_LE(spheres.error->max_abs, 4.0 / 255.0);
+}
+
+}  // namespace
+}  // namespace oit

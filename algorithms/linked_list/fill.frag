@@ -16,5 +16,11 @@ void main() {
   OIT_ATOMIC_APPEND(ll_node_count, index);
   if (index >= u_capacity) return;  // pool overflow: the host grows the pool and re-renders
   const uint next = atomicExchange(ll_heads[pixel * uint(LL_HEADS) + position % uint(LL_HEADS)], index);
+#if defined(LL_COMPACT)
+  ll_words[LL_NODE_WORDS * index + 0u] = floatBitsToUint(oit_view_depth());
+  ll_words[LL_NODE_WORDS * index + 1u] = packUnorm4x8(oit_shade());
+  ll_words[LL_NODE_WORDS * index + 2u] = next;
+#else
   ll_nodes[index] = LinkedListNode(oit_shade(), uvec4(floatBitsToUint(oit_view_depth()), oit_triangle_id(), next, 0u));
+#endif
 }

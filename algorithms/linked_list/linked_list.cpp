@@ -26,7 +26,8 @@
 namespace oit {
 namespace {
 
-constexpr GLsizeiptr kNodeBytes = 32;     // LinkedListNode in nodes.glsl
+// LinkedListNode in nodes.glsl; storage=compact: three words (LL_COMPACT).
+constexpr GLsizeiptr kNodeBytes = 32, kCompactNodeBytes = 12;
 constexpr GLsizeiptr kCounterBytes = 12;  // node_count, max_length, dropped
 // Interleaved lists per pixel (LL_HEADS in nodes.glsl): the resolve walks
 // them side by side so that their node loads overlap (README: 4 heads).
@@ -88,9 +89,11 @@ class LinkedList final : public Technique {
         length_classes_(params.boolean("length_classes") && sort_ == "network"),
         max_per_pixel_(uint32_t(params.integer("max_per_pixel"))),
         nodes_per_pixel_(uint64_t(params.integer("initial_nodes_per_pixel"))),
-        fill_(build_geometry_program("algorithms/linked_list/fill.frag")),
+        compact_(params.choice("storage") == "compact"),
+        fill_(build_geometry_program("algorithms/linked_list/fill.frag", storage_defines())),
         counters_(make_buffer(kCounterBytes)),
-        pool_("linked_list", pool_kind(pool_sizing_), kNodeBytes, [this](uint64_t capacity) { allocate_pool(capacity); }) {
+        pool_("linked_list", pool_kind(pool_sizing_), node_bytes(), [this](uint64_t capacity) { allocate_pool(capacity); },
+              1, compact_ ? 4 : 16) {
     linked_list::resolve_defines(sort_, 1);  // rejects an unknown sort before any frame
     glProgramUniform1ui(fill_.id(), kMaxPerPixelLocation, max_per_pixel_);
     if (pool_sizing_ == PoolSizing::count) {
@@ -158,7 +161,7 @@ class LinkedList final : public Technique {
     frame.bind_target();
     bind_storage();
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    glBindImageTexture(kNodesImageUnit, nodes_view_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32UI);
+    glBindImageTexture(kNodesImageUnit, nodes_view_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, node_format());
     glBindTextureUnit(kHeadsUnit, heads_view_.id());
     glBindTextureUnit(kLengthsUnit, lengths_view_.id());
     sizes_ = {array_size_};
@@ -180,12 +183,12 @@ class LinkedList final : public Technique {
     // their nearest max_per_pixel fragments.
     if (dropped_ > 0) draw_fullscreen(frame, program("truncated", "", max_per_pixel_));
     for (GLuint unit : {kHeadsUnit, kLengthsUnit}) glBindTextureUnit(unit, 0);
-    glBindImageTexture(kNodesImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32UI);
+    glBindImageTexture(kNodesImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, node_format());
   }
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
-    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * kPixelBytes + pool_.capacity() * uint64_t(kNodeBytes) +
+    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * kPixelBytes + pool_.capacity() * uint64_t(node_bytes()) +
                         kCounterBytes + (length_classes_ ? classes_.bytes_allocated() : 0);
     c.fragments_stored = stored_;
     c.fragments_dropped = dropped_;
@@ -196,6 +199,15 @@ class LinkedList final : public Technique {
   }
 
  private:
+  GLsizeiptr node_bytes() const { return compact_ ? kCompactNodeBytes : kNodeBytes; }
+  // The resolve's image view of the nodes: words (compact) or 16-byte texels.
+  GLenum node_format() const { return compact_ ? GL_R32UI : GL_RGBA32UI; }
+  ShaderDefines storage_defines() const { return compact_ ? ShaderDefines{{"LL_COMPACT", "1"}} : ShaderDefines{}; }
+  ShaderDefines with_storage(ShaderDefines defines) const {
+    for (const auto& d : storage_defines()) defines.push_back(d);
+    return defines;
+  }
+
   uint64_t worst_case_nodes() const { return uint64_t(width_) * uint64_t(height_) * max_per_pixel_; }
 
   // pool_sizing=count: one geometry pass whose fragments the rasterizer
@@ -230,7 +242,7 @@ class LinkedList final : public Technique {
   // classifies the tiles as classify.comp did.
   void work_saved(TechniqueCounters& c) const {
     const double bytes_not_allocated =
-        pool_sizing_ == PoolSizing::worst_case ? 0.0 : (double(worst_case_nodes()) - double(pool_.capacity())) * kNodeBytes;
+        pool_sizing_ == PoolSizing::worst_case ? 0.0 : (double(worst_case_nodes()) - double(pool_.capacity())) * double(node_bytes());
     c.work_saved.push_back({"bytes_not_allocated", bytes_not_allocated});
     const bool network = sort_ == "network" && array_size_ <= kLargestNetwork;
     uint64_t not_sorted = 0, short_groups = 0, exchanges_avoided = 0;
@@ -287,9 +299,9 @@ class LinkedList final : public Technique {
           kind == "resolve"
               ? build_program({{GL_VERTEX_SHADER, "algorithms/linked_list/tile.vert"},
                                {GL_FRAGMENT_SHADER, "algorithms/linked_list/resolve.frag"}},
-                              linked_list::tile_defines(linked_list::resolve_defines(sort, array_size)))
+                              with_storage(linked_list::tile_defines(linked_list::resolve_defines(sort, array_size))))
               : build_fullscreen_program("algorithms/linked_list/resolve_truncated.frag",
-                                         {{"LL_CAPACITY", std::to_string(array_size)}});
+                                         with_storage({{"LL_CAPACITY", std::to_string(array_size)}}));
       it = programs_.emplace(key, std::move(built)).first;
       glProgramUniform1i(it->second.id(), kWidthLocation, width_);
     }
@@ -297,8 +309,8 @@ class LinkedList final : public Technique {
   }
 
   void allocate_pool(uint64_t capacity) {
-    nodes_ = make_buffer(GLsizeiptr(capacity) * kNodeBytes);
-    nodes_view_ = make_buffer_texture(nodes_, GL_RGBA32UI);
+    nodes_ = make_buffer(GLsizeiptr(capacity) * node_bytes());
+    nodes_view_ = make_buffer_texture(nodes_, node_format());
     glProgramUniform1ui(fill_.id(), kCapacityLocation, GLuint(capacity));
   }
 
@@ -314,6 +326,7 @@ class LinkedList final : public Technique {
   bool length_classes_;
   uint32_t max_per_pixel_;
   uint64_t nodes_per_pixel_;
+  bool compact_;  // storage=compact: 12-byte nodes
   Program fill_, count_;
   Query count_query_;  // pool_sizing=count's fragment count
   std::map<std::string, Program> programs_;  // by "kind:sort:array size"
@@ -353,6 +366,10 @@ void register_technique_linked_list(TechniqueRegistry& registry) {
                         "node pool: previous_frame (1.25 x the last frame's fragments, grown with a re-render "
                         "on overflow), count (a counting pass first, then exactly that many nodes; never "
                         "overflows) or worst_case (W x H x max_per_pixel nodes, allocated once)"),
+      ParamSpec::choice("storage", "full", {"full", "compact"},
+                        "node layout: full (32 bytes: float RGBA, view depth, triangle id, next; exact) or "
+                        "compact (12 bytes: view depth, RGBA8 colour, next; colour quantised to 1/255 and "
+                        "coplanar fragments ordered by allocation instead of triangle id)"),
       ParamSpec::boolean("length_classes", true,
                          "sort=network only: resolve each 4x4 tile with the smallest network that holds its "
                          "longest list: a compute pass classifies the tiles (1 = no sort, 8, 16, ... the frame's "
@@ -361,7 +378,9 @@ void register_technique_linked_list(TechniqueRegistry& registry) {
   d.stages = {"count", "clear", "fill", "compose"};
   // Every fragment is kept and exactly ordered (float blend) unless a list exceeds max_per_pixel.
   d.exactness = Exactness::exact;
-  d.quality_sweep = {{"max_per_pixel", {"1", "2", "4", "8", "16", "32", "64"}}, {"sort", {"insertion", "network"}}};
+  d.quality_sweep = {{"max_per_pixel", {"1", "2", "4", "8", "16", "32", "64"}},
+                     {"sort", {"insertion", "network"}},
+                     {"storage", {"compact", "full"}}};
   d.adaptive_switches = {
       {"pool_count", "sizes the node pool exactly from a counting pass instead of W x H x max_per_pixel",
        {{"pool_sizing", "count"}}, {{"pool_sizing", "worst_case"}}},
@@ -377,7 +396,8 @@ void register_technique_linked_list(TechniqueRegistry& registry) {
         sizing == PoolSizing::count        ? std::max<uint64_t>(content.fragments, 1)
         : sizing == PoolSizing::worst_case ? content.pixels() * uint64_t(params.integer("max_per_pixel"))
                                            : fragment_pool::nodes_for(content, uint64_t(params.integer("initial_nodes_per_pixel")));
-    return StorageNeed{nodes * kNodeBytes, content.pixels() * (kPixelBytes + 2) + nodes * kNodeBytes};
+    const uint64_t node = params.choice("storage") == "compact" ? kCompactNodeBytes : kNodeBytes;
+    return StorageNeed{nodes * node, content.pixels() * (kPixelBytes + 2) + nodes * node};
   };
   registry.add(std::move(d));
 }

@@ -11,16 +11,27 @@
 // linked_list.cpp's kHeads; the resolve reads a pixel's heads as one uvec4.
 #define LL_HEADS 4
 
+#if defined(LL_COMPACT)
+// storage=compact: 12 bytes a node, three words: view depth (float bits),
+// straight RGBA packed as RGBA8 (packUnorm4x8), next node. No triangle id:
+// coplanar fragments are ordered by node index (see README).
+#define LL_NODE_WORDS 3u
+#else
 // Read and written as whole vectors: on Mesa 22.3 llvmpipe, reading single
 // scalar members of a struct array in a loop returned wrong values.
 struct LinkedListNode {
   vec4 color;  // straight RGBA from oit_shade(), unpacked float
   uvec4 link;  // x: view depth (float bits), y: stable triangle id, z: next node, w: unused (std430 padding)
 };
+#endif
 
 // Pixel p's list c starts at ll_heads[p * LL_HEADS + c].
 layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) coherent buffer LinkedListHeads { uint ll_heads[]; };
+#if defined(LL_COMPACT)
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) buffer LinkedListNodes { uint ll_words[]; };
+#else
 layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) buffer LinkedListNodes { LinkedListNode ll_nodes[]; };
+#endif
 // node_count: fragments the fill produced (may exceed the pool: that is how
 // the host sees an overflow). max_length: the longest list, which sizes the
 // resolve. dropped: fragments beyond max_per_pixel in their pixel, which the

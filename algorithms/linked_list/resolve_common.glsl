@@ -10,15 +10,28 @@ layout(location = 0) out vec4 out_color;
 // The nodes are read as an image: on llvmpipe (Mesa 22.3) the network
 // resolve of 32 quads took 14.5 ms with imageLoad against 19.1 ms with
 // texelFetch of the same buffer (the insertion resolve: 44.0 against 43.2).
+#if defined(LL_COMPACT)
+layout(binding = 0, r32ui) readonly uniform uimageBuffer u_nodes;
+#else
 layout(binding = 0, rgba32ui) readonly uniform uimageBuffer u_nodes;
+#endif
 layout(binding = 1) uniform usamplerBuffer u_heads;
 layout(binding = 2) uniform usamplerBuffer u_lengths;
 
 // The heads of the pixel's LL_HEADS lists (nodes.glsl), one RGBA32UI texel.
 uvec4 heads_of(uint pixel) { return texelFetch(u_heads, int(pixel)); }
 uint length_of(uint pixel) { return texelFetch(u_lengths, int(pixel)).x; }
+#if defined(LL_COMPACT)
+// y (the tie-break) is the node index: unique, but not stable across frames.
+uvec4 link_of(uint node) {
+  const int at = int(LL_NODE_WORDS * node);
+  return uvec4(imageLoad(u_nodes, at).x, node, imageLoad(u_nodes, at + 2).x, 0u);
+}
+vec4 color_of(uint node) { return unpackUnorm4x8(imageLoad(u_nodes, int(LL_NODE_WORDS * node + 1u)).x); }
+#else
 uvec4 link_of(uint node) { return imageLoad(u_nodes, int(2u * node + 1u)); }
 vec4 color_of(uint node) { return uintBitsToFloat(imageLoad(u_nodes, int(2u * node))); }
+#endif
 
 // A sort element: x = view depth bits mapped to unsigned order, y = stable
 // triangle id (unique per pixel: the deterministic tie-break), z = node index.

@@ -8,11 +8,12 @@
 namespace oit {
 
 FragmentPool::FragmentPool(std::string owner, Sizing sizing, uint64_t largest_record_bytes,
-                           std::function<void(uint64_t)> allocate, uint64_t smallest)
+                           std::function<void(uint64_t)> allocate, uint64_t smallest, uint64_t view_texel_bytes)
     : owner_(std::move(owner)),
       sizing_(sizing),
       largest_record_bytes_(largest_record_bytes),
       smallest_(std::max<uint64_t>(smallest, 1)),
+      view_texel_bytes_(std::max<uint64_t>(view_texel_bytes, 1)),
       allocate_(std::move(allocate)) {}
 
 void FragmentPool::reset(uint64_t nodes) {
@@ -49,7 +50,7 @@ void FragmentPool::allocate(uint64_t capacity) {
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
   glGetInteger64v(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
   const uint64_t bytes = capacity * largest_record_bytes_;
-  const uint64_t texels = bytes / 16;  // the views read records as 16-byte texels
+  const uint64_t texels = bytes / view_texel_bytes_;
   if (capacity > 0x7ffffffeull || (max_block > 0 && bytes > uint64_t(max_block)) ||
       (max_texels > 0 && texels > uint64_t(max_texels))) {
     throw std::runtime_error(owner_ + ": a pool of " + std::to_string(capacity) + " fragments (" +

@@ -55,10 +55,11 @@ class FragmentPool {
   enum class Sizing { previous_frame, exact, fixed };
 
   // `largest_record_bytes`: the pool's largest per-node buffer, checked
-  // against the device's largest storage block (and, as 16-byte texels,
-  // its largest buffer texture); `smallest` nodes at least.
+  // against the device's largest storage block (and, read through a buffer
+  // texture of `view_texel_bytes` texels, its largest buffer texture);
+  // `smallest` nodes at least.
   FragmentPool(std::string owner, Sizing sizing, uint64_t largest_record_bytes,
-               std::function<void(uint64_t capacity)> allocate, uint64_t smallest = 1);
+               std::function<void(uint64_t capacity)> allocate, uint64_t smallest = 1, uint64_t view_texel_bytes = 16);
 
   // At the technique's resize(): `nodes` now, and no history.
   void reset(uint64_t nodes);
@@ -80,7 +81,7 @@ class FragmentPool {
 
   std::string owner_;
   Sizing sizing_;
-  uint64_t largest_record_bytes_, smallest_;
+  uint64_t largest_record_bytes_, smallest_, view_texel_bytes_;
   std::function<void(uint64_t)> allocate_;
   uint64_t capacity_ = 0, overflow_retries_ = 0;
   std::vector<uint64_t> produced_by_tile_;  // the last fill of each tile (Frame::tile_index)
