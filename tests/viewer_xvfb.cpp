@@ -100,6 +100,12 @@ TEST(Viewer, ScreenshotSceneAreaMatchesRender) {
   expect_scene_area_matches("--technique linked_list --scene quads --size 128x96", "linked_list_quads");
 }
 
+// The viewer's defaults (quads, 512x512) with linked_list: 10.5M fragments,
+// more than one 128 MiB storage block on llvmpipe, rendered in tiles.
+TEST(Viewer, DefaultSizeLinkedListRendersInTiles) {
+  expect_scene_area_matches("--technique linked_list --scene quads --size 512x512", "linked_list_512");
+}
+
 TEST(Viewer, ScreenshotMatchesRenderFromARandomViewpointWithParameters) {
   expect_scene_area_matches(
       "--technique kbuffer --set k=2 --scene spheres --size 96x96 --camera random:4:7@2 --background 0.2,0.3,0.4",
