@@ -87,7 +87,7 @@ int run_list(const CommonOptions& common) {
   std::printf("Device: %s (%s, %s)%s\n\n", device.renderer.c_str(), device.version.c_str(), platform_text(device).c_str(),
               device.software ? " — software GL: stage clock defaults to wall+glFinish" : "");
   const DeviceLimits limits = query_device_limits();
-  std::printf("Limits: largest storage block %s; memory budget %s (%s). A technique whose storage for a frame "
+  std::printf("Limits: largest buffer %s (storage block, buffer texture); memory budget %s (%s). A technique whose storage for a frame "
               "exceeds either renders in screen tiles (CSV column `tiles`; --memory-budget sets the budget).\n\n",
               format_bytes(limits.largest_buffer).c_str(), format_bytes(limits.memory_budget).c_str(),
               limits.budget_source.c_str());

@@ -73,9 +73,13 @@ std::vector<ScreenRect> grid(int width, int height, int tile_width, int tile_hei
 
 DeviceLimits query_device_limits(std::optional<uint64_t> budget) {
   DeviceLimits limits;
-  GLint64 block = 0;
+  GLint64 block = 0, texels = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
+  glGetInteger64v(GL_MAX_TEXTURE_BUFFER_SIZE, &texels);
   limits.largest_buffer = block > 0 ? uint64_t(block) : uint64_t(128) << 20;
+  // Techniques also read their buffers through buffer textures, whose limit
+  // counts texels of at least 4 bytes (R32UI views).
+  if (texels > 0) limits.largest_buffer = std::min(limits.largest_buffer, uint64_t(texels) * 4);
   if (budget) {
     limits.memory_budget = *budget;
     limits.budget_source = "--memory-budget";

@@ -26,7 +26,9 @@ namespace oit {
 
 // What bounds a frame's storage on this device.
 struct DeviceLimits {
-  uint64_t largest_buffer = 0;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
+  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE, or 4 x GL_MAX_TEXTURE_BUFFER_SIZE
+  // (texels) when smaller
+  uint64_t largest_buffer = 0;
   uint64_t memory_budget = 0;   // all of a technique's storage together
   std::string budget_source;    // how memory_budget was chosen, for `list`
 };
