@@ -116,7 +116,9 @@ class ReproduceTest(unittest.TestCase):
         rows = rows_of(self.out, "layers")
         with open(os.path.join(self.out, "layers.csv"), "a", newline="") as f:
             writer = csv.DictWriter(f, fieldnames=list(rows[0]), lineterminator="\n")
-            writer.writerows(dict(r, device="Other GPU", platform="egl-device") for r in rows)
+            # Another machine's recording: its own run ids.
+            writer.writerows(dict(r, device="Other GPU", platform="egl-device", run_id=r["run_id"] + "-other")
+                             for r in rows)
         calls = len(self.bench_calls())
         _, printed = self.reproduce("--only", "layers", "--plots-only")
         self.assertEqual(len(self.bench_calls()), calls)

@@ -37,8 +37,10 @@ oitbench bench --technique weighted_blended --scene torus --scene-set slices=8 -
 """
 PR_SET_PDEATHSIG = 1  # <sys/prctl.h>
 # Columns that differ between two runs of the same configuration.
+# Differ between two recordings of the same runs: timings, and the run id
+# (random per bench process).
 TIMING = {"timestamp", "median_ms", "min_ms", "p05_ms", "p95_ms", "mean_ms", "other_cpu_load", "noisy",
-          "clock_disagreement"}
+          "clock_disagreement", "run_id"}
 RUN_KEY = ["technique", "params", "scene", "scene_params", "camera", "width", "height", "scene_rect", "clock",
            "stage", "device", "platform"]
 

@@ -229,6 +229,9 @@ RunResult Harness::run(const RunSpec& spec) {
       result.message = reason;
       return result;
     }
+    // The image first: at sizes the device cannot hold, this is what fails,
+    // before the counting pass spends time on them.
+    RenderTarget target(spec.width, spec.height);
     const DepthComplexity& depth = complexity(loaded, spec.width, spec.height);
     result.scene_fragments = depth.fragments;
     result.max_depth_complexity = depth.max;
@@ -236,7 +239,7 @@ RunResult Harness::run(const RunSpec& spec) {
     result.psi = depth.psi;
     OtherProcessLoad load;
     load.start();
-    execute(spec, result);
+    execute(spec, result, &target);
     result.other_process_load = load.stop();
     result.noisy = result.other_process_load > kNoisyLoadThreshold;
     // The scene's size goes with every row so plots against triangles or
@@ -294,7 +297,7 @@ TilePlan Harness::tile_plan(const RunSpec& spec) {
   return plan_tiles(need, halo, complexity(loaded, spec.width, spec.height), query_device_limits(spec.memory_budget));
 }
 
-void Harness::execute(const RunSpec& spec, RunResult& result) {
+void Harness::execute(const RunSpec& spec, RunResult& result, RenderTarget* given_target) {
   const TechniqueDescriptor& descriptor = registry_.get(spec.technique);
   const ParamSet params(descriptor.params, spec.params, "technique '" + spec.technique + "'");
   LoadedScene& loaded = scene(spec.scene, spec.scene_params, spec.submission_order, spec.camera);
@@ -304,7 +307,9 @@ void Harness::execute(const RunSpec& spec, RunResult& result) {
   const Tiling tiling(tile_plan(spec));
   std::unique_ptr<Technique> technique = descriptor.create(params);
   technique->resize(tiling.plan().frame_width(), tiling.plan().frame_height());
-  RenderTarget target(spec.width, spec.height);
+  std::optional<RenderTarget> own_target;
+  if (!given_target) own_target.emplace(spec.width, spec.height);
+  RenderTarget& target = given_target ? *given_target : *own_target;
   StageClock clock(clock_kind);
   const float aspect = float(spec.width) / float(spec.height);
   const Frame frame{*loaded.gpu,  loaded.scene.camera.view,   loaded.scene.camera.projection(aspect),

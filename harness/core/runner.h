@@ -160,7 +160,8 @@ class Harness {
   struct LoadedScene;
   LoadedScene& scene(const std::string& spec, const RawParams& params, const std::string& order = "original",
                      const std::string& camera = "default");
-  void execute(const RunSpec& spec, RunResult& result);
+  // Renders into `target` (the run's image, width x height) or a target of its own.
+  void execute(const RunSpec& spec, RunResult& result, RenderTarget* target = nullptr);
   const DepthComplexity& complexity(LoadedScene& loaded, int width, int height);
   // Sets result.error, or says in result.message why there is no reference.
   void compare_with_reference(const RunSpec& spec, RunResult& result);

@@ -16,14 +16,18 @@ std::string LiveTechnique::configure(const std::string& id, const RawParams& par
       return id + " cannot run here: " + reason;
     }
     // Build everything first so a failure leaves the running one intact.
-    // Resized by the first frame, once its tile plan is known.
+    // Sized for the whole image as a start (so counters and diagnostics
+    // are valid before the first frame); the first frame's tile plan
+    // resizes it when the frame must be tiled.
     std::unique_ptr<Technique> technique = descriptor.create(values);
+    technique->resize(width, height);
     auto target = std::make_unique<RenderTarget>(width, height);
     gl_check("creating " + id);
     technique_ = std::move(technique);
     descriptor_ = &descriptor;
     values_ = std::make_unique<ParamSet>(values);
-    tiling_.reset();
+    tiling_ = std::make_unique<Tiling>(TilePlan{width, height, width, height, 0, {{0, 0, width, height}}, {}});
+    planned_scene_ = nullptr;
     target_ = std::move(target);
     clock_ = std::make_unique<StageClock>(clock_kind_);
     frames_in_window_ = 0;
@@ -55,14 +59,14 @@ void LiveTechnique::render(const SceneGpu& scene, const glm::mat4& view, const g
 }
 
 void LiveTechnique::plan_for(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection) {
-  if (tiling_ && planned_scene_ == &scene && planned_view_ == view && planned_projection_ == projection) return;
+  if (planned_scene_ == &scene && planned_view_ == view && planned_projection_ == projection) return;
   std::function<StorageNeed(const FrameContent&)> need;
   if (descriptor_->storage_need)
     need = [this](const FrameContent& content) { return descriptor_->storage_need(*values_, content); };
   const int halo = descriptor_->tile_halo ? descriptor_->tile_halo(*values_) : 0;
   TilePlan plan = plan_tiles(need, halo, measure_depth_complexity(scene, view, projection, width_, height_),
                              query_device_limits());
-  if (!tiling_ || plan.frame_width() != tiling_->plan().frame_width() ||
+  if (plan.frame_width() != tiling_->plan().frame_width() ||
       plan.frame_height() != tiling_->plan().frame_height() || plan.count() != tiling_->plan().count()) {
     technique_->resize(plan.frame_width(), plan.frame_height());
   }

@@ -70,7 +70,7 @@ class LiveTechnique {
   std::unique_ptr<Technique> technique_;
   const TechniqueDescriptor* descriptor_ = nullptr;
   std::unique_ptr<ParamSet> values_;
-  std::unique_ptr<Tiling> tiling_;  // null until the first frame plans it
+  std::unique_ptr<Tiling> tiling_;  // one tile until the first frame plans it
   glm::mat4 planned_view_{0.0f}, planned_projection_{0.0f};
   const SceneGpu* planned_scene_ = nullptr;
   std::unique_ptr<RenderTarget> target_;
