@@ -17,6 +17,8 @@
 #define OIT_UNIFORM_PROJECTION 1
 #define OIT_UNIFORM_LIT 2
 #define OIT_UNIFORM_BACKGROUND 3
+// ivec2: where the frame's pixel (0, 0) lies in the whole image (a screen tile's offset; 0 untiled).
+#define OIT_UNIFORM_PIXEL_ORIGIN 4
 // Locations from here on are free for techniques.
 #define OIT_FIRST_TECHNIQUE_UNIFORM 8
 

@@ -15,6 +15,13 @@ layout(location = OIT_UNIFORM_LIT) uniform bool u_lit;
 
 layout(std430, binding = OIT_BINDING_TRIANGLE_IDS) readonly buffer OitTriangleIds { uint oit_triangle_ids[]; };
 
+layout(location = OIT_UNIFORM_PIXEL_ORIGIN) uniform ivec2 u_pixel_origin;
+
+// This fragment's pixel in the whole image, also when the harness renders
+// the frame in screen tiles (gl_FragCoord is then the tile's): what a
+// per-pixel random seed must use so that tiled and untiled images agree.
+ivec2 oit_image_pixel() { return ivec2(gl_FragCoord.xy) + u_pixel_origin; }
+
 // Stable triangle id: the deterministic depth tie-break, unchanged when the
 // triangles are submitted in another order.
 uint oit_triangle_id() { return oit_triangle_ids[gl_PrimitiveID]; }

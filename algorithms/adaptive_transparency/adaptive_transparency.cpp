@@ -129,6 +129,10 @@ void register_technique_adaptive_transparency(TechniqueRegistry& registry) {
   d.exactness = Exactness::approximate;
   d.quality_sweep = {{"k", {"1", "2", "4", "8", "16"}}};
   d.create = [](const ParamSet& params) { return std::make_unique<AdaptiveTransparency>(params); };
+  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
+    const uint64_t nodes = content.pixels() * uint64_t(params.integer("k") + 1);
+    return StorageNeed{nodes * kNodeBytes, nodes * kNodeBytes + content.pixels() * kPixelBytes};
+  };
   registry.add(std::move(d));
 }
 

@@ -112,6 +112,10 @@ void register_technique_multi_layer_alpha_blending(TechniqueRegistry& registry) 
   d.exactness = Exactness::approximate;
   d.quality_sweep = {{"k", {"1", "2", "4", "8", "16"}}};
   d.create = [](const ParamSet& params) { return std::make_unique<MultiLayerAlphaBlending>(params); };
+  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
+    const uint64_t layers = content.pixels() * uint64_t(params.integer("k"));
+    return StorageNeed{layers * 16, layers * kLayerBytes + content.pixels() * kCountBytes};  // largest: the RGBA32F colours
+  };
   registry.add(std::move(d));
 }
 

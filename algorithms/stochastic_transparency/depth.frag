@@ -25,7 +25,7 @@ float unit_random(inout uint state) {
 void main() {
   const float alpha = oit_shade().a;
   uint state = stochastic_hash(u_seed ^ stochastic_hash(oit_triangle_id() ^
-                                  stochastic_hash(uint(gl_FragCoord.x) | (uint(gl_FragCoord.y) << 16))));
+                                  stochastic_hash(uint(oit_image_pixel().x) | (uint(oit_image_pixel().y) << 16))));
   // floor(alpha S + u), u uniform in [0, 1): on average exactly alpha S samples.
   const uint covered = min(uint(alpha * float(SAMPLES) + unit_random(state)), uint(SAMPLES));
   // Which samples: the first `covered` entries of a random permutation

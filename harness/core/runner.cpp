@@ -106,7 +106,7 @@ bool render_tile(Technique& technique, const Frame& frame, const Tiling& tiling,
   const ScreenRect window = plan.window(tile);
   const Frame part{frame.scene,           frame.view,  window_projection(frame.projection, window, frame.width, frame.height),
                    window.width,          window.height, frame.background, tiling.framebuffer(), frame.clock, index,
-                   plan.count()};
+                   plan.count(),          window.x,    window.y};
   ScreenRect local;
   if (rect) {
     local = intersection(*rect, window);

@@ -19,6 +19,7 @@ void Frame::set_shared_uniforms(GLuint program) const {
   if (is_active(program, "u_projection"))
     glProgramUniformMatrix4fv(program, OIT_UNIFORM_PROJECTION, 1, GL_FALSE, &projection[0][0]);
   if (is_active(program, "u_lit")) glProgramUniform1i(program, OIT_UNIFORM_LIT, scene.scene().lit ? 1 : 0);
+  if (is_active(program, "u_pixel_origin")) glProgramUniform2i(program, OIT_UNIFORM_PIXEL_ORIGIN, origin_x, origin_y);
   if (is_active(program, "u_background"))
     glProgramUniform3f(program, OIT_UNIFORM_BACKGROUND, background.r, background.g, background.b);
 }

@@ -104,9 +104,13 @@ struct Frame {
   // `tile_index` tells the tiles apart (e.g. for per-tile pool history).
   int tile_index = 0;
   int tile_count = 1;
+  // Where this frame's pixel (0, 0) lies in the whole image (a tile's
+  // offset): shaders/shading.glsl's oit_image_pixel().
+  int origin_x = 0, origin_y = 0;
 
   // Sets whichever shared uniforms `program` uses: the camera of
-  // shaders/geometry.vert, u_lit of shading.glsl, u_background of compose.glsl.
+  // shaders/geometry.vert, u_lit and u_pixel_origin of shading.glsl,
+  // u_background of compose.glsl.
   void set_shared_uniforms(GLuint program) const;
   // Binds the target framebuffer with a full viewport.
   void bind_target() const;
