@@ -3,6 +3,7 @@
 // loader's #include / #define / error reporting.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <map>
 
 #include "gl/shader_program.h"
@@ -23,6 +24,17 @@ RunSpec small_run(const std::string& technique, RawParams params = {}) {
   spec.warmup = 0;
   spec.frames = 1;
   return spec;
+}
+
+// tests/CMakeLists.txt gives every discovered test both variables (through
+// `cmake -E env`): the reference cache off, Mesa's shader cache in the build.
+TEST(TestEnvironment, CtestGivesBothVariables) {
+  const char* reference_cache = std::getenv("OIT_REFERENCE_CACHE");
+  const char* shader_cache = std::getenv("MESA_SHADER_CACHE_DIR");
+  ASSERT_NE(reference_cache, nullptr) << "run through ctest";
+  EXPECT_STREQ(reference_cache, "off");
+  ASSERT_NE(shader_cache, nullptr) << "run through ctest";
+  EXPECT_EQ(std::string(shader_cache), std::string(OIT_BINARY_DIR) + "/mesa_shader_cache");
 }
 
 TEST(Registry, ListsTheFoundationTechniquesAndTheReference) {
