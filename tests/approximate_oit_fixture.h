@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "app/check_order.h"
-#include "gl_fixture.h"
-#include "gl/shader_capabilities.h"
+#include "harness/app/check_order.h"
+#include "tests/gl_fixture.h"
+#include "harness/gl/shader_capabilities.h"
 
 namespace oit::test {
 

@@ -11,12 +11,12 @@
 #include <set>
 #include <sstream>
 
-#include "core/image.h"
-#include "oitbench_process.h"
-#include "core/results_csv.h"
-#include "core/technique.h"
-#include "scene_library.h"
-#include "stacked_quads.h"
+#include "harness/core/image.h"
+#include "tests/oitbench_process.h"
+#include "harness/core/results_csv.h"
+#include "harness/core/technique.h"
+#include "scenes/scene_library.h"
+#include "scenes/stacked_quads.h"
 
 namespace oit {
 namespace {

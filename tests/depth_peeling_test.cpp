@@ -21,7 +21,7 @@
 #include <utility>
 #include <vector>
 
-#include "gl_fixture.h"
+#include "tests/gl_fixture.h"
 
 namespace oit {
 namespace {

@@ -20,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-#include "gl_fixture.h"
+#include "tests/gl_fixture.h"
 
 namespace oit {
 namespace {

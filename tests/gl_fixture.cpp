@@ -1,11 +1,11 @@
-#include "gl_fixture.h"
+#include "tests/gl_fixture.h"
 
 #include <gtest/gtest.h>
 
-#include "core/image.h"
-#include "gl/check.h"
-#include "scene.h"
-#include "scene_library.h"
+#include "harness/core/image.h"
+#include "harness/gl/check.h"
+#include "scenes/scene.h"
+#include "scenes/scene_library.h"
 
 namespace oit::test {
 

@@ -1,6 +1,6 @@
 #pragma once
 // One headless GL context and harness per test process, created on first use.
-#include "core/runner.h"
+#include "harness/core/runner.h"
 
 namespace oit::test {
 

@@ -6,9 +6,9 @@
 #include <cstdlib>
 #include <map>
 
-#include "gl/shader_program.h"
-#include "gl_fixture.h"
-#include "scene_library.h"
+#include "harness/gl/shader_program.h"
+#include "tests/gl_fixture.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 namespace {

@@ -11,8 +11,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/error_metrics.h"
-#include "gl_fixture.h"
+#include "harness/core/error_metrics.h"
+#include "tests/gl_fixture.h"
 
 namespace oit {
 namespace {

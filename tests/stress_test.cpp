@@ -5,7 +5,7 @@
 // children fork from a clean state.
 #include <gtest/gtest.h>
 
-#include "app/stress.h"
+#include "harness/app/stress.h"
 
 namespace oit {
 namespace {

@@ -8,10 +8,10 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/fragment_pool.h"
-#include "core/tiling.h"
-#include "gl_fixture.h"
-#include "scene_library.h"
+#include "harness/core/fragment_pool.h"
+#include "harness/core/tiling.h"
+#include "tests/gl_fixture.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 namespace {

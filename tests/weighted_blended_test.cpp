@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "gl_fixture.h"
+#include "tests/gl_fixture.h"
 
 namespace oit {
 namespace {

@@ -16,13 +16,13 @@
 #include <optional>
 #include <stdexcept>
 
-#include "accuracy.h"
-#include "core/list_length_pass.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "transfer_functions.h"
-#include "../../shaders/bindings.h"
+#include "algorithms/bucketed_kbuffer/accuracy.h"
+#include "harness/core/list_length_pass.h"
+#include "harness/core/technique.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "algorithms/bucketed_kbuffer/transfer_functions.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 namespace {

@@ -12,7 +12,7 @@
 // only reduces the nearest depth, so depth complexity d costs d + 2 passes:
 // the first selects nothing, the last composites the last fragment and
 // selects nothing.
-#include "by_triangle_id.h"
+#include "algorithms/depth_peeling/by_triangle_id.h"
 
 #include <algorithm>
 #include <cstring>
@@ -21,10 +21,10 @@
 #include <string>
 #include <vector>
 
-#include "gl/check.h"
-#include "gl/pass_queries.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "harness/gl/check.h"
+#include "harness/gl/pass_queries.h"
+#include "harness/gl/shader_program.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 namespace {

@@ -15,12 +15,12 @@
 #include <string>
 #include <vector>
 
-#include "by_triangle_id.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/pass_queries.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "algorithms/depth_peeling/by_triangle_id.h"
+#include "harness/core/technique.h"
+#include "harness/gl/check.h"
+#include "harness/gl/pass_queries.h"
+#include "harness/gl/shader_program.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 namespace {

@@ -11,7 +11,7 @@
 // full-screen resolve turns that into the new state. Pass 1 is the min-max
 // pass (init.frag), which selects nothing, so depth complexity d costs
 // ceil(d / 2) + 2 passes: the last composites and selects nothing.
-#include "by_triangle_id.h"
+#include "algorithms/dual_depth_peeling/by_triangle_id.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -21,10 +21,10 @@
 #include <string>
 #include <vector>
 
-#include "gl/check.h"
-#include "gl/pass_queries.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "harness/gl/check.h"
+#include "harness/gl/pass_queries.h"
+#include "harness/gl/shader_program.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 namespace {

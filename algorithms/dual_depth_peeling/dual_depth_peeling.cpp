@@ -13,11 +13,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "by_triangle_id.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "algorithms/dual_depth_peeling/by_triangle_id.h"
+#include "harness/core/technique.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 namespace {

@@ -9,13 +9,13 @@
 #include <map>
 #include <stdexcept>
 
-#include "accuracy.h"
-#include "core/fragment_pool.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "settings.h"
-#include "triangle_table.h"
-#include "../../shaders/bindings.h"
+#include "algorithms/illustration_buffer/accuracy.h"
+#include "harness/core/fragment_pool.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "algorithms/illustration_buffer/settings.h"
+#include "algorithms/illustration_buffer/triangle_table.h"
+#include "shaders/bindings.h"
 
 namespace oit::illustration_buffer {
 namespace {

@@ -11,12 +11,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/fragment_pool.h"
-#include "core/list_length_pass.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "harness/core/fragment_pool.h"
+#include "harness/core/list_length_pass.h"
+#include "harness/core/technique.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 namespace {

@@ -9,12 +9,12 @@
 // back; otherwise the result depends on the rasterisation order.
 #include <string>
 
-#include "core/passes.h"
-#include "core/pixel_locks.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "harness/core/passes.h"
+#include "harness/core/pixel_locks.h"
+#include "harness/core/technique.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 namespace {

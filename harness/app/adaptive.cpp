@@ -1,12 +1,12 @@
-#include "app/adaptive.h"
+#include "harness/app/adaptive.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
 
-#include "app/commands.h"
-#include "core/results_csv.h"
+#include "harness/app/commands.h"
+#include "harness/core/results_csv.h"
 
 namespace oit {
 

@@ -1,17 +1,17 @@
-#include "app/commands.h"
+#include "harness/app/commands.h"
 
 #include <cstdio>
 #include <iostream>
 #include <optional>
 #include <set>
 
-#include "app/huge_page_malloc.h"
-#include "gl/shader_capabilities.h"
-#include "core/heatmap.h"
-#include "cameras.h"
-#include "core/results_csv.h"
-#include "gl/program_cache.h"
-#include "scene_library.h"
+#include "harness/app/huge_page_malloc.h"
+#include "harness/gl/shader_capabilities.h"
+#include "harness/core/heatmap.h"
+#include "scenes/cameras.h"
+#include "harness/core/results_csv.h"
+#include "harness/gl/program_cache.h"
+#include "scenes/scene_library.h"
 #include "oit_revision.h"
 
 namespace oit {

@@ -2,8 +2,8 @@
 #include <string>
 #include <vector>
 
-#include "app/sweep.h"
-#include "core/results_csv.h"
+#include "harness/app/sweep.h"
+#include "harness/core/results_csv.h"
 
 namespace oit {
 

@@ -10,8 +10,8 @@
 
 #include <cstdio>
 
-#include "app/huge_page_malloc.h"
-#include "app/sweep.h"
+#include "harness/app/huge_page_malloc.h"
+#include "harness/app/sweep.h"
 
 namespace {
 

@@ -4,14 +4,14 @@
 #include <cstdio>
 #include <exception>
 
-#include "app/adaptive.h"
-#include "app/check_order.h"
-#include "app/commands.h"
-#include "app/huge_page_malloc.h"
-#include "app/pareto.h"
-#include "app/stress.h"
-#include "app/viewer/view_command.h"
-#include "gl/context.h"
+#include "harness/app/adaptive.h"
+#include "harness/app/check_order.h"
+#include "harness/app/commands.h"
+#include "harness/app/huge_page_malloc.h"
+#include "harness/app/pareto.h"
+#include "harness/app/stress.h"
+#include "harness/app/viewer/view_command.h"
+#include "harness/gl/context.h"
 
 int main(int argc, char** argv) {
   oit::relaunch_with_huge_page_malloc(argv);

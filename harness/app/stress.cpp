@@ -1,4 +1,4 @@
-#include "app/stress.h"
+#include "harness/app/stress.h"
 
 #include <poll.h>
 #include <signal.h>
@@ -14,9 +14,9 @@
 #include <map>
 #include <sstream>
 
-#include "core/results_csv.h"
-#include "scene_library.h"
-#include "stacked_quads.h"
+#include "harness/core/results_csv.h"
+#include "scenes/scene_library.h"
+#include "scenes/stacked_quads.h"
 #include "oit_revision.h"
 
 namespace oit {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "app/commands.h"
-#include "core/params.h"
+#include "harness/app/commands.h"
+#include "base/params.h"
 
 namespace oit {
 

@@ -1,7 +1,7 @@
-#include "core/pixel_locks.h"
+#include "harness/core/pixel_locks.h"
 
-#include "gl/check.h"
-#include "gl/shader_capabilities.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_capabilities.h"
 
 namespace oit {
 

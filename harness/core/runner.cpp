@@ -1,15 +1,15 @@
-#include "core/runner.h"
+#include "harness/core/runner.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 #include <sstream>
 
-#include "core/memory_failure.h"
-#include "core/system_load.h"
-#include "gl/check.h"
-#include "model_files.h"
-#include "scene_library.h"
+#include "harness/core/memory_failure.h"
+#include "harness/core/system_load.h"
+#include "harness/gl/check.h"
+#include "scenes/model_files.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 

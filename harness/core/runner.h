@@ -10,14 +10,14 @@
 #include <string>
 #include <vector>
 
-#include "core/complexity.h"
-#include "core/error_metrics.h"
-#include "core/image.h"
-#include "core/reference_cache.h"
-#include "core/scene_rect.h"
-#include "core/statistics.h"
-#include "core/technique.h"
-#include "core/tiling.h"
+#include "harness/core/complexity.h"
+#include "harness/core/error_metrics.h"
+#include "harness/core/image.h"
+#include "harness/core/reference_cache.h"
+#include "harness/core/scene_rect.h"
+#include "harness/core/statistics.h"
+#include "harness/core/technique.h"
+#include "harness/core/tiling.h"
 
 namespace oit {
 

@@ -1,4 +1,4 @@
-#include "core/stage_clock.h"
+#include "harness/core/stage_clock.h"
 
 #include <algorithm>
 #include <stdexcept>

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "gl/handles.h"
+#include "harness/gl/handles.h"
 
 namespace oit {
 

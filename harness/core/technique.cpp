@@ -1,8 +1,8 @@
-#include "core/technique.h"
+#include "harness/core/technique.h"
 
 #include <stdexcept>
 
-#include "../../shaders/bindings.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 

@@ -12,10 +12,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/params.h"
-#include "core/scene_gpu.h"
-#include "core/stage_clock.h"
-#include "gl/context.h"
+#include "base/params.h"
+#include "harness/core/scene_gpu.h"
+#include "harness/core/stage_clock.h"
+#include "harness/gl/context.h"
 
 namespace oit {
 

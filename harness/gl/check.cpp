@@ -1,9 +1,9 @@
-#include "gl/check.h"
+#include "harness/gl/check.h"
 
 #include <cstdio>
 #include <sstream>
 
-#include "gl/gl.h"
+#include "harness/gl/gl.h"
 
 namespace oit {
 namespace {

@@ -3,7 +3,7 @@
 // GL 4.5 direct-state-access entry points so no binding state leaks.
 #include <utility>
 
-#include "gl/gl.h"
+#include "harness/gl/gl.h"
 
 namespace oit {
 

@@ -1,4 +1,4 @@
-#include "gl/program_cache.h"
+#include "harness/gl/program_cache.h"
 
 #include <cstdlib>
 #include <cstring>

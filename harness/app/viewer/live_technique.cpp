@@ -1,6 +1,6 @@
-#include "app/viewer/live_technique.h"
+#include "harness/app/viewer/live_technique.h"
 
-#include "gl/check.h"
+#include "harness/gl/check.h"
 
 namespace oit {
 

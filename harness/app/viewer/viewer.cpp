@@ -1,4 +1,4 @@
-#include "app/viewer/viewer.h"
+#include "harness/app/viewer/viewer.h"
 
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
@@ -9,11 +9,11 @@
 #include <cstdio>
 #include <sstream>
 
-#include "app/sweep.h"
-#include "app/viewer/param_editor.h"
-#include "cameras.h"
-#include "gl/check.h"
-#include "scene_library.h"
+#include "harness/app/sweep.h"
+#include "harness/app/viewer/param_editor.h"
+#include "scenes/cameras.h"
+#include "harness/gl/check.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 namespace {

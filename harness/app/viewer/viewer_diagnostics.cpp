@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <sstream>
 
-#include "app/viewer/viewer.h"
-#include "core/heatmap.h"
-#include "gl/check.h"
+#include "harness/app/viewer/viewer.h"
+#include "harness/core/heatmap.h"
+#include "harness/gl/check.h"
 
 namespace oit {
 
