@@ -62,8 +62,7 @@ class AdaptiveTransparency final : public Technique {
   void render(const Frame& frame) override {
     {
       auto clear = frame.clock.stage("clear");
-      const GLuint zero = 0;
-      glClearNamedBufferData(counts_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      fill_buffer_u32(counts_, 0);
       locks_.clear();
       const GLfloat transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f};
       glClearNamedFramebufferfv(accumulation_framebuffer_.id(), GL_COLOR, 0, transparent);

@@ -46,11 +46,9 @@ class HybridTransparency final : public Technique {
   }
 
   void resize(int width, int height) override {
-    width_ = width;
-    height_ = height;
     for (GLuint program : {fill_.id(), store_.id(), compose_.id()}) glProgramUniform1i(program, kWidthLocation, width);
     const uint64_t slots = uint64_t(width) * uint64_t(height) * uint64_t(k_);
-    check_fits(slots * 4);
+    check_fits(slots * 4, width, height);
     keys_ = make_buffer(GLsizeiptr(slots * 4));
     colors_ = make_buffer(GLsizeiptr(slots * 4));
     gl_check("allocating the hybrid transparency core of " + std::to_string(width) + "x" + std::to_string(height) +
@@ -61,15 +59,16 @@ class HybridTransparency final : public Technique {
     tail_count_ = make_texture_2d(GL_R32F, width, height);
     tail_framebuffer_ =
         make_target_framebuffer({&tail_sum_, &tail_count_}, "hybrid_transparency: tail framebuffer (RGBA32F + R32F)");
+    bytes_allocated_ = uint64_t(width) * uint64_t(height) * (uint64_t(k_) * kSlotBytes + kTailBytesPerPixel) + kCounterBytes;
   }
 
   void render(const Frame& frame) override {
     {
       auto clear = frame.clock.stage("clear");
-      const GLuint empty = kEmpty, zero = 0;
-      glClearNamedBufferData(keys_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
-      glClearNamedBufferData(colors_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-      glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      const GLuint empty = kEmpty;
+      fill_buffer_u32(keys_, empty);
+      fill_buffer_u32(colors_, 0);
+      fill_buffer_u32(counters_, 0);
       const GLfloat transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f};
       glClearTexImage(tail_sum_.id(), 0, GL_RGBA, GL_FLOAT, transparent);
       glClearTexImage(tail_count_.id(), 0, GL_RED, GL_FLOAT, transparent);
@@ -103,8 +102,7 @@ class HybridTransparency final : public Technique {
     GLuint counts[2] = {0, 0};  // stored, tied_to_tail
     glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
     TechniqueCounters c;
-    const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
-    c.bytes_allocated = pixels * (uint64_t(k_) * kSlotBytes + kTailBytesPerPixel) + kCounterBytes;
+    c.bytes_allocated = bytes_allocated_;
     c.fragments_stored = counts[0];
     c.fragments_dropped = 0;  // the tail composes every fragment beyond the core
     c.passes = 2;
@@ -113,12 +111,12 @@ class HybridTransparency final : public Technique {
   }
 
  private:
-  void check_fits(uint64_t buffer_bytes) const {
+  void check_fits(uint64_t buffer_bytes, int width, int height) const {
     GLint64 max_block = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
     if (max_block > 0 && buffer_bytes > uint64_t(max_block)) {
-      throw std::runtime_error("hybrid_transparency: k=" + std::to_string(k_) + " at " + std::to_string(width_) + "x" +
-                               std::to_string(height_) + " needs " + std::to_string(buffer_bytes >> 20) +
+      throw std::runtime_error("hybrid_transparency: k=" + std::to_string(k_) + " at " + std::to_string(width) + "x" +
+                               std::to_string(height) + " needs " + std::to_string(buffer_bytes >> 20) +
                                " MiB per core buffer, more than the device's largest storage block (" +
                                std::to_string(max_block >> 20) + " MiB); lower k or the size");
     }
@@ -129,7 +127,7 @@ class HybridTransparency final : public Technique {
   Buffer counters_, keys_, colors_;
   Texture tail_sum_, tail_count_;
   Framebuffer no_attachments_, tail_framebuffer_;
-  int width_ = 0, height_ = 0;
+  uint64_t bytes_allocated_ = 0;  // set where the storage is made
 };
 
 }  // namespace

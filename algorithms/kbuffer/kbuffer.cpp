@@ -14,6 +14,7 @@
 #include "harness/core/fragment_pool.h"
 #include "harness/core/list_length_pass.h"
 #include "harness/core/technique.h"
+#include "harness/core/passes.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
 #include "shaders/bindings.h"
@@ -73,9 +74,7 @@ class KBuffer final : public Technique {
 
     // The fill pass (and store without a tail) writes no colour: an
     // attachment-less framebuffer of the right size rasterises it.
-    no_attachments_ = make_framebuffer();
-    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
-    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+    no_attachments_ = make_attachmentless_framebuffer(width, height);
     if (tail_blend_) {
       tail_accumulation_ = make_texture_2d(GL_RGBA16F, width, height);
       tail_revealage_ = make_texture_2d(GL_R16F, width, height);
@@ -101,10 +100,10 @@ class KBuffer final : public Technique {
     {
       auto clear = frame.clock.stage("clear");
       if (k != allocated_k_) allocate_slots(k);  // k=auto: storage follows the view
-      const GLuint empty = kEmpty, zero = 0;
-      glClearNamedBufferData(keys_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
-      glClearNamedBufferData(owners_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
-      glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      const GLuint empty = kEmpty;
+      fill_buffer_u32(keys_, empty);
+      fill_buffer_u32(owners_, empty);
+      fill_buffer_u32(counters_, 0);
       if (tail_blend_) {
         const GLfloat transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f}, revealed = 1.0f;
         glClearTexImage(tail_accumulation_.id(), 0, GL_RGBA, GL_FLOAT, transparent);

@@ -57,8 +57,7 @@ class MultiLayerAlphaBlending final : public Technique {
   void render(const Frame& frame) override {
     {
       auto clear = frame.clock.stage("clear");
-      const GLuint zero = 0;
-      glClearNamedBufferData(counts_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      fill_buffer_u32(counts_, 0);
       locks_.clear();
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kColorsBinding, colors_.id());

@@ -72,7 +72,7 @@ std::vector<const TechniqueDescriptor*> selected_techniques(const AdaptiveOption
 double median_total(const std::vector<RunResult>& runs) {
   std::vector<double> samples;
   for (const auto& r : runs) {
-    if (const StageResult* total = r.stage("total", r.clock == ClockKind::gl ? "gl" : "wall"))
+    if (const StageResult* total = r.total())
       samples.insert(samples.end(), total->samples_ms.begin(), total->samples_ms.end());
   }
   return samples.empty() ? 0.0 : summarize(samples).median;

@@ -28,6 +28,13 @@ const StageResult* RunResult::stage(const std::string& name, const std::string& 
   return nullptr;
 }
 
+const StageResult* RunResult::total() const { return stage("total", clock == ClockKind::gl ? "gl" : "wall"); }
+
+double RunResult::median_total_ms() const {
+  const StageResult* t = total();
+  return t ? t->summary.median : 0.0;
+}
+
 struct Harness::LoadedScene {
   Scene scene;
   std::unique_ptr<SceneGpu> gpu;

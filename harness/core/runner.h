@@ -87,6 +87,11 @@ struct RunResult {
   Image image;
 
   const StageResult* stage(const std::string& name, const std::string& clock) const;
+  // The `total` stage of the run's own clock (gl, or wall for wall and
+  // both); nullptr when the run did not time anything.
+  const StageResult* total() const;
+  // Its median in ms, 0 when there is none.
+  double median_total_ms() const;
 };
 
 // The RGBA32F image a technique composes into (Frame::target_framebuffer).

@@ -39,6 +39,11 @@ void gl_check(const std::string& what, std::source_location where) {
   throw GlError(msg.str());
 }
 
+void drain_gl_errors() {
+  while (glGetError() != GL_NO_ERROR) {
+  }
+}
+
 void enable_gl_debug_output() {
   if (!epoxy_has_gl_extension("GL_KHR_debug") && epoxy_gl_version() < 43) return;
   glEnable(GL_DEBUG_OUTPUT);

@@ -60,6 +60,12 @@ inline Buffer make_buffer(GLsizeiptr bytes, const void* data = nullptr,
   return Buffer(id);
 }
 
+// Sets every 32-bit word of `buffer` to `value` (list heads to a nil index,
+// counters to zero).
+inline void fill_buffer_u32(const Buffer& buffer, GLuint value) {
+  glClearNamedBufferData(buffer.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
+}
+
 // A buffer texture reading `buffer` as `internal_format` texels: the whole
 // buffer, or `bytes` from `offset` when bytes > 0 (offset aligned to
 // GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT).

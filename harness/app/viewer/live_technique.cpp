@@ -35,8 +35,7 @@ std::string LiveTechnique::configure(const std::string& id, const RawParams& par
     height_ = height;
     return "";
   } catch (const std::exception& e) {
-    while (glGetError() != GL_NO_ERROR) {
-    }
+    drain_gl_errors();
     return e.what();
   }
 }

@@ -106,8 +106,7 @@ std::string Viewer::open_scene(const std::string& spec, const RawParams& params)
     ++scene_generation_;
     return "";
   } catch (const std::exception& e) {
-    while (glGetError() != GL_NO_ERROR) {
-    }
+    drain_gl_errors();
     return e.what();
   }
 }
@@ -147,8 +146,7 @@ void Viewer::render_slot(Slot& slot) {
   try {
     slot.live.render(*scene_gpu_, orbit_.camera().view, projection(), background_);
   } catch (const std::exception& e) {
-    while (glGetError() != GL_NO_ERROR) {
-    }
+    drain_gl_errors();
     slot.render_error = e.what();
   }
 }
