@@ -21,10 +21,10 @@ std::string to_string(ClockKind kind) {
   return "?";
 }
 
-const std::vector<std::string>& stage_vocabulary() {
-  static const std::vector<std::string> names = {"clear", "count",     "fill",    "store",   "peel", "sort",
-                                                 "bucket", "neighbors", "stylize", "compose", "total"};
-  return names;
+bool is_stage_name(std::string_view name) {
+  if (name.empty() || name.front() < 'a' || name.front() > 'z') return false;
+  return std::all_of(name.begin(), name.end(),
+                     [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_'; });
 }
 
 ScopedStage::ScopedStage(StageClock& clock, std::string_view name) : clock_(clock), slot_(clock.open(name)) {}
@@ -50,9 +50,8 @@ void StageClock::end_frame() {
 }
 
 size_t StageClock::stage_index(std::string_view name) {
-  const auto& vocabulary = stage_vocabulary();
-  if (std::find(vocabulary.begin(), vocabulary.end(), name) == vocabulary.end()) {
-    throw std::logic_error("stage name '" + std::string(name) + "' is not in the stage vocabulary");
+  if (!is_stage_name(name)) {
+    throw std::logic_error("stage name '" + std::string(name) + "' is not snake_case ([a-z][a-z0-9_]*)");
   }
   for (size_t i = 0; i < stage_names_.size(); ++i)
     if (stage_names_[i] == name) return i;

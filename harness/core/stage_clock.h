@@ -3,8 +3,10 @@
 //  - gl:   GL_TIMESTAMP query pairs, read back frames later (never stalls);
 //  - wall: CPU steady clock bracketed by glFinish (the only trustworthy
 //          clock on Mesa llvmpipe, whose per-pass GL timestamps are wrong).
-// Techniques open a ScopedStage per stage; names come from a fixed
-// vocabulary so that they become plot series.
+// Techniques open a ScopedStage per stage. A stage name is any snake_case
+// word the technique declares in TechniqueDescriptor::stages (the registry
+// checks them); each becomes a CSV row and a plot series, and the plots take
+// the stage order from the CSV (the order the stages first ran).
 #include <chrono>
 #include <map>
 #include <string>
@@ -19,8 +21,9 @@ enum class ClockKind { gl, wall, both };
 ClockKind parse_clock_kind(const std::string& text);
 std::string to_string(ClockKind kind);
 
-// clear, count, fill, store, peel, sort, bucket, neighbors, stylize, compose, total
-const std::vector<std::string>& stage_vocabulary();
+// Whether `name` can name a stage: snake_case ([a-z][a-z0-9_]*), the form
+// the CSV, its readers and the plots rely on. "total" is the harness's own.
+bool is_stage_name(std::string_view name);
 
 // Milliseconds per recorded frame for one stage (a stage that runs several
 // times in a frame, e.g. one peel per layer, is summed within the frame).

@@ -147,7 +147,7 @@ struct TechniqueDescriptor {
   std::string display_name;
   std::string paper;         // citation shown by `list` and the README
   ParamSchema params;
-  std::vector<std::string> stages;  // stage names it emits, in order
+  std::vector<std::string> stages;  // the stage names it emits, in order: any distinct snake_case words but "total"
   TechniqueNeeds needs;
   Exactness exactness = Exactness::approximate;
   // For exact techniques: the largest difference from the reference that
