@@ -154,6 +154,11 @@ struct TechniqueDescriptor {
   // still counts as exact (1e-5 for float compositing; a technique storing
   // colour packed states the quantisation bound of its storage here).
   double exact_tolerance = 1e-5;
+  // The largest channel value a correct output can hold, which `stress`
+  // holds it to (besides finiteness, and >= 0): 1 for compositing, which
+  // blends colours in [0, 1]; infinity for an approximation whose output is
+  // legitimately unbounded (a weighted sum over many layers exceeds 1).
+  double output_max = 1.0;
   // Quality knobs for run-time-versus-error sweeps (`oitbench pareto`):
   // parameter name and the values to try, cheapest first.
   std::vector<std::pair<std::string, std::vector<std::string>>> quality_sweep;
