@@ -312,7 +312,7 @@ void Harness::execute(const RunSpec& spec, RunResult& result) {
   std::unique_ptr<Technique> technique = descriptor.create(params);
   technique->resize(tiling.plan().frame_width(), tiling.plan().frame_height());
   RenderTarget target(spec.width, spec.height);
-  StageClock clock(clock_kind);
+  StageClock clock(clock_kind, descriptor.stages);
   const float aspect = float(spec.width) / float(spec.height);
   const Frame frame{*loaded.gpu,  loaded.scene.camera.view,   loaded.scene.camera.projection(aspect),
                     spec.width,   spec.height,                spec.background,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 namespace oit {
 
@@ -30,7 +31,8 @@ bool is_stage_name(std::string_view name) {
 ScopedStage::ScopedStage(StageClock& clock, std::string_view name) : clock_(clock), slot_(clock.open(name)) {}
 ScopedStage::~ScopedStage() { clock_.close(slot_); }
 
-StageClock::StageClock(ClockKind kind) : kind_(kind) {}
+StageClock::StageClock(ClockKind kind, std::vector<std::string> declared)
+    : kind_(kind), declared_(std::move(declared)) {}
 
 void StageClock::begin_frame(bool record) {
   recording_ = record;
@@ -52,6 +54,13 @@ void StageClock::end_frame() {
 size_t StageClock::stage_index(std::string_view name) {
   if (!is_stage_name(name)) {
     throw std::logic_error("stage name '" + std::string(name) + "' is not snake_case ([a-z][a-z0-9_]*)");
+  }
+  if (!declared_.empty() && name != "total" &&
+      std::find(declared_.begin(), declared_.end(), name) == declared_.end()) {
+    std::string list;
+    for (const auto& stage : declared_) list += (list.empty() ? "" : ", ") + stage;
+    throw std::logic_error("stage '" + std::string(name) + "' is not among the stages the technique declares (" +
+                           list + ")");
   }
   for (size_t i = 0; i < stage_names_.size(); ++i)
     if (stage_names_[i] == name) return i;

@@ -48,7 +48,10 @@ class ScopedStage {
 
 class StageClock {
  public:
-  explicit StageClock(ClockKind kind);
+  // `declared`: the stages the technique declares (TechniqueDescriptor::
+  // stages); opening any other but the harness's "total" is an error that
+  // names it. Empty: any snake_case name (tests timing their own passes).
+  explicit StageClock(ClockKind kind, std::vector<std::string> declared = {});
   ClockKind kind() const { return kind_; }
 
   // Frames opened with record=false (warm-up) time nothing but behave alike.
@@ -75,6 +78,7 @@ class StageClock {
     std::chrono::steady_clock::time_point wall_begin;
   };
   ClockKind kind_;
+  std::vector<std::string> declared_;
   bool recording_ = false;
   size_t frame_ = 0;  // index of the current recorded frame
   std::vector<std::string> stage_names_;

@@ -25,7 +25,7 @@ std::string LiveTechnique::configure(const std::string& id, const RawParams& par
     values_ = std::make_unique<ParamSet>(values);
     tiling_.reset();
     target_ = std::move(target);
-    clock_ = std::make_unique<StageClock>(clock_kind_);
+    clock_ = std::make_unique<StageClock>(clock_kind_, descriptor_->stages);
     frames_in_window_ = 0;
     timings_.clear();
     id_ = id;
@@ -79,7 +79,7 @@ void LiveTechnique::finish_window() {
     const std::vector<double>& ms = clock_name == "gl" ? samples.gl_ms : samples.wall_ms;
     if (!ms.empty()) timings_.push_back({name, summarize(ms)});
   }
-  clock_ = std::make_unique<StageClock>(clock_kind_);
+  clock_ = std::make_unique<StageClock>(clock_kind_, descriptor_->stages);
   frames_in_window_ = 0;
 }
 
