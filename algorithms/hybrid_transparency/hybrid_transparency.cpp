@@ -13,18 +13,11 @@
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "shaders/bindings.h"
+#include "algorithms/hybrid_transparency/bindings.h"
 
 namespace oit {
 namespace {
 
-constexpr GLuint kKeysBinding = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kColorsBinding = OIT_FIRST_TECHNIQUE_BINDING + 1;
-constexpr GLuint kCountersBinding = OIT_FIRST_TECHNIQUE_BINDING + 2;
-constexpr GLuint kTailSumUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kTailCountUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
-constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
-constexpr GLint kSlotsLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
 constexpr GLuint kEmpty = 0xffffffffu;
 
 // Per core slot: 4 (depth key) + 4 (RGBA8 colour).
@@ -42,11 +35,13 @@ class HybridTransparency final : public Technique {
         store_(build_geometry_program("algorithms/hybrid_transparency/store.frag")),
         compose_(build_fullscreen_program("algorithms/hybrid_transparency/compose.frag")),
         counters_(make_buffer(kCounterBytes, kZeroCounters)) {
-    for (GLuint program : {fill_.id(), store_.id(), compose_.id()}) glProgramUniform1i(program, kSlotsLocation, k_);
+    for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
+      glProgramUniform1i(program, HYBRID_TRANSPARENCY_SLOTS_LOCATION, k_);
   }
 
   void resize(int width, int height) override {
-    for (GLuint program : {fill_.id(), store_.id(), compose_.id()}) glProgramUniform1i(program, kWidthLocation, width);
+    for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
+      glProgramUniform1i(program, HYBRID_TRANSPARENCY_WIDTH_LOCATION, width);
     const uint64_t slots = uint64_t(width) * uint64_t(height) * uint64_t(k_);
     check_fits(slots * 4, width, height);
     keys_ = make_buffer(GLsizeiptr(slots * 4));
@@ -59,7 +54,8 @@ class HybridTransparency final : public Technique {
     tail_count_ = make_texture_2d(GL_R32F, width, height);
     tail_framebuffer_ =
         make_target_framebuffer({&tail_sum_, &tail_count_}, "hybrid_transparency: tail framebuffer (RGBA32F + R32F)");
-    bytes_allocated_ = uint64_t(width) * uint64_t(height) * (uint64_t(k_) * kSlotBytes + kTailBytesPerPixel) + kCounterBytes;
+    bytes_allocated_ =
+        uint64_t(width) * uint64_t(height) * (uint64_t(k_) * kSlotBytes + kTailBytesPerPixel) + kCounterBytes;
   }
 
   void render(const Frame& frame) override {
@@ -73,9 +69,9 @@ class HybridTransparency final : public Technique {
       glClearTexImage(tail_sum_.id(), 0, GL_RGBA, GL_FLOAT, transparent);
       glClearTexImage(tail_count_.id(), 0, GL_RED, GL_FLOAT, transparent);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kKeysBinding, keys_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kColorsBinding, colors_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountersBinding, counters_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_TRANSPARENCY_KEYS_BINDING, keys_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_TRANSPARENCY_COLORS_BINDING, colors_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_TRANSPARENCY_COUNTERS_BINDING, counters_.id());
     {
       auto fill = frame.clock.stage("fill");
       draw_scene_pass(frame, fill_, no_attachments_);
@@ -91,8 +87,8 @@ class HybridTransparency final : public Technique {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     {
       auto compose = frame.clock.stage("compose");
-      glBindTextureUnit(kTailSumUnit, tail_sum_.id());
-      glBindTextureUnit(kTailCountUnit, tail_count_.id());
+      glBindTextureUnit(HYBRID_TRANSPARENCY_TAIL_SUM_UNIT, tail_sum_.id());
+      glBindTextureUnit(HYBRID_TRANSPARENCY_TAIL_COUNT_UNIT, tail_count_.id());
       draw_fullscreen_pass(frame, compose_);
     }
   }
