@@ -45,6 +45,9 @@ const TieBreak kTieBreaks[] = {
 
 using test::passes_avoided;
 
+// One geometry pass per layer.
+uint64_t passes_for_depth(uint64_t depth) { return depth; }
+
 RunSpec spec_of(const RawParams& params, const std::string& scene, const RawParams& scene_params, int size,
                 const std::string& order = "original") {
   return test::one_frame("depth_peeling", params, scene, scene_params, size, order);
@@ -91,40 +94,15 @@ TEST(DepthPeeling, ExactOnLitSpheresInAnySubmissionOrder) {
 TEST(DepthPeeling, EarlyExitStopsRightAfterTheLastLayer) {
   for (const TieBreak& tie : kTieBreaks) {
     SCOPED_TRACE(tie.name);
-    const RunResult early =
-        run_ok(spec_of({{"tie_break", tie.name}, {"early_exit", "true"}}, "quads", {{"layers", "8"}}, kSize));
-    EXPECT_EQ(early.max_depth_complexity, 8u);
-    EXPECT_EQ(early.counters.passes, 8u + tie.extra_passes);
-    EXPECT_LT(early.error->max_abs, 1e-5);
-    // Without the query every allowed pass runs; the extra ones peel nothing.
-    const RunResult all = run_ok(spec_of({{"tie_break", tie.name}, {"early_exit", "false"}, {"max_passes", "13"}},
-                                         "quads", {{"layers", "8"}}, kSize));
-    EXPECT_EQ(all.counters.passes, 13u);
-    EXPECT_LT(all.error->max_abs, 1e-5);
-    EXPECT_EQ(all.counters.fragments_stored, 8u * kPixels);
-    EXPECT_EQ(all.counters.fragments_dropped, 0u);
-    EXPECT_EQ(all.image.rgba, early.image.rgba);
-    // Early exit ran d + extra of the default 64 passes; without it nothing is avoided.
-    EXPECT_EQ(passes_avoided(early), double(64 - 8 - tie.extra_passes));
-    EXPECT_EQ(passes_avoided(all), 0.0);
-    // A cap below d + extra: early exit never fires, so nothing is avoided either.
-    const RunResult capped = run_ok(spec_of({{"tie_break", tie.name}, {"max_passes", "5"}}, "quads",
-                                            {{"layers", "8"}}, kSize));
-    EXPECT_EQ(capped.counters.passes, 5u);
-    EXPECT_EQ(passes_avoided(capped), 0.0);
+    // d + extra passes with early exit; without it 13; a cap of 5 < d + extra.
+    test::expect_early_exit_and_caps("depth_peeling", tie.name, tie.extra_passes, passes_for_depth, 13, 5, kSize);
   }
 }
 
 TEST(DepthPeeling, PassesAvoidedOnThirtyTwoLayersAndUnevenDepth) {
   for (const TieBreak& tie : kTieBreaks) {
     SCOPED_TRACE(tie.name);
-    const RunResult quads = run_ok(spec_of({{"tie_break", tie.name}}, "quads", kQuads32, 64));
-    EXPECT_LT(quads.error->max_abs, 1e-5);
-    EXPECT_EQ(passes_avoided(quads), double(64 - 32 - tie.extra_passes));
-    // Uneven depth: the deepest pixel decides the passes (d = max depth complexity).
-    const RunResult spheres = run_ok(spec_of({{"tie_break", tie.name}}, "spheres", {}, 64));
-    EXPECT_LT(spheres.error->max_abs, 1e-5);
-    EXPECT_EQ(passes_avoided(spheres), double(64 - spheres.max_depth_complexity - tie.extra_passes));
+    test::expect_passes_avoided_on_quads_and_spheres("depth_peeling", tie.name, tie.extra_passes, passes_for_depth);
   }
 }
 

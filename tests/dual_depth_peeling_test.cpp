@@ -43,6 +43,9 @@ const TieBreak kTieBreaks[] = {
 
 using test::passes_avoided;
 
+// Two layers per geometry pass, front and back.
+uint64_t passes_for_depth(uint64_t depth) { return (depth + 1) / 2; }
+
 RunSpec spec_of(const RawParams& params, const std::string& scene, const RawParams& scene_params, int size,
                 const std::string& order = "original") {
   return test::one_frame("dual_depth_peeling", params, scene, scene_params, size, order);
@@ -102,37 +105,16 @@ TEST(DualDepthPeeling, ExactOnLitSpheresInAnySubmissionOrder) {
 TEST(DualDepthPeeling, WithoutEarlyExitRunsExactlyMaxPasses) {
   for (const TieBreak& tie : kTieBreaks) {
     SCOPED_TRACE(tie.name);
-    const RunResult early = run_ok(spec_of({{"tie_break", tie.name}}, "quads", {{"layers", "8"}}, kSize));
-    EXPECT_EQ(early.counters.passes, 4u + tie.extra_passes);
-    const RunResult all = run_ok(spec_of({{"tie_break", tie.name}, {"early_exit", "false"}, {"max_passes", "9"}},
-                                         "quads", {{"layers", "8"}}, kSize));
-    EXPECT_EQ(all.counters.passes, 9u);
-    EXPECT_LT(all.error->max_abs, 1e-5);
-    EXPECT_EQ(all.counters.fragments_stored, 8u * kPixels);
-    EXPECT_EQ(all.counters.fragments_dropped, 0u);
-    EXPECT_EQ(all.image.rgba, early.image.rgba);
-    // Early exit ran ceil(8/2) + extra of the default 64 passes; without it nothing is avoided.
-    EXPECT_EQ(passes_avoided(early), double(64 - 4 - tie.extra_passes));
-    EXPECT_EQ(passes_avoided(all), 0.0);
-    // A cap below ceil(d/2) + extra: early exit never fires.
-    const RunResult capped = run_ok(spec_of({{"tie_break", tie.name}, {"max_passes", "3"}}, "quads",
-                                            {{"layers", "8"}}, kSize));
-    EXPECT_EQ(capped.counters.passes, 3u);
-    EXPECT_EQ(passes_avoided(capped), 0.0);
+    // ceil(d/2) + extra passes with early exit; without it 9; a cap of 3 < ceil(d/2) + extra.
+    test::expect_early_exit_and_caps("dual_depth_peeling", tie.name, tie.extra_passes, passes_for_depth, 9, 3, kSize);
   }
 }
 
 TEST(DualDepthPeeling, PassesAvoidedOnThirtyTwoLayersAndUnevenDepth) {
   for (const TieBreak& tie : kTieBreaks) {
     SCOPED_TRACE(tie.name);
-    const RunResult quads = run_ok(spec_of({{"tie_break", tie.name}}, "quads", kQuads32, 64));
-    EXPECT_LT(quads.error->max_abs, 1e-5);
-    EXPECT_EQ(passes_avoided(quads), double(64 - 16 - tie.extra_passes));
-    // Uneven depth: the deepest pixel decides the passes, ceil(d / 2) + extra.
-    const RunResult spheres = run_ok(spec_of({{"tie_break", tie.name}}, "spheres", {}, 64));
-    EXPECT_LT(spheres.error->max_abs, 1e-5);
-    EXPECT_EQ(passes_avoided(spheres),
-              double(64 - (spheres.max_depth_complexity + 1) / 2 - tie.extra_passes));
+    test::expect_passes_avoided_on_quads_and_spheres("dual_depth_peeling", tie.name, tie.extra_passes,
+                                                     passes_for_depth);
   }
 }
 

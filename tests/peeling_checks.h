@@ -19,6 +19,50 @@ inline double passes_avoided(const RunResult& r) {
   return -1.0;
 }
 
+// Geometry passes a peeler needs for depth complexity d, before its tie
+// break's extra passes: d for depth peeling, ceil(d / 2) for dual.
+using PassesForDepth = uint64_t (*)(uint64_t depth);
+
+// 8 quad layers: early exit stops right after the last layer (passes_for(8)
+// + extra); without it exactly `no_exit_cap` passes run, the extra ones
+// composite nothing and the image is the same; passes_avoided counts what
+// early exit saved of the default 64, and nothing without it or under a
+// cap (`small_cap`) that early exit never reaches.
+inline void expect_early_exit_and_caps(const std::string& technique, const std::string& tie_break, uint64_t extra,
+                                       PassesForDepth passes_for, int no_exit_cap, int small_cap, int size) {
+  const RawParams layers8 = {{"layers", "8"}};
+  const RunResult early = run_ok(one_frame(technique, {{"tie_break", tie_break}}, "quads", layers8, size));
+  EXPECT_EQ(early.max_depth_complexity, 8u);
+  EXPECT_EQ(early.counters.passes, passes_for(8) + extra);
+  EXPECT_LT(early.error->max_abs, 1e-5);
+  const RunResult all = run_ok(one_frame(
+      technique, {{"tie_break", tie_break}, {"early_exit", "false"}, {"max_passes", std::to_string(no_exit_cap)}},
+      "quads", layers8, size));
+  EXPECT_EQ(all.counters.passes, uint64_t(no_exit_cap));
+  EXPECT_LT(all.error->max_abs, 1e-5);
+  EXPECT_EQ(all.counters.fragments_stored, 8u * uint64_t(size) * uint64_t(size));
+  EXPECT_EQ(all.counters.fragments_dropped, 0u);
+  EXPECT_EQ(all.image.rgba, early.image.rgba);
+  EXPECT_EQ(passes_avoided(early), double(64 - passes_for(8) - extra));
+  EXPECT_EQ(passes_avoided(all), 0.0);
+  const RunResult capped = run_ok(one_frame(
+      technique, {{"tie_break", tie_break}, {"max_passes", std::to_string(small_cap)}}, "quads", layers8, size));
+  EXPECT_EQ(capped.counters.passes, uint64_t(small_cap));
+  EXPECT_EQ(passes_avoided(capped), 0.0);
+}
+
+// passes_avoided of the default 64 passes on 32 quad layers and on the
+// spheres, whose uneven depth lets the deepest pixel decide the passes.
+inline void expect_passes_avoided_on_quads_and_spheres(const std::string& technique, const std::string& tie_break,
+                                                       uint64_t extra, PassesForDepth passes_for) {
+  const RunResult quads = run_ok(one_frame(technique, {{"tie_break", tie_break}}, "quads", {{"layers", "32"}}, 64));
+  EXPECT_LT(quads.error->max_abs, 1e-5);
+  EXPECT_EQ(passes_avoided(quads), double(64 - passes_for(32) - extra));
+  const RunResult spheres = run_ok(one_frame(technique, {{"tie_break", tie_break}}, "spheres", {}, 64));
+  EXPECT_LT(spheres.error->max_abs, 1e-5);
+  EXPECT_EQ(passes_avoided(spheres), double(64 - passes_for(spheres.max_depth_complexity) - extra));
+}
+
 // stress_layers with gap 0: 8 full-screen layers at one depth, so every
 // pixel holds an 8-way tie that only the stable triangle id orders.
 // tie_break=triangle_id matches the reference in every submission order
