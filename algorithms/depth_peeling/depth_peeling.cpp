@@ -80,7 +80,8 @@ class DepthPeelingBySubmission final : public Technique {
     // Two key targets alternate: a pass writes one and reads the other.
     for (int i = 0; i < 2; ++i) {
       keys_[i] = make_texture_2d(GL_RG32UI, width, height);
-      peel_targets_[i] = make_target_framebuffer({&layer_color_, &keys_[i]}, "depth_peeling: the peel framebuffer", &depth_);
+      peel_targets_[i] =
+          make_target_framebuffer({&layer_color_, &keys_[i]}, "depth_peeling: the peel framebuffer", &depth_);
     }
     gl_check("allocating depth peeling targets of " + std::to_string(width) + "x" + std::to_string(height));
   }
@@ -203,16 +204,14 @@ void register_technique_depth_peeling(TechniqueRegistry& registry) {
        "stop at the first pass that peels nothing (occlusion query); false runs exactly max_passes passes",
        "order of fragments at bit-identical depth: triangle_id peels them by stable id like the reference (any "
        "submission order gives the same image; d + 2 passes); submission peels them in submission order (faster, "
-       "d + 1 passes, but the image of coplanar geometry depends on the submission order)"},
+       "d + 1 passes, but the image of coplanar geometry depends on the submission order)",
+       "stops peeling at the first pass that an occlusion query finds empty (depth complexity + 1 passes)"},
+      56,  // bytes per pixel of tie_break=triangle_id, the larger variant
       make_depth_peeling_by_triangle_id,
       [](int max_passes, bool early_exit) -> std::unique_ptr<Technique> {
         return std::make_unique<DepthPeelingBySubmission>(max_passes, early_exit);
       });
   d.quality_sweep = {{"max_passes", {"2", "4", "8", "16", "32", "64"}}};
-  d.adaptive_switches = {{"early_exit", "stops peeling at the first pass that an occlusion query finds empty (depth complexity + 1 passes)",
-                          {{"early_exit", "true"}}, {{"early_exit", "false"}}}};
-  // Per-pixel textures only (tie_break=triangle_id's 56 bytes, the larger variant): tiled only under a small --memory-budget.
-  d.storage_need = [](const ParamSet&, const FrameContent& content) { return StorageNeed{0, content.pixels() * 56}; };
   registry.add(std::move(d));
 }
 

@@ -58,7 +58,8 @@ class DualDepthPeelingBySubmission final : public Technique {
     for (int i = 0; i < 2; ++i) {
       ranges_[i] = make_texture_2d(GL_RG32F, width, height);
       range_targets_[i] = make_target_framebuffer({&ranges_[i]}, "dual_depth_peeling: the depth range framebuffer");
-      peel_targets_[i] = make_target_framebuffer({&ranges_[i], &front_, &back_}, "dual_depth_peeling: the peel framebuffer");
+      peel_targets_[i] =
+          make_target_framebuffer({&ranges_[i], &front_, &back_}, "dual_depth_peeling: the peel framebuffer");
     }
     // The range check writes nothing; it only needs a framebuffer of this size.
     no_attachments_ = make_attachmentless_framebuffer(width, height);
@@ -179,16 +180,14 @@ void register_technique_dual_depth_peeling(TechniqueRegistry& registry) {
        "order of fragments at bit-identical depth: triangle_id composites them by stable id like the reference (any "
        "submission order gives the same image; ceil(d/2) + 2 passes); submission composites a tie in one pass in "
        "submission order (faster, ceil(d/2) + 1 passes, but the image of coplanar geometry depends on the "
-       "submission order)"},
+       "submission order)",
+       "stops peeling when an occlusion query finds a pass empty (about half the depth complexity + 1 passes)"},
+      96,  // bytes per pixel of tie_break=triangle_id, the larger variant
       make_dual_depth_peeling_by_triangle_id,
       [](int max_passes, bool early_exit) -> std::unique_ptr<Technique> {
         return std::make_unique<DualDepthPeelingBySubmission>(max_passes, early_exit);
       });
   d.quality_sweep = {{"max_passes", {"2", "3", "5", "9", "17", "33"}}};
-  d.adaptive_switches = {{"early_exit", "stops peeling when an occlusion query finds a pass empty (about half the depth complexity + 1 passes)",
-                          {{"early_exit", "true"}}, {{"early_exit", "false"}}}};
-  // Per-pixel textures only (tie_break=triangle_id's 96 bytes, the larger variant): tiled only under a small --memory-budget.
-  d.storage_need = [](const ParamSet&, const FrameContent& content) { return StorageNeed{0, content.pixels() * 96}; };
   registry.add(std::move(d));
 }
 

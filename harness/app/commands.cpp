@@ -87,9 +87,10 @@ std::string technique_table_markdown(const TechniqueRegistry& registry) {
       "| id | technique | paper | kind | parameters (default, range) | stages |\n|---|---|---|---|---|---|\n";
   for (const auto& t : registry.all()) {
     std::string params, stages;
-    for (const auto& p : t.params)
-      params += (params.empty() ? "" : ", ") + ("`" + p.name + "` (" + (p.default_value.empty() ? "empty" : p.default_value) +
-                                                 "; " + p.range_text() + ")");
+    for (const auto& p : t.params) {
+      const std::string default_text = p.default_value.empty() ? "empty" : p.default_value;
+      params += (params.empty() ? "" : ", ") + ("`" + p.name + "` (" + default_text + "; " + p.range_text() + ")");
+    }
     for (const auto& stage : t.stages) stages += (stages.empty() ? "" : ", ") + stage;
     const std::string kind = t.is_reference ? "exact (the reference)"
                              : t.exactness == Exactness::exact ? "exact"

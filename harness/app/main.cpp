@@ -25,7 +25,8 @@ void add_sweep_options(CLI::App* command, oit::BenchOptions& options, const std:
   command->add_option("--scene-set", sweep.scene_sets, "scene key=v1,v2 to sweep (repeatable)");
   command->add_option("--size", sweep.sizes, "WIDTHxHEIGHT (repeatable" + size_default + ")");
   command->add_option("--frames", sweep.frames, "timed frames per run")->check(CLI::Range(1, 100000));
-  command->add_option("--warmup", sweep.warmup, "untimed frames first (shader compilation)")->check(CLI::Range(0, 1000));
+  command->add_option("--warmup", sweep.warmup, "untimed frames first (shader compilation)")
+      ->check(CLI::Range(0, 1000));
   command->add_option("--memory-budget", sweep.memory_budget,
                       "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G "
                       "(default: see `list`)");

@@ -16,8 +16,8 @@ uint32_t float_bits(float value) {
   return bits;
 }
 
-void describe_peeler(TechniqueDescriptor& d, const PeelingParamText& text, PeelerFactory by_triangle_id,
-                     PeelerFactory by_submission) {
+void describe_peeler(TechniqueDescriptor& d, const PeelingText& text, uint64_t bytes_per_pixel,
+                     PeelerFactory by_triangle_id, PeelerFactory by_submission) {
   d.params = {
       ParamSpec::integer("max_passes", 64, 1, 4096, text.max_passes),
       ParamSpec::boolean("early_exit", true, text.early_exit),
@@ -25,6 +25,10 @@ void describe_peeler(TechniqueDescriptor& d, const PeelingParamText& text, Peele
   };
   d.stages = {"clear", "peel", "compose"};
   d.exactness = Exactness::exact;
+  d.adaptive_switches = {{"early_exit", text.early_exit_saves, {{"early_exit", "true"}}, {{"early_exit", "false"}}}};
+  d.storage_need = [bytes_per_pixel](const ParamSet&, const FrameContent& content) {
+    return StorageNeed{0, content.pixels() * bytes_per_pixel};
+  };
   d.create = [by_triangle_id, by_submission](const ParamSet& params) -> std::unique_ptr<Technique> {
     const int max_passes = int(params.integer("max_passes"));
     const bool early_exit = params.boolean("early_exit");

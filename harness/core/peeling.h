@@ -17,18 +17,21 @@ namespace oit {
 // The raw bits of a float, for clearing integer key textures to a depth.
 uint32_t float_bits(float value);
 
-// What each peeler says about its own parameters (the defaults and ranges
-// are the same: max_passes 64 in [1, 4096], early_exit true, tie_break
-// triangle_id or submission).
-struct PeelingParamText {
-  std::string max_passes, early_exit, tie_break;
+// What each peeler says about itself: its three parameters (the defaults
+// and ranges are the same: max_passes 64 in [1, 4096], early_exit true,
+// tie_break triangle_id or submission) and what its early exit saves.
+struct PeelingText {
+  std::string max_passes, early_exit, tie_break, early_exit_saves;
 };
 using PeelerFactory = std::unique_ptr<Technique> (*)(int max_passes, bool early_exit);
 
-// Fills d.params, d.stages (clear, peel, compose), d.exactness (exact) and
-// d.create, which picks `by_triangle_id` or `by_submission` by tie_break.
-void describe_peeler(TechniqueDescriptor& d, const PeelingParamText& text, PeelerFactory by_triangle_id,
-                     PeelerFactory by_submission);
+// Fills d.params, d.stages (clear, peel, compose), d.exactness (exact),
+// d.adaptive_switches (early_exit on and off), d.storage_need (per-pixel
+// textures only, `bytes_per_pixel` of the larger variant: tiled only under
+// a small --memory-budget) and d.create, which picks `by_triangle_id` or
+// `by_submission` by tie_break.
+void describe_peeler(TechniqueDescriptor& d, const PeelingText& text, uint64_t bytes_per_pixel,
+                     PeelerFactory by_triangle_id, PeelerFactory by_submission);
 
 // bytes_allocated, passes and work_saved passes_avoided (geometry passes
 // early exit did not run; zero without it, where all max_passes run).
@@ -56,7 +59,8 @@ void restore_default_blending();
 // limit: checks a scene against it, once per uploaded scene.
 class TriangleIdLimit {
  public:
-  TriangleIdLimit(std::string technique, uint32_t largest_id) : technique_(std::move(technique)), largest_id_(largest_id) {}
+  TriangleIdLimit(std::string technique, uint32_t largest_id)
+      : technique_(std::move(technique)), largest_id_(largest_id) {}
   // Throws std::runtime_error naming the technique, the scene and its id.
   void check(const Scene& scene);
 
