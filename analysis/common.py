@@ -11,8 +11,6 @@ import pandas as pd  # noqa: E402
 
 from analysis.results_io import read_results, save_figure  # noqa: E402
 
-# The fixed stage vocabulary of DESIGN.md, in pipeline order.
-STAGE_ORDER = ["clear", "count", "fill", "store", "peel", "sort", "bucket", "neighbors", "stylize", "compose"]
 NUMERIC = ["width", "height", "median_ms", "fragments", "max_depth_complexity", "mean_depth_complexity", "psi",
            "bytes_allocated", "fragments_stored", "passes"]
 
@@ -80,14 +78,20 @@ def title(runs, what):
     return f"{what}\n{devices} | {size_text} | clock {', '.join(sorted(runs['clock'].unique()))} | {date_text}"
 
 
+def stage_order(runs):
+    """The stage names of `runs` in the order they first appear in the CSV:
+    a run writes its stages in the order they first ran, so this is pipeline
+    order, whatever stages a technique declares (docs/ARCHITECTURE.md,
+    "Stages"); `total` and the empty stage of a failed run are left out."""
+    return [s for s in dict.fromkeys(runs["stage"]) if s and s != "total"]
+
+
 def stage_table(runs, index):
     """Median ms of each stage per value of `index` (a column or list of
     columns), averaged over the rows sharing it (e.g. the views of a random
-    camera set); columns in pipeline order, then `total`."""
+    camera set); columns in the CSV's stage order, then `total`."""
     table = runs.pivot_table(index=index, columns="stage", values="median_ms", aggfunc="mean")
-    stages = [s for s in STAGE_ORDER if s in table.columns]
-    extra = [s for s in table.columns if s not in STAGE_ORDER and s != "total"]
-    ordered = stages + sorted(extra) + (["total"] if "total" in table.columns else [])
+    ordered = [s for s in stage_order(runs) if s in table.columns] + (["total"] if "total" in table.columns else [])
     return table[ordered]
 
 

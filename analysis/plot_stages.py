@@ -20,9 +20,8 @@ import pandas as pd  # noqa: E402
 
 # Run as a script, analysis/ is on the path, not the repository root.
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from analysis.common import stage_order  # noqa: E402
 from analysis.results_io import read_results, save_figure  # noqa: E402
-
-STAGE_ORDER = ["clear", "count", "fill", "store", "peel", "sort", "bucket", "neighbors", "stylize", "compose"]
 
 
 def load_runs(path, scene=None, clock=None):
@@ -42,7 +41,7 @@ def load_runs(path, scene=None, clock=None):
 def plot(runs, out):
     medians = runs.pivot_table(index="label", columns="stage", values="median_ms", aggfunc="median")
     totals = medians.pop("total") if "total" in medians else None
-    stages = [s for s in STAGE_ORDER if s in medians.columns]
+    stages = [s for s in stage_order(runs) if s in medians.columns]
     order = totals.sort_values().index if totals is not None else medians.index
     medians = medians.loc[order, stages].fillna(0.0)
     fig, ax = plt.subplots(figsize=(max(6, 1.1 * len(medians)), 4.5))

@@ -1,4 +1,4 @@
-#include "cameras.h"
+#include "scenes/cameras.h"
 
 #include <algorithm>
 #include <cmath>

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "scene.h"
+#include "scenes/scene.h"
 
 namespace oit {
 

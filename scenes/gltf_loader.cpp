@@ -1,4 +1,4 @@
-#include "gltf_loader.h"
+#include "scenes/gltf_loader.h"
 
 #include <tiny_gltf.h>
 

@@ -1,7 +1,7 @@
 #pragma once
 #include <string>
 
-#include "scene.h"
+#include "scenes/scene.h"
 
 namespace oit {
 

@@ -1,4 +1,4 @@
-#include "mesh_file_check.h"
+#include "scenes/mesh_file_check.h"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "mesh_loader.h"
+#include "scenes/mesh_loader.h"
 
 #include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/MeshIO.hh>
@@ -15,7 +15,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "mesh_file_check.h"
+#include "scenes/mesh_file_check.h"
 
 namespace oit {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <glm/glm.hpp>
 
-#include "scene.h"
+#include "scenes/scene.h"
 
 namespace oit {
 

@@ -1,4 +1,4 @@
-#include "model_files.h"
+#include "scenes/model_files.h"
 
 #include <cstdlib>
 #include <filesystem>

@@ -1,4 +1,4 @@
-#include "parametric.h"
+#include "scenes/parametric.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>

@@ -4,7 +4,7 @@
 // surface they lie on.
 #include <cstdint>
 
-#include "scene.h"
+#include "scenes/scene.h"
 
 namespace oit {
 

@@ -1,11 +1,11 @@
-#include "random_scenes.h"
+#include "scenes/random_scenes.h"
 
 #include <algorithm>
 #include <numeric>
 #include <random>
 #include <stdexcept>
 
-#include "parametric.h"
+#include "scenes/parametric.h"
 
 namespace oit {
 namespace {

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "scene.h"
+#include "scenes/scene.h"
 
 namespace oit {
 

@@ -1,17 +1,17 @@
-#include "scene_library.h"
+#include "scenes/scene_library.h"
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <stdexcept>
 
-#include "gltf_loader.h"
-#include "mesh_loader.h"
-#include "model_files.h"
-#include "parametric.h"
-#include "random_scenes.h"
-#include "stacked_quads.h"
-#include "stress_layers.h"
+#include "scenes/gltf_loader.h"
+#include "scenes/mesh_loader.h"
+#include "scenes/model_files.h"
+#include "scenes/parametric.h"
+#include "scenes/random_scenes.h"
+#include "scenes/stacked_quads.h"
+#include "scenes/stress_layers.h"
 
 namespace oit {
 namespace {

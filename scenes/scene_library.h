@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "core/params.h"
-#include "scene.h"
-#include "stress_layers.h"
+#include "base/params.h"
+#include "scenes/scene.h"
+#include "scenes/stress_layers.h"
 
 namespace oit {
 

@@ -1,4 +1,4 @@
-#include "stacked_quads.h"
+#include "scenes/stacked_quads.h"
 
 #include <algorithm>
 #include <numeric>

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "scene.h"
+#include "scenes/scene.h"
 
 namespace oit {
 

@@ -1,4 +1,4 @@
-#include "stress_layers.h"
+#include "scenes/stress_layers.h"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "scene.h"
+#include "scenes/scene.h"
 
 namespace oit {
 

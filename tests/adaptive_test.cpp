@@ -10,9 +10,9 @@
 #include <set>
 #include <sstream>
 
-#include "app/adaptive.h"
-#include "core/results_csv.h"
-#include "oitbench_process.h"
+#include "harness/app/adaptive.h"
+#include "harness/core/results_csv.h"
+#include "tests/oitbench_process.h"
 
 namespace oit {
 namespace {

@@ -3,7 +3,7 @@
 // once it compresses, more accurate as k grows. Every run also checks that
 // the spin-lock fallback lost no fragment (README of
 // multi_layer_alpha_blending).
-#include "approximate_oit_fixture.h"
+#include "tests/approximate_oit_fixture.h"
 
 namespace oit {
 namespace {

@@ -18,7 +18,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 sys.path.insert(0, os.path.join(HERE, ".."))
 sys.path.insert(0, HERE)
 import analysis_fixtures as fx  # noqa: E402
-from analysis import reproduce, results_io  # noqa: E402
+from analysis import common, reproduce, results_io  # noqa: E402
 
 COLUMNS = ("timestamp,git_revision,device,gl_version,platform,technique,params,scene,scene_params,camera,width,height,"
            "clock,stage,median_ms,min_ms,p05_ms,p95_ms,mean_ms,frames,warmup,status,message,fragments,"
@@ -53,6 +53,20 @@ class PlotStagesTest(unittest.TestCase):
                            check=True, capture_output=True)
             with open(out, "rb") as f:
                 self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+
+    def test_stage_order_comes_from_the_csv_new_stage_names_included(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            csv = os.path.join(tmp, "runs.csv")
+            with open(csv, "w") as f:
+                f.write(COLUMNS + "\n")
+                for stage, ms in [("clear", 1.0), ("build_histogram", 3.0), ("fill", 5.0), ("total", 9.0)]:
+                    f.write(row("newcomer", "", stage, ms) + "\n")
+                for stage, ms in [("fill", 2.0), ("blend_tail", 1.0), ("total", 3.0)]:
+                    f.write(row("unsorted", "", stage, ms) + "\n")
+            runs = plot_stages.load_runs(csv)
+            self.assertEqual(common.stage_order(runs), ["clear", "build_histogram", "fill", "blend_tail"])
+            table = common.stage_table(runs, "technique")
+            self.assertEqual(list(table.columns), ["clear", "build_histogram", "fill", "blend_tail", "total"])
 
     def test_no_matching_rows_is_a_clear_error(self):
         with tempfile.TemporaryDirectory() as tmp:

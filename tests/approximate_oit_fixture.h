@@ -9,42 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "app/check_order.h"
-#include "gl_fixture.h"
-#include "gl/shader_capabilities.h"
+#include "harness/app/check_order.h"
+#include "tests/gl_fixture.h"
+#include "harness/gl/shader_capabilities.h"
 
 namespace oit::test {
-
-inline RunSpec one_frame(const std::string& technique, const RawParams& params, const std::string& scene,
-                         const RawParams& scene_params, int size, const std::string& order = "original") {
-  RunSpec spec;
-  spec.technique = technique;
-  spec.params = params;
-  spec.scene = scene;
-  spec.scene_params = scene_params;
-  spec.submission_order = order;
-  spec.width = size;
-  spec.height = size;
-  spec.warmup = 0;
-  spec.frames = 1;
-  return spec;
-}
-
-// The run, which must be `ok` and compared with the reference.
-inline RunResult run_ok(const RunSpec& spec) {
-  RunResult r = harness().run(spec);
-  EXPECT_EQ(r.status, RunStatus::ok) << spec.technique << ": " << r.message;
-  EXPECT_TRUE(r.error.has_value()) << spec.technique;
-  return r;
-}
-
-inline double max_abs_difference(const Image& a, const Image& b) {
-  EXPECT_EQ(a.rgba.size(), b.rgba.size());
-  double worst = 0.0;
-  for (size_t i = 0; i < a.rgba.size() && i < b.rgba.size(); ++i)
-    worst = std::max(worst, std::abs(double(a.rgba[i]) - double(b.rgba[i])));
-  return worst;
-}
 
 // Channel values that are not finite or lie outside [0, 1] (the stress
 // suite's garbage test, with the same float margins).

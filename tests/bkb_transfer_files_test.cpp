@@ -12,10 +12,10 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "../algorithms/bucketed_kbuffer/transfer_files.h"
-#include "../algorithms/bucketed_kbuffer/transfer_functions.h"
-#include "core/error_metrics.h"
-#include "gl_fixture.h"
+#include "algorithms/bucketed_kbuffer/transfer_files.h"
+#include "algorithms/bucketed_kbuffer/transfer_functions.h"
+#include "harness/core/error_metrics.h"
+#include "tests/gl_fixture.h"
 
 namespace oit {
 namespace {

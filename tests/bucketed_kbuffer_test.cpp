@@ -9,10 +9,10 @@
 #include <limits>
 #include <tuple>
 
-#include "../algorithms/bucketed_kbuffer/transfer_functions.h"
-#include "core/error_metrics.h"
-#include "gl_fixture.h"
-#include "stacked_quads.h"
+#include "algorithms/bucketed_kbuffer/transfer_functions.h"
+#include "harness/core/error_metrics.h"
+#include "tests/gl_fixture.h"
+#include "scenes/stacked_quads.h"
 
 namespace oit {
 namespace {

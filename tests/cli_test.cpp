@@ -8,15 +8,17 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 
-#include "core/image.h"
-#include "oitbench_process.h"
-#include "core/results_csv.h"
-#include "core/technique.h"
-#include "scene_library.h"
-#include "stacked_quads.h"
+#include "harness/app/commands.h"
+#include "harness/core/image.h"
+#include "tests/oitbench_process.h"
+#include "harness/core/results_csv.h"
+#include "harness/core/technique.h"
+#include "scenes/scene_library.h"
+#include "scenes/stacked_quads.h"
 
 namespace oit {
 namespace {
@@ -27,6 +29,26 @@ const std::string kOut = std::string(OIT_BINARY_DIR) + "/test_output/cli";
 
 Outcome run_oitbench(const std::string& arguments) { return test::run_oitbench(kOut, arguments); }
 
+
+// The README's technique table sits between these markers, written by
+// `oitbench list --markdown`: a new technique folder changes it there and
+// only there (regenerate it with that command).
+TEST(Cli, ReadmeTechniqueTableIsTheGeneratedOne) {
+  std::ifstream readme(std::string(OIT_SOURCE_DIR) + "/README.md");
+  ASSERT_TRUE(readme) << "README.md";
+  const std::string text((std::istreambuf_iterator<char>(readme)), std::istreambuf_iterator<char>());
+  const std::string begin = "<!-- technique table: oitbench list --markdown -->\n", end = "<!-- end of technique table -->";
+  const size_t from = text.find(begin), to = text.find(end);
+  ASSERT_NE(from, std::string::npos) << "README.md lacks the marker " << begin;
+  ASSERT_NE(to, std::string::npos) << "README.md lacks the marker " << end;
+  const std::string generated = technique_table_markdown(builtin_techniques());
+  EXPECT_EQ(text.substr(from + begin.size(), to - from - begin.size()), generated)
+      << "README.md's technique table is stale: replace it with the output of `oitbench list --markdown`";
+  // The command prints exactly that table, without opening a GL context.
+  const Outcome o = run_oitbench("list --markdown");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find(generated), std::string::npos) << o.output;
+}
 
 TEST(Cli, RenderOfTheReferenceEqualsTheClosedFormExactly) {
   const std::string out = kOut + "/reference_quads.pfm";

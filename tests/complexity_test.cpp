@@ -11,12 +11,12 @@
 #include <limits>
 #include <stdexcept>
 
-#include "app/sweep.h"
-#include "cameras.h"
-#include "core/complexity.h"
-#include "core/heatmap.h"
-#include "gl_fixture.h"
-#include "scene_library.h"
+#include "harness/app/sweep.h"
+#include "scenes/cameras.h"
+#include "harness/core/complexity.h"
+#include "harness/core/heatmap.h"
+#include "tests/gl_fixture.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 namespace {

@@ -12,16 +12,12 @@
 // the parameter.
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <utility>
 #include <vector>
 
-#include "gl_fixture.h"
+#include "tests/gl_fixture.h"
+#include "tests/peeling_checks.h"
 
 namespace oit {
 namespace {
@@ -47,88 +43,21 @@ const TieBreak kTieBreaks[] = {
     {"submission", 1, 0, kPixels * (16 + 4 + 2 * 8 + 16) + 4},
 };
 
-double passes_avoided(const RunResult& r) {
-  if (auto value = find_figure(r.counters.work_saved, "passes_avoided")) return *value;
-  ADD_FAILURE() << "no passes_avoided in work_saved";
-  return -1.0;
-}
+using test::passes_avoided;
+
+// One geometry pass per layer.
+uint64_t passes_for_depth(uint64_t depth) { return depth; }
 
 RunSpec spec_of(const RawParams& params, const std::string& scene, const RawParams& scene_params, int size,
                 const std::string& order = "original") {
-  RunSpec spec;
-  spec.technique = "depth_peeling";
-  spec.params = params;
-  spec.scene = scene;
-  spec.scene_params = scene_params;
-  spec.submission_order = order;
-  spec.width = size;
-  spec.height = size;
-  spec.warmup = 0;
-  spec.frames = 1;
-  return spec;
+  return test::one_frame("depth_peeling", params, scene, scene_params, size, order);
 }
 
-RunResult run_ok(const RunSpec& spec) {
-  RunResult r = test::harness().run(spec);
-  EXPECT_EQ(r.status, RunStatus::ok) << r.message;
-  EXPECT_TRUE(r.error.has_value());
-  return r;
-}
+using test::run_ok;
 
-// Writes a glTF file of full-screen unlit quads (z in view space, the colour),
-// in this order, seen by an orthographic camera looking down -z. Quads with
-// the same z have identical vertices, so their fragments tie exactly in depth.
 std::string write_quads_gltf(const std::string& name, const std::vector<std::pair<float, glm::vec4>>& quads,
                              double znear = 0.1) {
-  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/depth_peeling";
-  std::filesystem::create_directories(dir);
-  std::vector<float> positions;
-  for (const auto& quad : quads) {
-    const float corners[4][2] = {{-1.5f, -1.5f}, {1.5f, -1.5f}, {1.5f, 1.5f}, {-1.5f, 1.5f}};
-    for (const auto& c : corners) positions.insert(positions.end(), {c[0], c[1], quad.first});
-  }
-  const uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
-  std::string bin(positions.size() * 4 + sizeof(indices), '\0');
-  std::memcpy(bin.data(), positions.data(), positions.size() * 4);
-  std::memcpy(bin.data() + positions.size() * 4, indices, sizeof(indices));
-  std::ofstream(dir + "/" + name + ".bin", std::ios::binary) << bin;
-
-  using nlohmann::json;
-  json nodes = json::array(), meshes = json::array(), materials = json::array(), accessors = json::array(),
-       views = json::array();
-  for (size_t i = 0; i < quads.size(); ++i) {
-    const glm::vec4& c = quads[i].second;
-    const float z = quads[i].first;
-    nodes.push_back({{"mesh", i}});
-    meshes.push_back({{"primitives", {{{"attributes", {{"POSITION", i}}}, {"indices", quads.size()}, {"material", i}}}}});
-    materials.push_back({{"pbrMetallicRoughness", {{"baseColorFactor", {c.r, c.g, c.b, c.a}}}},
-                         {"alphaMode", "BLEND"},
-                         {"extensions", {{"KHR_materials_unlit", json::object()}}}});
-    accessors.push_back({{"bufferView", i}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"},
-                         {"min", {-1.5, -1.5, z}}, {"max", {1.5, 1.5, z}}});
-    views.push_back({{"buffer", 0}, {"byteOffset", 48 * i}, {"byteLength", 48}});
-  }
-  accessors.push_back({{"bufferView", quads.size()}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}});
-  views.push_back({{"buffer", 0}, {"byteOffset", 48 * quads.size()}, {"byteLength", 12}});
-  nodes.push_back({{"camera", 0}});
-  json scene_nodes = json::array();
-  for (size_t i = 0; i < nodes.size(); ++i) scene_nodes.push_back(i);
-  const json gltf = {
-      {"asset", {{"version", "2.0"}}},
-      {"extensionsUsed", {"KHR_materials_unlit"}},
-      {"scene", 0},
-      {"scenes", {{{"nodes", scene_nodes}}}},
-      {"nodes", nodes},
-      {"cameras", {{{"type", "orthographic"}, {"orthographic", {{"xmag", 1.0}, {"ymag", 1.0}, {"znear", znear}, {"zfar", 10.0}}}}}},
-      {"meshes", meshes},
-      {"materials", materials},
-      {"accessors", accessors},
-      {"bufferViews", views},
-      {"buffers", {{{"uri", name + ".bin"}, {"byteLength", bin.size()}}}},
-  };
-  const std::string path = dir + "/" + name + ".gltf";
-  std::ofstream(path) << gltf.dump(2);
-  return path;
+  return test::write_quads_gltf("depth_peeling", name, quads, znear);
 }
 
 TEST(DepthPeeling, ExactOnThirtyTwoQuadLayers) {
@@ -165,40 +94,15 @@ TEST(DepthPeeling, ExactOnLitSpheresInAnySubmissionOrder) {
 TEST(DepthPeeling, EarlyExitStopsRightAfterTheLastLayer) {
   for (const TieBreak& tie : kTieBreaks) {
     SCOPED_TRACE(tie.name);
-    const RunResult early =
-        run_ok(spec_of({{"tie_break", tie.name}, {"early_exit", "true"}}, "quads", {{"layers", "8"}}, kSize));
-    EXPECT_EQ(early.max_depth_complexity, 8u);
-    EXPECT_EQ(early.counters.passes, 8u + tie.extra_passes);
-    EXPECT_LT(early.error->max_abs, 1e-5);
-    // Without the query every allowed pass runs; the extra ones peel nothing.
-    const RunResult all = run_ok(spec_of({{"tie_break", tie.name}, {"early_exit", "false"}, {"max_passes", "13"}},
-                                         "quads", {{"layers", "8"}}, kSize));
-    EXPECT_EQ(all.counters.passes, 13u);
-    EXPECT_LT(all.error->max_abs, 1e-5);
-    EXPECT_EQ(all.counters.fragments_stored, 8u * kPixels);
-    EXPECT_EQ(all.counters.fragments_dropped, 0u);
-    EXPECT_EQ(all.image.rgba, early.image.rgba);
-    // Early exit ran d + extra of the default 64 passes; without it nothing is avoided.
-    EXPECT_EQ(passes_avoided(early), double(64 - 8 - tie.extra_passes));
-    EXPECT_EQ(passes_avoided(all), 0.0);
-    // A cap below d + extra: early exit never fires, so nothing is avoided either.
-    const RunResult capped = run_ok(spec_of({{"tie_break", tie.name}, {"max_passes", "5"}}, "quads",
-                                            {{"layers", "8"}}, kSize));
-    EXPECT_EQ(capped.counters.passes, 5u);
-    EXPECT_EQ(passes_avoided(capped), 0.0);
+    // d + extra passes with early exit; without it 13; a cap of 5 < d + extra.
+    test::expect_early_exit_and_caps("depth_peeling", tie.name, tie.extra_passes, passes_for_depth, 13, 5, kSize);
   }
 }
 
 TEST(DepthPeeling, PassesAvoidedOnThirtyTwoLayersAndUnevenDepth) {
   for (const TieBreak& tie : kTieBreaks) {
     SCOPED_TRACE(tie.name);
-    const RunResult quads = run_ok(spec_of({{"tie_break", tie.name}}, "quads", kQuads32, 64));
-    EXPECT_LT(quads.error->max_abs, 1e-5);
-    EXPECT_EQ(passes_avoided(quads), double(64 - 32 - tie.extra_passes));
-    // Uneven depth: the deepest pixel decides the passes (d = max depth complexity).
-    const RunResult spheres = run_ok(spec_of({{"tie_break", tie.name}}, "spheres", {}, 64));
-    EXPECT_LT(spheres.error->max_abs, 1e-5);
-    EXPECT_EQ(passes_avoided(spheres), double(64 - spheres.max_depth_complexity - tie.extra_passes));
+    test::expect_passes_avoided_on_quads_and_spheres("depth_peeling", tie.name, tie.extra_passes, passes_for_depth);
   }
 }
 
@@ -230,44 +134,13 @@ TEST(DepthPeeling, PassCapLeavesAnErrorThatShrinksWithMorePasses) {
 }
 
 TEST(DepthPeeling, CoplanarStressLayersMatchTheReferenceInEverySubmissionOrder) {
-  // stress_layers with gap 0: 8 full-screen layers at one depth, so every
-  // pixel holds an 8-way tie that only the stable triangle id orders.
-  for (const std::string seed : {"1", "2"}) {
-    for (const std::string order : {"original", "reversed", "shuffled:3"}) {
-      SCOPED_TRACE("seed " + seed + " " + order);
-      const RunResult r = run_ok(spec_of({{"tie_break", "triangle_id"}}, "stress_layers",
-                                         {{"gap", "0"}, {"seed", seed}}, kSize, order));
-      EXPECT_EQ(r.max_depth_complexity, 8u);
-      EXPECT_LT(r.error->max_abs, 1e-5);
-      EXPECT_EQ(r.counters.fragments_stored, 8u * kPixels);
-      EXPECT_EQ(r.counters.fragments_dropped, 0u);
-      EXPECT_EQ(r.counters.passes, 10u);  // one per fragment of the tie, + 2
-    }
-  }
+  // One pass per fragment of the tie, + 2.
+  test::expect_coplanar_ties_like_the_reference("depth_peeling", kSize, 10);
 }
 
 TEST(DepthPeeling, SubmissionTieBreakPeelsCoplanarLayersCompletelyInSubmissionOrder) {
-  std::vector<float> original_image;
-  for (const std::string order : {"original", "reversed", "shuffled:3"}) {
-    SCOPED_TRACE(order);
-    const RunResult r =
-        run_ok(spec_of({{"tie_break", "submission"}}, "stress_layers", {{"gap", "0"}}, kSize, order));
-    for (float v : r.image.rgba) ASSERT_TRUE(std::isfinite(v));
-    // Every tied fragment is peeled, one per pass; none is lost.
-    EXPECT_EQ(r.counters.fragments_stored, 8u * kPixels);
-    EXPECT_EQ(r.counters.fragments_dropped, 0u);
-    EXPECT_EQ(r.counters.passes, 9u);
-    if (order == "original") {
-      original_image = r.image.rgba;
-    } else {
-      // ... but in submission order: the image moves with it.
-      ASSERT_EQ(r.image.rgba.size(), original_image.size());
-      float largest = 0.0f;
-      for (size_t i = 0; i < original_image.size(); ++i)
-        largest = std::max(largest, std::abs(r.image.rgba[i] - original_image[i]));
-      EXPECT_GT(largest, 0.05f);
-    }
-  }
+  // One tied fragment peeled per pass, + the pass that finds nothing.
+  test::expect_submission_ties_in_submission_order("depth_peeling", kSize, 9);
 }
 
 TEST(DepthPeeling, DepthTiesArePeeledCompletelyOnePerPass) {

@@ -11,16 +11,12 @@
 // rejected by name.
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <utility>
 #include <vector>
 
-#include "gl_fixture.h"
+#include "tests/gl_fixture.h"
+#include "tests/peeling_checks.h"
 
 namespace oit {
 namespace {
@@ -45,95 +41,21 @@ const TieBreak kTieBreaks[] = {
     {"submission", 1, 1, kPixels * (2 * 8 + 2 * 16) + 4},
 };
 
-float largest_difference(const std::vector<float>& a, const std::vector<float>& b) {
-  EXPECT_EQ(a.size(), b.size());
-  float largest = 0.0f;
-  for (size_t i = 0; i < a.size() && i < b.size(); ++i) largest = std::max(largest, std::abs(a[i] - b[i]));
-  return largest;
-}
+using test::passes_avoided;
 
-double passes_avoided(const RunResult& r) {
-  for (const auto& [name, value, combine] : r.counters.work_saved)
-    if (name == "passes_avoided") return value;
-  ADD_FAILURE() << "no passes_avoided in work_saved";
-  return -1.0;
-}
+// Two layers per geometry pass, front and back.
+uint64_t passes_for_depth(uint64_t depth) { return (depth + 1) / 2; }
 
 RunSpec spec_of(const RawParams& params, const std::string& scene, const RawParams& scene_params, int size,
                 const std::string& order = "original") {
-  RunSpec spec;
-  spec.technique = "dual_depth_peeling";
-  spec.params = params;
-  spec.scene = scene;
-  spec.scene_params = scene_params;
-  spec.submission_order = order;
-  spec.width = size;
-  spec.height = size;
-  spec.warmup = 0;
-  spec.frames = 1;
-  return spec;
+  return test::one_frame("dual_depth_peeling", params, scene, scene_params, size, order);
 }
 
-RunResult run_ok(const RunSpec& spec) {
-  RunResult r = test::harness().run(spec);
-  EXPECT_EQ(r.status, RunStatus::ok) << r.message;
-  EXPECT_TRUE(r.error.has_value());
-  return r;
-}
+using test::run_ok;
 
-// Writes a glTF file of full-screen unlit quads (z in view space, the colour),
-// in this order, seen by an orthographic camera looking down -z. Quads with
-// the same z have identical vertices, so their fragments tie exactly in depth.
-std::string write_quads_gltf(const std::string& name, const std::vector<std::pair<float, glm::vec4>>& quads) {
-  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/dual_depth_peeling";
-  std::filesystem::create_directories(dir);
-  std::vector<float> positions;
-  for (const auto& quad : quads) {
-    const float corners[4][2] = {{-1.5f, -1.5f}, {1.5f, -1.5f}, {1.5f, 1.5f}, {-1.5f, 1.5f}};
-    for (const auto& c : corners) positions.insert(positions.end(), {c[0], c[1], quad.first});
-  }
-  const uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
-  std::string bin(positions.size() * 4 + sizeof(indices), '\0');
-  std::memcpy(bin.data(), positions.data(), positions.size() * 4);
-  std::memcpy(bin.data() + positions.size() * 4, indices, sizeof(indices));
-  std::ofstream(dir + "/" + name + ".bin", std::ios::binary) << bin;
-
-  using nlohmann::json;
-  json nodes = json::array(), meshes = json::array(), materials = json::array(), accessors = json::array(),
-       views = json::array();
-  for (size_t i = 0; i < quads.size(); ++i) {
-    const glm::vec4& c = quads[i].second;
-    const float z = quads[i].first;
-    nodes.push_back({{"mesh", i}});
-    meshes.push_back({{"primitives", {{{"attributes", {{"POSITION", i}}}, {"indices", quads.size()}, {"material", i}}}}});
-    materials.push_back({{"pbrMetallicRoughness", {{"baseColorFactor", {c.r, c.g, c.b, c.a}}}},
-                         {"alphaMode", "BLEND"},
-                         {"extensions", {{"KHR_materials_unlit", json::object()}}}});
-    accessors.push_back({{"bufferView", i}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"},
-                         {"min", {-1.5, -1.5, z}}, {"max", {1.5, 1.5, z}}});
-    views.push_back({{"buffer", 0}, {"byteOffset", 48 * i}, {"byteLength", 48}});
-  }
-  accessors.push_back({{"bufferView", quads.size()}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}});
-  views.push_back({{"buffer", 0}, {"byteOffset", 48 * quads.size()}, {"byteLength", 12}});
-  nodes.push_back({{"camera", 0}});
-  json scene_nodes = json::array();
-  for (size_t i = 0; i < nodes.size(); ++i) scene_nodes.push_back(i);
-  const json gltf = {
-      {"asset", {{"version", "2.0"}}},
-      {"extensionsUsed", {"KHR_materials_unlit"}},
-      {"scene", 0},
-      {"scenes", {{{"nodes", scene_nodes}}}},
-      {"nodes", nodes},
-      {"cameras", {{{"type", "orthographic"}, {"orthographic", {{"xmag", 1.0}, {"ymag", 1.0}, {"znear", 0.1}, {"zfar", 10.0}}}}}},
-      {"meshes", meshes},
-      {"materials", materials},
-      {"accessors", accessors},
-      {"bufferViews", views},
-      {"buffers", {{{"uri", name + ".bin"}, {"byteLength", bin.size()}}}},
-  };
-  const std::string path = dir + "/" + name + ".gltf";
-  std::ofstream(path) << gltf.dump(2);
-  return path;
+std::string write_quads_gltf(const std::string& name, const std::vector<std::pair<float, glm::vec4>>& quads,
+                             double znear = 0.1) {
+  return test::write_quads_gltf("dual_depth_peeling", name, quads, znear);
 }
 
 TEST(DualDepthPeeling, ExactOnThirtyTwoQuadLayersInHalfThePasses) {
@@ -183,37 +105,16 @@ TEST(DualDepthPeeling, ExactOnLitSpheresInAnySubmissionOrder) {
 TEST(DualDepthPeeling, WithoutEarlyExitRunsExactlyMaxPasses) {
   for (const TieBreak& tie : kTieBreaks) {
     SCOPED_TRACE(tie.name);
-    const RunResult early = run_ok(spec_of({{"tie_break", tie.name}}, "quads", {{"layers", "8"}}, kSize));
-    EXPECT_EQ(early.counters.passes, 4u + tie.extra_passes);
-    const RunResult all = run_ok(spec_of({{"tie_break", tie.name}, {"early_exit", "false"}, {"max_passes", "9"}},
-                                         "quads", {{"layers", "8"}}, kSize));
-    EXPECT_EQ(all.counters.passes, 9u);
-    EXPECT_LT(all.error->max_abs, 1e-5);
-    EXPECT_EQ(all.counters.fragments_stored, 8u * kPixels);
-    EXPECT_EQ(all.counters.fragments_dropped, 0u);
-    EXPECT_EQ(all.image.rgba, early.image.rgba);
-    // Early exit ran ceil(8/2) + extra of the default 64 passes; without it nothing is avoided.
-    EXPECT_EQ(passes_avoided(early), double(64 - 4 - tie.extra_passes));
-    EXPECT_EQ(passes_avoided(all), 0.0);
-    // A cap below ceil(d/2) + extra: early exit never fires.
-    const RunResult capped = run_ok(spec_of({{"tie_break", tie.name}, {"max_passes", "3"}}, "quads",
-                                            {{"layers", "8"}}, kSize));
-    EXPECT_EQ(capped.counters.passes, 3u);
-    EXPECT_EQ(passes_avoided(capped), 0.0);
+    // ceil(d/2) + extra passes with early exit; without it 9; a cap of 3 < ceil(d/2) + extra.
+    test::expect_early_exit_and_caps("dual_depth_peeling", tie.name, tie.extra_passes, passes_for_depth, 9, 3, kSize);
   }
 }
 
 TEST(DualDepthPeeling, PassesAvoidedOnThirtyTwoLayersAndUnevenDepth) {
   for (const TieBreak& tie : kTieBreaks) {
     SCOPED_TRACE(tie.name);
-    const RunResult quads = run_ok(spec_of({{"tie_break", tie.name}}, "quads", kQuads32, 64));
-    EXPECT_LT(quads.error->max_abs, 1e-5);
-    EXPECT_EQ(passes_avoided(quads), double(64 - 16 - tie.extra_passes));
-    // Uneven depth: the deepest pixel decides the passes, ceil(d / 2) + extra.
-    const RunResult spheres = run_ok(spec_of({{"tie_break", tie.name}}, "spheres", {}, 64));
-    EXPECT_LT(spheres.error->max_abs, 1e-5);
-    EXPECT_EQ(passes_avoided(spheres),
-              double(64 - (spheres.max_depth_complexity + 1) / 2 - tie.extra_passes));
+    test::expect_passes_avoided_on_quads_and_spheres("dual_depth_peeling", tie.name, tie.extra_passes,
+                                                     passes_for_depth);
   }
 }
 
@@ -244,41 +145,13 @@ TEST(DualDepthPeeling, PassCapLeavesAnErrorThatShrinksWithMorePasses) {
 }
 
 TEST(DualDepthPeeling, CoplanarStressLayersMatchTheReferenceInEverySubmissionOrder) {
-  // stress_layers with gap 0: 8 full-screen layers at one depth, so the
-  // nearest and the farthest depth coincide and every pixel holds an 8-way
-  // tie that only the stable triangle id orders, from both ends.
-  for (const std::string seed : {"1", "2"}) {
-    for (const std::string order : {"original", "reversed", "shuffled:3"}) {
-      SCOPED_TRACE("seed " + seed + " " + order);
-      const RunResult r = run_ok(spec_of({{"tie_break", "triangle_id"}}, "stress_layers",
-                                         {{"gap", "0"}, {"seed", seed}}, kSize, order));
-      EXPECT_EQ(r.max_depth_complexity, 8u);
-      EXPECT_LT(r.error->max_abs, 1e-5);
-      EXPECT_EQ(r.counters.fragments_stored, 8u * kPixels);
-      EXPECT_EQ(r.counters.fragments_dropped, 0u);
-      EXPECT_EQ(r.counters.passes, 6u);  // 2 of the tie per pass, + 2
-    }
-  }
+  // Two of the tie per pass (from both ends), + 2.
+  test::expect_coplanar_ties_like_the_reference("dual_depth_peeling", kSize, 6);
 }
 
 TEST(DualDepthPeeling, SubmissionTieBreakCompositesCoplanarLayersCompletelyInSubmissionOrder) {
-  std::vector<float> original_image;
-  for (const std::string order : {"original", "reversed", "shuffled:3"}) {
-    SCOPED_TRACE(order);
-    const RunResult r =
-        run_ok(spec_of({{"tie_break", "submission"}}, "stress_layers", {{"gap", "0"}}, kSize, order));
-    for (float v : r.image.rgba) ASSERT_TRUE(std::isfinite(v));
-    // The whole tie is at the nearest depth: all composited in one pass, none lost ...
-    EXPECT_EQ(r.counters.fragments_stored, 8u * kPixels);
-    EXPECT_EQ(r.counters.fragments_dropped, 0u);
-    EXPECT_EQ(r.counters.passes, 2u);
-    if (order == "original") {
-      original_image = r.image.rgba;
-    } else {
-      // ... but in submission order: the image moves with it.
-      EXPECT_GT(largest_difference(r.image.rgba, original_image), 0.05f);
-    }
-  }
+  // The whole tie is at the nearest depth: all composited in one pass, + the min-max pass.
+  test::expect_submission_ties_in_submission_order("dual_depth_peeling", kSize, 2);
 }
 
 TEST(DualDepthPeeling, TriangleIdTieBreakOrdersTiesAtTheFrontTheBackAndInTheMiddle) {

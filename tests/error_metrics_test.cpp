@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "core/error_metrics.h"
+#include "harness/core/error_metrics.h"
 
 namespace oit {
 namespace {
@@ -66,7 +66,7 @@ TEST(ErrorMetrics, NanMakesTheErrorInfiniteAndSizesMustMatch) {
 }  // namespace
 }  // namespace oit
 
-#include "core/heatmap.h"
+#include "harness/core/heatmap.h"
 
 namespace oit {
 namespace {

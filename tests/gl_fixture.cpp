@@ -1,11 +1,19 @@
-#include "gl_fixture.h"
+#include "tests/gl_fixture.h"
 
 #include <gtest/gtest.h>
 
-#include "core/image.h"
-#include "gl/check.h"
-#include "scene.h"
-#include "scene_library.h"
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "harness/core/image.h"
+#include "harness/gl/check.h"
+#include "scenes/scene.h"
+#include "scenes/scene_library.h"
 
 namespace oit::test {
 
@@ -38,20 +46,96 @@ glm::vec4 drawn_texel(const Program& program) {
   return {image.at(2, 2, 0), image.at(2, 2, 1), image.at(2, 2, 2), image.at(2, 2, 3)};
 }
 
-RunResult render_once(const std::string& technique, const RawParams& params, const std::string& scene,
-                      const RawParams& scene_params, int width, int height) {
+RunSpec one_frame(const std::string& technique, const RawParams& params, const std::string& scene,
+                  const RawParams& scene_params, int size, const std::string& order) {
   RunSpec spec;
   spec.technique = technique;
   spec.params = params;
   spec.scene = scene;
   spec.scene_params = scene_params;
-  spec.width = width;
-  spec.height = height;
+  spec.submission_order = order;
+  spec.width = size;
+  spec.height = size;
   spec.warmup = 0;
   spec.frames = 1;
+  return spec;
+}
+
+RunResult run_ok(const RunSpec& spec) {
+  RunResult r = harness().run(spec);
+  EXPECT_EQ(r.status, RunStatus::ok) << spec.technique << ": " << r.message;
+  EXPECT_TRUE(r.error.has_value()) << spec.technique;
+  return r;
+}
+
+double max_abs_difference(const Image& a, const Image& b) {
+  EXPECT_EQ(a.rgba.size(), b.rgba.size());
+  double worst = 0.0;
+  for (size_t i = 0; i < a.rgba.size() && i < b.rgba.size(); ++i)
+    worst = std::max(worst, std::abs(double(a.rgba[i]) - double(b.rgba[i])));
+  return worst;
+}
+
+RunResult render_once(const std::string& technique, const RawParams& params, const std::string& scene,
+                      const RawParams& scene_params, int width, int height) {
+  RunSpec spec = one_frame(technique, params, scene, scene_params, width);
+  spec.height = height;
   RunResult result = harness().run(spec);
   EXPECT_EQ(result.status, RunStatus::ok) << technique << ": " << result.message;
   return result;
+}
+
+std::string write_quads_gltf(const std::string& folder, const std::string& name,
+                             const std::vector<std::pair<float, glm::vec4>>& quads, double znear) {
+  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/" + folder;
+  std::filesystem::create_directories(dir);
+  std::vector<float> positions;
+  for (const auto& quad : quads) {
+    const float corners[4][2] = {{-1.5f, -1.5f}, {1.5f, -1.5f}, {1.5f, 1.5f}, {-1.5f, 1.5f}};
+    for (const auto& c : corners) positions.insert(positions.end(), {c[0], c[1], quad.first});
+  }
+  const uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
+  std::string bin(positions.size() * 4 + sizeof(indices), '\0');
+  std::memcpy(bin.data(), positions.data(), positions.size() * 4);
+  std::memcpy(bin.data() + positions.size() * 4, indices, sizeof(indices));
+  std::ofstream(dir + "/" + name + ".bin", std::ios::binary) << bin;
+
+  using nlohmann::json;
+  json nodes = json::array(), meshes = json::array(), materials = json::array(), accessors = json::array(),
+       views = json::array();
+  for (size_t i = 0; i < quads.size(); ++i) {
+    const glm::vec4& c = quads[i].second;
+    const float z = quads[i].first;
+    nodes.push_back({{"mesh", i}});
+    meshes.push_back({{"primitives", {{{"attributes", {{"POSITION", i}}}, {"indices", quads.size()}, {"material", i}}}}});
+    materials.push_back({{"pbrMetallicRoughness", {{"baseColorFactor", {c.r, c.g, c.b, c.a}}}},
+                         {"alphaMode", "BLEND"},
+                         {"extensions", {{"KHR_materials_unlit", json::object()}}}});
+    accessors.push_back({{"bufferView", i}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"},
+                         {"min", {-1.5, -1.5, z}}, {"max", {1.5, 1.5, z}}});
+    views.push_back({{"buffer", 0}, {"byteOffset", 48 * i}, {"byteLength", 48}});
+  }
+  accessors.push_back({{"bufferView", quads.size()}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}});
+  views.push_back({{"buffer", 0}, {"byteOffset", 48 * quads.size()}, {"byteLength", 12}});
+  nodes.push_back({{"camera", 0}});
+  json scene_nodes = json::array();
+  for (size_t i = 0; i < nodes.size(); ++i) scene_nodes.push_back(i);
+  const json gltf = {
+      {"asset", {{"version", "2.0"}}},
+      {"extensionsUsed", {"KHR_materials_unlit"}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", scene_nodes}}}},
+      {"nodes", nodes},
+      {"cameras", {{{"type", "orthographic"}, {"orthographic", {{"xmag", 1.0}, {"ymag", 1.0}, {"znear", znear}, {"zfar", 10.0}}}}}},
+      {"meshes", meshes},
+      {"materials", materials},
+      {"accessors", accessors},
+      {"bufferViews", views},
+      {"buffers", {{{"uri", name + ".bin"}, {"byteLength", bin.size()}}}},
+  };
+  const std::string path = dir + "/" + name + ".gltf";
+  std::ofstream(path) << gltf.dump(2);
+  return path;
 }
 
 std::vector<DiagnosticImage> diagnostic_images_once(const std::string& technique, const RawParams& params,

@@ -1,11 +1,32 @@
 #pragma once
 // One headless GL context and harness per test process, created on first use.
-#include "core/runner.h"
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "harness/core/runner.h"
 
 namespace oit::test {
 
 GlContext& gl_context();
 Harness& harness();
+
+// A run of one frame without warm-up, `size` x `size`, in `order`.
+RunSpec one_frame(const std::string& technique, const RawParams& params, const std::string& scene,
+                  const RawParams& scene_params, int size, const std::string& order = "original");
+
+// Runs `spec`, which must end `ok` and compared with the reference.
+RunResult run_ok(const RunSpec& spec);
+
+// The largest difference between two images' channel values.
+double max_abs_difference(const Image& a, const Image& b);
+
+// Writes <build>/test_output/<folder>/<name>.gltf (and .bin): full-screen
+// unlit quads (view-space z, colour) in this order, seen by an orthographic
+// camera looking down -z with near plane `znear`. Quads with the same z have
+// identical vertices, so their fragments tie exactly in depth. Returns the path.
+std::string write_quads_gltf(const std::string& folder, const std::string& name,
+                             const std::vector<std::pair<float, glm::vec4>>& quads, double znear = 0.1);
 
 // Runs one technique with a single untimed-warm-up frame and asserts that
 // the run did not error or skip.

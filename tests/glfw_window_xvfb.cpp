@@ -3,9 +3,9 @@
 // Registered in tests/CMakeLists.txt to run under `xvfb-run -a`.
 #include <gtest/gtest.h>
 
-#include "core/runner.h"
-#include "gl/glfw_window.h"
-#include "stacked_quads.h"
+#include "harness/core/runner.h"
+#include "harness/gl/glfw_window.h"
+#include "scenes/stacked_quads.h"
 
 namespace oit {
 namespace {

@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "gl_fixture.h"
-#include "scene_library.h"
+#include "tests/gl_fixture.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 namespace {

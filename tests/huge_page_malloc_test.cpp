@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "oitbench_process.h"
+#include "tests/oitbench_process.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "app/huge_page_malloc.h"
+#include "harness/app/huge_page_malloc.h"
 
 int main(int, char** argv) {
   oit::relaunch_with_huge_page_malloc(argv);

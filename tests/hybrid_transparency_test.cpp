@@ -2,7 +2,7 @@
 // core's RGBA8 colours), the rest as one weighted-average tail; the error
 // falls as k grows and vanishes, up to that quantisation, at k >= the
 // depth complexity.
-#include "approximate_oit_fixture.h"
+#include "tests/approximate_oit_fixture.h"
 
 namespace oit {
 namespace {

@@ -10,10 +10,10 @@
 #include <deque>
 #include <stdexcept>
 
-#include "core/complexity.h"
-#include "gl_fixture.h"
-#include "scene_library.h"
-#include "stacked_quads.h"
+#include "harness/core/complexity.h"
+#include "tests/gl_fixture.h"
+#include "scenes/scene_library.h"
+#include "scenes/stacked_quads.h"
 
 namespace oit {
 namespace {

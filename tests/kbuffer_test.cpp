@@ -4,15 +4,10 @@
 // parameter checks.
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 
-#include "core/error_metrics.h"
-#include "gl_fixture.h"
+#include "harness/core/error_metrics.h"
+#include "tests/gl_fixture.h"
 
 namespace oit {
 namespace {
@@ -22,25 +17,10 @@ const RawParams kQuads32 = {{"layers", "32"}};
 
 RunSpec spec_of(const RawParams& params, const std::string& scene, const RawParams& scene_params, int size,
                 const std::string& order = "original") {
-  RunSpec spec;
-  spec.technique = "kbuffer";
-  spec.params = params;
-  spec.scene = scene;
-  spec.scene_params = scene_params;
-  spec.submission_order = order;
-  spec.width = size;
-  spec.height = size;
-  spec.warmup = 0;
-  spec.frames = 1;
-  return spec;
+  return test::one_frame("kbuffer", params, scene, scene_params, size, order);
 }
 
-RunResult run_ok(const RunSpec& spec) {
-  RunResult r = test::harness().run(spec);
-  EXPECT_EQ(r.status, RunStatus::ok) << r.message;
-  EXPECT_TRUE(r.error.has_value());
-  return r;
-}
+using test::run_ok;
 
 double named(const std::vector<Figure>& values, const std::string& name) {
   if (auto value = find_figure(values, name)) return *value;
@@ -89,56 +69,16 @@ TEST(KBuffer, ExactOnShuffledQuads) {
   EXPECT_TRUE(identical(shuffled.image, original.image));
 }
 
-// A glTF scene of three full-screen unlit quads at the SAME depth (one
-// vertex accessor shared by three meshes of different colours) in front of a
-// fourth quad: every pixel has a run of three tied depth keys. Triangle ids
-// follow the file order, so the exact order of the tie is red, green, blue.
+// A glTF scene of three full-screen unlit quads at the SAME depth (identical
+// vertices, different colours) in front of a fourth quad: every pixel has a
+// run of three tied depth keys. Triangle ids follow the file order, so the
+// exact order of the tie is red, green, blue.
 std::string write_tied_quads_gltf() {
-  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/kbuffer";
-  std::filesystem::create_directories(dir);
-  std::vector<float> positions;
-  for (float z : {-2.0f, -3.0f})
-    for (const auto& c : {std::pair{-1.5f, -1.5f}, {1.5f, -1.5f}, {1.5f, 1.5f}, {-1.5f, 1.5f}})
-      positions.insert(positions.end(), {c.first, c.second, z});
-  const uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
-  std::string bin(positions.size() * 4 + sizeof(indices), '\0');
-  std::memcpy(bin.data(), positions.data(), positions.size() * 4);
-  std::memcpy(bin.data() + positions.size() * 4, indices, sizeof(indices));
-  std::ofstream(dir + "/tied.bin", std::ios::binary) << bin;
-
-  using nlohmann::json;
-  auto material = [](float r, float g, float b, float a) {
-    return json{{"pbrMetallicRoughness", {{"baseColorFactor", {r, g, b, a}}}},
-                {"alphaMode", "BLEND"},
-                {"extensions", {{"KHR_materials_unlit", json::object()}}}};
-  };
-  auto mesh = [](int position_accessor, int material_index) {
-    return json{{"primitives", {{{"attributes", {{"POSITION", position_accessor}}}, {"indices", 2}, {"material", material_index}}}}};
-  };
-  auto positions_accessor = [](int view, float z) {
-    return json{{"bufferView", view}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"},
-                {"min", {-1.5, -1.5, z}}, {"max", {1.5, 1.5, z}}};
-  };
-  const json gltf = {
-      {"asset", {{"version", "2.0"}}},
-      {"extensionsUsed", {"KHR_materials_unlit"}},
-      {"scene", 0},
-      {"scenes", {{{"nodes", {0, 1, 2, 3, 4}}}}},
-      {"nodes", {{{"mesh", 0}}, {{"mesh", 1}}, {{"mesh", 2}}, {{"mesh", 3}}, {{"camera", 0}}}},
-      {"cameras", {{{"type", "orthographic"}, {"orthographic", {{"xmag", 1.0}, {"ymag", 1.0}, {"znear", 0.1}, {"zfar", 10.0}}}}}},
-      {"meshes", {mesh(0, 0), mesh(0, 1), mesh(0, 2), mesh(1, 3)}},
-      {"materials", {material(0.9f, 0.1f, 0.1f, 0.5f), material(0.1f, 0.9f, 0.1f, 0.6f), material(0.1f, 0.1f, 0.9f, 0.7f),
-                     material(0.8f, 0.8f, 0.2f, 0.4f)}},
-      {"accessors", {positions_accessor(0, -2.0f), positions_accessor(1, -3.0f),
-                     {{"bufferView", 2}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}},
-      {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
-                       {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 48}},
-                       {{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 12}}}},
-      {"buffers", {{{"uri", "tied.bin"}, {"byteLength", bin.size()}}}},
-  };
-  const std::string path = dir + "/tied.gltf";
-  std::ofstream(path) << gltf.dump(2);
-  return path;
+  return test::write_quads_gltf("kbuffer", "tied",
+                                {{-2.0f, {0.9f, 0.1f, 0.1f, 0.5f}},
+                                 {-2.0f, {0.1f, 0.9f, 0.1f, 0.6f}},
+                                 {-2.0f, {0.1f, 0.1f, 0.9f, 0.7f}},
+                                 {-3.0f, {0.8f, 0.8f, 0.2f, 0.4f}}});
 }
 
 TEST(KBuffer, TiedDepthsAreOrderedByTriangleIdInAnySubmissionOrder) {

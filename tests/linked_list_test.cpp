@@ -11,12 +11,12 @@
 #include <numeric>
 #include <random>
 
-#include "../algorithms/linked_list/length_classes.h"
-#include "../algorithms/linked_list/sorting_network.h"
-#include "core/complexity.h"
-#include "gl_fixture.h"
-#include "scene_library.h"
-#include "stacked_quads.h"
+#include "algorithms/linked_list/length_classes.h"
+#include "algorithms/linked_list/sorting_network.h"
+#include "harness/core/complexity.h"
+#include "tests/gl_fixture.h"
+#include "scenes/scene_library.h"
+#include "scenes/stacked_quads.h"
 
 namespace oit {
 namespace {

@@ -15,7 +15,7 @@
 #include <limits>
 #include <random>
 
-#include "scene_library.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 namespace {

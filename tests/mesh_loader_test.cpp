@@ -8,11 +8,11 @@
 #include <fstream>
 #include <set>
 
-#include "core/complexity.h"
-#include "gl_fixture.h"
-#include "mesh_loader.h"
-#include "model_files.h"
-#include "scene_library.h"
+#include "harness/core/complexity.h"
+#include "tests/gl_fixture.h"
+#include "scenes/mesh_loader.h"
+#include "scenes/model_files.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 namespace {

@@ -2,7 +2,7 @@
 // single fragment to its true opacity), finite and bounded on many layers
 // and on lit meshes, more accurate with more moments, and independent of
 // the submission order (additive blending only).
-#include "approximate_oit_fixture.h"
+#include "tests/approximate_oit_fixture.h"
 
 namespace oit {
 namespace {

@@ -5,8 +5,8 @@
 // checks that the spin-lock fallback lost no fragment (README proof).
 #include <sstream>
 
-#include "approximate_oit_fixture.h"
-#include "oitbench_process.h"
+#include "tests/approximate_oit_fixture.h"
+#include "tests/oitbench_process.h"
 
 namespace oit {
 namespace {

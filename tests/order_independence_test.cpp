@@ -4,8 +4,8 @@
 // The reference is cross-checked against uncapped depth peeling.
 #include <gtest/gtest.h>
 
-#include "app/check_order.h"
-#include "gl_fixture.h"
+#include "harness/app/check_order.h"
+#include "tests/gl_fixture.h"
 
 namespace oit {
 namespace {

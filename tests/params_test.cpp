@@ -7,7 +7,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "core/params.h"
+#include "base/params.h"
 
 namespace oit {
 namespace {

@@ -7,9 +7,9 @@
 #include <bit>
 #include <cstdlib>
 
-#include "gl/program_cache.h"
-#include "gl/shader_program.h"
-#include "gl_fixture.h"
+#include "harness/gl/program_cache.h"
+#include "harness/gl/shader_program.h"
+#include "tests/gl_fixture.h"
 
 namespace oit {
 namespace {

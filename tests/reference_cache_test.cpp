@@ -7,7 +7,7 @@
 #include <fstream>
 #include <functional>
 
-#include "gl_fixture.h"
+#include "tests/gl_fixture.h"
 
 namespace oit {
 namespace {

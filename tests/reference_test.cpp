@@ -2,8 +2,8 @@
 // overflow handling, and the harness's error against it.
 #include <gtest/gtest.h>
 
-#include "gl_fixture.h"
-#include "stacked_quads.h"
+#include "tests/gl_fixture.h"
+#include "scenes/stacked_quads.h"
 
 namespace oit {
 namespace {

@@ -19,12 +19,12 @@
 #include <map>
 #include <sstream>
 
-#include "app/sweep.h"
-#include "core/memory_failure.h"
-#include "core/output_file.h"
-#include "gl/check.h"
-#include "core/results_csv.h"
-#include "oitbench_process.h"
+#include "harness/app/sweep.h"
+#include "harness/core/memory_failure.h"
+#include "harness/core/output_file.h"
+#include "harness/gl/check.h"
+#include "harness/core/results_csv.h"
+#include "tests/oitbench_process.h"
 
 namespace oit {
 namespace {

@@ -8,11 +8,11 @@
 
 #include <cmath>
 
-#include "app/sweep.h"
-#include "core/results_csv.h"
-#include "gl_fixture.h"
-#include "scene.h"
-#include "scene_library.h"
+#include "harness/app/sweep.h"
+#include "harness/core/results_csv.h"
+#include "tests/gl_fixture.h"
+#include "scenes/scene.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 namespace {

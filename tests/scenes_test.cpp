@@ -4,9 +4,9 @@
 
 #include <set>
 
-#include "core/complexity.h"
-#include "gl_fixture.h"
-#include "scene_library.h"
+#include "harness/core/complexity.h"
+#include "tests/gl_fixture.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 namespace {

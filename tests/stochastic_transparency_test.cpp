@@ -4,7 +4,7 @@
 // and a sample count the device lacks is a skipped run that says so.
 #include <map>
 
-#include "approximate_oit_fixture.h"
+#include "tests/approximate_oit_fixture.h"
 
 namespace oit {
 namespace {

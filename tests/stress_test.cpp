@@ -5,7 +5,9 @@
 // children fork from a clean state.
 #include <gtest/gtest.h>
 
-#include "app/stress.h"
+#include <limits>
+
+#include "harness/app/stress.h"
 
 namespace oit {
 namespace {
@@ -36,6 +38,17 @@ TEST_P(Stress, ReducedSetPasses) {
 
 INSTANTIATE_TEST_SUITE_P(EveryTechnique, Stress, testing::ValuesIn(technique_ids()),
                          [](const testing::TestParamInfo<std::string>& info) { return info.param; });
+
+TEST(StressJudge, OutputRangeIsTheTechniquesOwn) {
+  TechniqueDescriptor compositing;  // output_max 1 by default
+  const std::vector<float> weighted_sum = {0.2f, 4.7f, 1.0005f, 1.0f, -0.5f, 0.0f, 0.0f, 1.0f};
+  EXPECT_EQ(values_outside_output_range(compositing, weighted_sum), 2u);  // 4.7 and -0.5; 1.0005 is rounding
+  TechniqueDescriptor unbounded;
+  unbounded.output_max = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(values_outside_output_range(unbounded, weighted_sum), 1u);  // only -0.5
+  const std::vector<float> broken = {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()};
+  EXPECT_EQ(values_outside_output_range(unbounded, broken), 2u);  // never finiteness
+}
 
 TEST(StressCases, ReducedIsASubsetOfFullAndCoversEveryKind) {
   const auto reduced = stress_cases(false), full = stress_cases(true);

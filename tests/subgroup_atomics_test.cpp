@@ -9,8 +9,8 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "gl/shader_capabilities.h"
-#include "gl_fixture.h"
+#include "harness/gl/shader_capabilities.h"
+#include "tests/gl_fixture.h"
 
 namespace oit {
 namespace {

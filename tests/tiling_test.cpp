@@ -8,11 +8,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/fragment_pool.h"
-#include "core/tiling.h"
-#include "gl_fixture.h"
-#include "scene_library.h"
-#include "stacked_quads.h"
+#include "harness/core/fragment_pool.h"
+#include "harness/core/tiling.h"
+#include "scenes/scene_library.h"
+#include "scenes/stacked_quads.h"
+#include "tests/gl_fixture.h"
 
 namespace oit {
 namespace {

@@ -10,13 +10,13 @@
 #include <fstream>
 #include <sstream>
 
-#include "app/viewer/live_technique.h"
-#include "app/viewer/orbit_camera.h"
-#include "app/viewer/param_editor.h"
-#include "app/viewer/sweep_line.h"
-#include "gl_fixture.h"
-#include "scene.h"
-#include "scene_library.h"
+#include "harness/app/viewer/live_technique.h"
+#include "harness/app/viewer/orbit_camera.h"
+#include "harness/app/viewer/param_editor.h"
+#include "harness/app/viewer/sweep_line.h"
+#include "tests/gl_fixture.h"
+#include "scenes/scene.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 namespace {

@@ -17,10 +17,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/heatmap.h"
-#include "core/image.h"
-#include "core/runner.h"
-#include "gl_fixture.h"
+#include "harness/core/heatmap.h"
+#include "harness/core/image.h"
+#include "harness/core/runner.h"
+#include "tests/gl_fixture.h"
 
 namespace oit {
 namespace {

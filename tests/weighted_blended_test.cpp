@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "gl_fixture.h"
+#include "tests/gl_fixture.h"
 
 namespace oit {
 namespace {
@@ -15,33 +15,12 @@ const char* const kWeights[] = {"eq7", "eq8", "eq9", "eq10"};
 
 RunSpec spec_of(const RawParams& params, const std::string& scene, const RawParams& scene_params,
                 const std::string& order = "original") {
-  RunSpec spec;
-  spec.technique = "weighted_blended";
-  spec.params = params;
-  spec.scene = scene;
-  spec.scene_params = scene_params;
-  spec.submission_order = order;
-  spec.width = kSize;
-  spec.height = kSize;
-  spec.warmup = 0;
-  spec.frames = 1;
-  return spec;
+  return test::one_frame("weighted_blended", params, scene, scene_params, kSize, order);
 }
 
-RunResult run_ok(const RunSpec& spec) {
-  RunResult r = test::harness().run(spec);
-  EXPECT_EQ(r.status, RunStatus::ok) << r.message;
-  EXPECT_TRUE(r.error.has_value());
-  return r;
-}
+using test::run_ok;
 
-double max_abs_difference(const Image& a, const Image& b) {
-  EXPECT_EQ(a.rgba.size(), b.rgba.size());
-  double worst = 0.0;
-  for (size_t i = 0; i < a.rgba.size() && i < b.rgba.size(); ++i)
-    worst = std::max(worst, std::abs(double(a.rgba[i]) - double(b.rgba[i])));
-  return worst;
-}
+using test::max_abs_difference;
 
 // One fragment of straight colour c and opacity a per pixel (quads scene:
 // c in [0.1, 0.9], a = 0.3, black background); the exact answer is c*a.

@@ -9,22 +9,15 @@
 // depth complexity; otherwise it depends on the rasterisation order.
 #include <string>
 
-#include "core/passes.h"
-#include "core/pixel_locks.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "harness/core/passes.h"
+#include "harness/core/pixel_locks.h"
+#include "harness/core/technique.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "algorithms/adaptive_transparency/bindings.h"
 
 namespace oit {
 namespace {
-
-constexpr GLuint kNodesBinding = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kCountsBinding = OIT_FIRST_TECHNIQUE_BINDING + 1;
-constexpr GLuint kLocksBinding = OIT_FIRST_TECHNIQUE_BINDING + 2;
-constexpr GLuint kAccumulationUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
-constexpr GLint kNodesLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
 
 // Per node: (depth, transmittance) as two 32-bit floats; k + 1 nodes per
 // pixel (one spare for the insertion before compression).
@@ -40,13 +33,15 @@ class AdaptiveTransparency final : public Technique {
         fill_(build_geometry_program("algorithms/adaptive_transparency/fill.frag")),
         store_(build_geometry_program("algorithms/adaptive_transparency/store.frag")),
         compose_(build_fullscreen_program("algorithms/adaptive_transparency/compose.frag")) {
-    for (GLuint program : {fill_.id(), store_.id(), compose_.id()}) glProgramUniform1i(program, kNodesLocation, k_);
+    for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
+      glProgramUniform1i(program, ADAPTIVE_TRANSPARENCY_NODES_LOCATION, k_);
   }
 
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
-    for (GLuint program : {fill_.id(), store_.id(), compose_.id()}) glProgramUniform1i(program, kWidthLocation, width);
+    for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
+      glProgramUniform1i(program, ADAPTIVE_TRANSPARENCY_WIDTH_LOCATION, width);
     const uint64_t pixels = uint64_t(width) * uint64_t(height);
     nodes_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_ + 1) * kNodeBytes));
     counts_ = make_buffer(GLsizeiptr(4 + pixels * 4));
@@ -62,15 +57,14 @@ class AdaptiveTransparency final : public Technique {
   void render(const Frame& frame) override {
     {
       auto clear = frame.clock.stage("clear");
-      const GLuint zero = 0;
-      glClearNamedBufferData(counts_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      fill_buffer_u32(counts_, 0);
       locks_.clear();
       const GLfloat transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f};
       glClearNamedFramebufferfv(accumulation_framebuffer_.id(), GL_COLOR, 0, transparent);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNodesBinding, nodes_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountsBinding, counts_.id());
-    locks_.bind(kLocksBinding);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ADAPTIVE_TRANSPARENCY_NODES_BINDING, nodes_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ADAPTIVE_TRANSPARENCY_COUNTS_BINDING, counts_.id());
+    locks_.bind(ADAPTIVE_TRANSPARENCY_LOCKS_BINDING);
     {
       auto fill = frame.clock.stage("fill");
       draw_scene_pass(frame, fill_, no_attachments_);
@@ -86,7 +80,7 @@ class AdaptiveTransparency final : public Technique {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     {
       auto compose = frame.clock.stage("compose");
-      glBindTextureUnit(kAccumulationUnit, accumulation_.id());
+      glBindTextureUnit(ADAPTIVE_TRANSPARENCY_ACCUMULATION_UNIT, accumulation_.id());
       draw_fullscreen_pass(frame, compose_);
     }
   }

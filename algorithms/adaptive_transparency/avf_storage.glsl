@@ -4,15 +4,16 @@
 // depth z is the T of the last node strictly in front of z, 1 before the
 // first. How many nodes a pixel holds is its count word.
 #include "shaders/bindings.h"
+#include "algorithms/adaptive_transparency/bindings.h"
 
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) coherent buffer AvfNodes { vec2 avf_nodes[]; };
+layout(std430, binding = ADAPTIVE_TRANSPARENCY_NODES_BINDING) coherent buffer AvfNodes { vec2 avf_nodes[]; };
 // Node removals (compressions) in the last frame; then the node count per pixel.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) coherent buffer AvfCounts {
+layout(std430, binding = ADAPTIVE_TRANSPARENCY_COUNTS_BINDING) coherent buffer AvfCounts {
   uint avf_removals;
   uint avf_counts[];
 };
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform int u_width;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_k;
+layout(location = ADAPTIVE_TRANSPARENCY_WIDTH_LOCATION) uniform int u_width;
+layout(location = ADAPTIVE_TRANSPARENCY_NODES_LOCATION) uniform int u_k;
 
 uint avf_pixel() { return uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x); }

@@ -6,8 +6,9 @@
 // its true opacity (a choice of ours, README).
 #include "shaders/compose.glsl"
 #include "algorithms/adaptive_transparency/avf_storage.glsl"
+#include "algorithms/adaptive_transparency/bindings.h"
 
-layout(binding = OIT_FIRST_TECHNIQUE_BINDING + 0) uniform sampler2D u_accumulation;
+layout(binding = ADAPTIVE_TRANSPARENCY_ACCUMULATION_UNIT) uniform sampler2D u_accumulation;
 
 layout(location = 0) out vec4 out_color;
 

@@ -1,4 +1,5 @@
 #version 450 core
+#include "algorithms/adaptive_transparency/bindings.h"
 // Pass 1 of adaptive transparency (Salvi, Montgomery & Lefohn 2011): build
 // each pixel's visibility function in its ordered critical section. A
 // fragment (z, a) adds a node at z whose T is the visibility just in front
@@ -8,7 +9,7 @@
 // i lets T_(i-1) extend over [z_i, z_(i+1)), an area change of
 // (T_(i-1) - T_i)(z_(i+1) - z_i). The last node is never a candidate, so
 // the total transmittance stays exact.
-#define OIT_ORDERED_LOCK_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 2)
+#define OIT_ORDERED_LOCK_BINDING ADAPTIVE_TRANSPARENCY_LOCKS_BINDING
 #include "shaders/ordered_access.glsl"
 #include "shaders/shading.glsl"
 #include "algorithms/adaptive_transparency/avf_storage.glsl"

@@ -1,4 +1,4 @@
-#include "accuracy.h"
+#include "algorithms/bucketed_kbuffer/accuracy.h"
 
 #include <algorithm>
 #include <bit>

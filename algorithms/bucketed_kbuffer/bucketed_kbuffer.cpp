@@ -16,13 +16,14 @@
 #include <optional>
 #include <stdexcept>
 
-#include "accuracy.h"
-#include "core/list_length_pass.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "transfer_functions.h"
-#include "../../shaders/bindings.h"
+#include "algorithms/bucketed_kbuffer/accuracy.h"
+#include "harness/core/list_length_pass.h"
+#include "harness/core/technique.h"
+#include "harness/core/passes.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "algorithms/bucketed_kbuffer/transfer_functions.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 namespace {
@@ -77,9 +78,7 @@ class BucketedKBuffer final : public Technique {
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
-    no_attachments_ = make_framebuffer();
-    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
-    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+    no_attachments_ = make_attachmentless_framebuffer(width, height);
     if (auto_k_) {
       count_pass_->resize(width, height);
       k_cap_ = auto_k_cap();
@@ -140,9 +139,9 @@ class BucketedKBuffer final : public Technique {
     {
       auto clear = frame.clock.stage("clear");
       if (k != allocated_k_) allocate_slots(k);  // k=auto: storage follows the view
-      const GLuint empty = 0xffffffffu, zero = 0u;
-      glClearNamedBufferData(z_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
-      glClearNamedBufferData(counter_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      const GLuint empty = 0xffffffffu;
+      fill_buffer_u32(z_, empty);
+      fill_buffer_u32(counter_, 0);
     }
     bind_storage();
     glBindFramebuffer(GL_FRAMEBUFFER, no_attachments_.id());

@@ -1,8 +1,8 @@
 // The descriptor of the bucketed k-buffer: parameters, stages, support check.
 #include <string>
 
-#include "core/fragment_pool.h"
-#include "core/technique.h"
+#include "harness/core/fragment_pool.h"
+#include "harness/core/technique.h"
 
 namespace oit {
 

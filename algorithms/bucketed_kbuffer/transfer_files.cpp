@@ -1,4 +1,4 @@
-#include "transfer_files.h"
+#include "algorithms/bucketed_kbuffer/transfer_files.h"
 
 #include <stb_image.h>
 

@@ -1,4 +1,4 @@
-#include "transfer_functions.h"
+#include "algorithms/bucketed_kbuffer/transfer_functions.h"
 
 #include <algorithm>
 #include <cmath>

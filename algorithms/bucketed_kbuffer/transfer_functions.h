@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "gl/handles.h"
-#include "transfer_files.h"  // kColorTransferSize, kOpacityTransferSize
+#include "harness/gl/handles.h"
+#include "algorithms/bucketed_kbuffer/transfer_files.h"  // kColorTransferSize, kOpacityTransferSize
 
 namespace oit::bkb {
 

@@ -4,7 +4,7 @@
 // submission order.
 #include <memory>
 
-#include "core/technique.h"
+#include "harness/core/technique.h"
 
 namespace oit {
 

@@ -9,18 +9,19 @@
 // This file is tie_break=submission: depth ties are peeled in submission
 // order. tie_break=triangle_id (the default, by_triangle_id.cpp) peels them
 // by stable triangle id, as the reference does.
-#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "by_triangle_id.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/pass_queries.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "algorithms/depth_peeling/by_triangle_id.h"
+#include "harness/core/passes.h"
+#include "harness/core/peeling.h"
+#include "harness/core/technique.h"
+#include "harness/gl/check.h"
+#include "harness/gl/pass_queries.h"
+#include "harness/gl/shader_program.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 namespace {
@@ -55,12 +56,6 @@ void check_depth_range(const glm::mat4& m) {
   }
 }
 
-GLuint float_bits(float value) {
-  GLuint bits = 0;
-  std::memcpy(&bits, &value, sizeof bits);
-  return bits;
-}
-
 class DepthPeelingBySubmission final : public Technique {
  public:
   DepthPeelingBySubmission(int max_passes, bool early_exit)
@@ -81,19 +76,12 @@ class DepthPeelingBySubmission final : public Technique {
     layer_color_ = make_texture_2d(GL_RGBA32F, width, height);
     depth_ = make_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
     accumulation_ = make_texture_2d(GL_RGBA32F, width, height);
-    accumulation_target_ = make_framebuffer();
-    glNamedFramebufferTexture(accumulation_target_.id(), GL_COLOR_ATTACHMENT0, accumulation_.id(), 0);
-    check_complete(accumulation_target_, "accumulation");
+    accumulation_target_ = make_target_framebuffer({&accumulation_}, "depth_peeling: the accumulation framebuffer");
     // Two key targets alternate: a pass writes one and reads the other.
-    const GLenum draw_buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     for (int i = 0; i < 2; ++i) {
       keys_[i] = make_texture_2d(GL_RG32UI, width, height);
-      peel_targets_[i] = make_framebuffer();
-      glNamedFramebufferTexture(peel_targets_[i].id(), GL_COLOR_ATTACHMENT0, layer_color_.id(), 0);
-      glNamedFramebufferTexture(peel_targets_[i].id(), GL_COLOR_ATTACHMENT1, keys_[i].id(), 0);
-      glNamedFramebufferTexture(peel_targets_[i].id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
-      glNamedFramebufferDrawBuffers(peel_targets_[i].id(), 2, draw_buffers);
-      check_complete(peel_targets_[i], "peel");
+      peel_targets_[i] =
+          make_target_framebuffer({&layer_color_, &keys_[i]}, "depth_peeling: the peel framebuffer", &depth_);
     }
     gl_check("allocating depth peeling targets of " + std::to_string(width) + "x" + std::to_string(height));
   }
@@ -110,8 +98,7 @@ class DepthPeelingBySubmission final : public Technique {
       // What pass 1 reads: "peeled so far" ends at -infinity, i.e. nothing.
       const GLuint nothing_peeled_yet[4] = {float_bits(-std::numeric_limits<float>::infinity()), 0, 0, 0};
       glClearNamedFramebufferuiv(peel_targets_[0].id(), GL_COLOR, 1, nothing_peeled_yet);
-      const GLuint zero = 0;
-      glClearNamedBufferData(counter_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      fill_buffer_u32(counter_, 0);
     }
     // Where a pass finds nothing its key stays +infinity: every later pass discards everything there.
     const GLuint nothing_here[4] = {float_bits(std::numeric_limits<float>::infinity()), 0, 0, 0};
@@ -153,11 +140,8 @@ class DepthPeelingBySubmission final : public Technique {
   }
 
   TechniqueCounters counters() const override {
-    TechniqueCounters c;
-    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * kBytesPerPixel + kCounterBytes;
-    c.passes = passes_;
-    // Geometry passes early exit did not run (without it all max_passes run).
-    c.work_saved = {{"passes_avoided", early_exit_ ? double(uint64_t(max_passes_) - passes_) : 0.0}};
+    TechniqueCounters c = peeling_counters(uint64_t(width_) * uint64_t(height_) * kBytesPerPixel + kCounterBytes,
+                                           passes_, max_passes_, early_exit_);
     // Read lazily, so no frame waits for them.
     const uint64_t peeled = blend_queries_.sum(0, size_t(blended_passes_));
     const uint64_t peeled_by_last_pass = blended_passes_ > 0 ? blend_queries_.result(size_t(blended_passes_ - 1)) : 0;
@@ -192,11 +176,6 @@ class DepthPeelingBySubmission final : public Technique {
     last_allowed_pass_blended_ = pass == max_passes_;
   }
 
-  static void check_complete(const Framebuffer& framebuffer, const char* what) {
-    if (glCheckNamedFramebufferStatus(framebuffer.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw GlError(std::string("depth_peeling: the ") + what + " framebuffer is incomplete");
-  }
-
   int max_passes_;
   bool early_exit_;
   Program peel_, peel_counting_, blend_layer_, compose_;
@@ -218,33 +197,21 @@ void register_technique_depth_peeling(TechniqueRegistry& registry) {
   d.id = "depth_peeling";
   d.display_name = "Depth peeling";
   d.paper = "Everitt 2001, Interactive order-independent transparency (NVIDIA)";
-  d.params = {
-      ParamSpec::integer("max_passes", 64, 1, 4096,
-                         "most geometry passes per frame (layers peeled); fewer than the depth complexity "
-                         "leaves the farther layers out"),
-      ParamSpec::boolean("early_exit", true,
-                         "stop at the first pass that peels nothing (occlusion query); false runs exactly "
-                         "max_passes passes"),
-      ParamSpec::choice("tie_break", "triangle_id", {"triangle_id", "submission"},
-                        "order of fragments at bit-identical depth: triangle_id peels them by stable id like "
-                        "the reference (any submission order gives the same image; d + 2 passes); "
-                        "submission peels them in submission order (faster, d + 1 passes, but the image of "
-                        "coplanar geometry depends on the submission order)"),
-  };
-  d.stages = {"clear", "peel", "compose"};
-  d.exactness = Exactness::exact;
+  describe_peeler(
+      d,
+      {"most geometry passes per frame (layers peeled); fewer than the depth complexity leaves the farther layers "
+       "out",
+       "stop at the first pass that peels nothing (occlusion query); false runs exactly max_passes passes",
+       "order of fragments at bit-identical depth: triangle_id peels them by stable id like the reference (any "
+       "submission order gives the same image; d + 2 passes); submission peels them in submission order (faster, "
+       "d + 1 passes, but the image of coplanar geometry depends on the submission order)",
+       "stops peeling at the first pass that an occlusion query finds empty (depth complexity + 1 passes)"},
+      56,  // bytes per pixel of tie_break=triangle_id, the larger variant
+      make_depth_peeling_by_triangle_id,
+      [](int max_passes, bool early_exit) -> std::unique_ptr<Technique> {
+        return std::make_unique<DepthPeelingBySubmission>(max_passes, early_exit);
+      });
   d.quality_sweep = {{"max_passes", {"2", "4", "8", "16", "32", "64"}}};
-  d.adaptive_switches = {{"early_exit", "stops peeling at the first pass that an occlusion query finds empty (depth complexity + 1 passes)",
-                          {{"early_exit", "true"}}, {{"early_exit", "false"}}}};
-  // Per-pixel textures only (tie_break=triangle_id's 56 bytes, the larger variant): tiled only under a small --memory-budget.
-  d.storage_need = [](const ParamSet&, const FrameContent& content) { return StorageNeed{0, content.pixels() * 56}; };
-  d.create = [](const ParamSet& params) -> std::unique_ptr<Technique> {
-    const int max_passes = int(params.integer("max_passes"));
-    const bool early_exit = params.boolean("early_exit");
-    if (params.choice("tie_break") == "submission")
-      return std::make_unique<DepthPeelingBySubmission>(max_passes, early_exit);
-    return make_depth_peeling_by_triangle_id(max_passes, early_exit);
-  };
   registry.add(std::move(d));
 }
 

@@ -11,20 +11,19 @@
 // full-screen resolve turns that into the new state. Pass 1 is the min-max
 // pass (init.frag), which selects nothing, so depth complexity d costs
 // ceil(d / 2) + 2 passes: the last composites and selects nothing.
-#include "by_triangle_id.h"
+#include "algorithms/dual_depth_peeling/by_triangle_id.h"
 
-#include <algorithm>
 #include <cfloat>
-#include <cstring>
 #include <limits>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "gl/check.h"
-#include "gl/pass_queries.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "harness/core/passes.h"
+#include "harness/core/peeling.h"
+#include "harness/gl/check.h"
+#include "harness/gl/pass_queries.h"
+#include "harness/gl/shader_program.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 namespace {
@@ -32,8 +31,6 @@ namespace {
 constexpr GLuint kKeysUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
 constexpr GLuint kNextUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
 constexpr GLuint kSelectUnit = OIT_FIRST_TECHNIQUE_BINDING + 2;
-constexpr GLuint kFrontUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kBackUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
 constexpr GLint kCountBackUniform = OIT_FIRST_TECHNIQUE_UNIFORM;
 
 // Per pixel: front and back accumulations RGBA32F (2 x 16) + two RGBA32UI
@@ -41,56 +38,34 @@ constexpr GLint kCountBackUniform = OIT_FIRST_TECHNIQUE_UNIFORM;
 // the RGBA32F GL_MIN target (16).
 constexpr uint64_t kBytesPerPixel = 2 * 16 + 2 * 16 + 2 * 8 + 16;
 
-GLuint float_bits(float value) {
-  GLuint bits = 0;
-  std::memcpy(&bits, &value, sizeof bits);
-  return bits;
-}
-
-class DualDepthPeelingByTriangleId final : public Technique {
+class DualDepthPeelingByTriangleId final : public TriangleIdPeeler {
  public:
   DualDepthPeelingByTriangleId(int max_passes, bool early_exit)
-      : max_passes_(max_passes),
-        early_exit_(early_exit),
+      : TriangleIdPeeler("dual_depth_peeling", kDualDepthPeelingMaxTriangleId, max_passes, early_exit, kBytesPerPixel),
         init_(build_geometry_program("algorithms/dual_depth_peeling/init.frag", {{"COUNT_LEFT_UNPEELED", "0"}})),
         peel_(build_geometry_program("algorithms/dual_depth_peeling/peel_by_id.frag")),
         resolve_(build_fullscreen_program("algorithms/dual_depth_peeling/resolve_by_id.frag")),
-        compose_(build_fullscreen_program("algorithms/dual_depth_peeling/compose.frag")),
-        fragments_query_(make_query(GL_SAMPLES_PASSED)) {}
+        compose_(build_fullscreen_program("algorithms/dual_depth_peeling/compose.frag")) {}
 
   void resize(int width, int height) override {
-    width_ = width;
-    height_ = height;
+    set_size(width, height);
     front_ = make_texture_2d(GL_RGBA32F, width, height);
     back_ = make_texture_2d(GL_RGBA32F, width, height);
     select_ = make_texture_2d(GL_RGBA32F, width, height);
-    peel_target_ = make_framebuffer();
-    const Texture* peel_outputs[] = {&front_, &back_, &select_};
-    for (int i = 0; i < 3; ++i)
-      glNamedFramebufferTexture(peel_target_.id(), GL_COLOR_ATTACHMENT0 + i, peel_outputs[i]->id(), 0);
-    const GLenum draw_buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    glNamedFramebufferDrawBuffers(peel_target_.id(), 3, draw_buffers);
-    check_complete(peel_target_, "peel");
+    peel_target_ = make_target_framebuffer({&front_, &back_, &select_}, "dual_depth_peeling: the peel framebuffer");
     for (int i = 0; i < 2; ++i) {
       keys_[i] = make_texture_2d(GL_RGBA32UI, width, height);
       next_[i] = make_texture_2d(GL_RG32F, width, height);
-      state_targets_[i] = make_framebuffer();
-      glNamedFramebufferTexture(state_targets_[i].id(), GL_COLOR_ATTACHMENT0, keys_[i].id(), 0);
-      glNamedFramebufferTexture(state_targets_[i].id(), GL_COLOR_ATTACHMENT1, next_[i].id(), 0);
-      glNamedFramebufferDrawBuffers(state_targets_[i].id(), 2, draw_buffers);
-      check_complete(state_targets_[i], "state");
+      state_targets_[i] = make_target_framebuffer({&keys_[i], &next_[i]}, "dual_depth_peeling: the state framebuffer");
     }
     // Pass 1 writes only the next depths of state 1: (-nearest, farthest).
-    init_target_ = make_framebuffer();
-    glNamedFramebufferTexture(init_target_.id(), GL_COLOR_ATTACHMENT0, next_[1].id(), 0);
-    check_complete(init_target_, "depth range");
+    init_target_ = make_target_framebuffer({&next_[1]}, "dual_depth_peeling: the depth range framebuffer");
     gl_check("allocating dual depth peeling (triangle_id) targets of " + std::to_string(width) + "x" +
              std::to_string(height));
   }
 
   void render(const Frame& frame) override {
-    check_triangle_ids(frame.scene.scene());
-    passes_ = 0;
+    begin_frame(frame);
     const float infinity = std::numeric_limits<float>::infinity();
     // Keys (front depth, id, back depth, id): everything lies between -inf and +inf ...
     const GLuint nothing_selected_yet[4] = {float_bits(-infinity), 0, float_bits(infinity), 0};
@@ -138,39 +113,10 @@ class DualDepthPeelingByTriangleId final : public Technique {
       glBindTextureUnit(kKeysUnit, keys_[previous].id());
       glBindTextureUnit(kNextUnit, next_[previous].id());
       frame.scene.draw();
-      ++passes_;
       glDisable(GL_BLEND);
-      // What the last allowed pass selects is never composited: no state needed.
-      if (pass == max_passes_) break;
-      if (!resolve(current, previous, pass, nothing_here) && early_exit_) break;
+      if (!continue_after(pass, [&] { return resolve(current, previous, pass, nothing_here); })) break;
     }
-    glBlendEquation(GL_FUNC_ADD);  // GL's defaults, which other techniques may assume
-    glBlendFunc(GL_ONE, GL_ZERO);
-    {
-      auto compose = frame.clock.stage("compose");
-      frame.bind_target();
-      glUseProgram(compose_.id());
-      glBindTextureUnit(kFrontUnit, front_.id());
-      glBindTextureUnit(kBackUnit, back_.id());
-      glDrawArrays(GL_TRIANGLES, 0, 3);
-    }
-  }
-
-  TechniqueCounters counters() const override {
-    TechniqueCounters c;
-    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * kBytesPerPixel;
-    c.passes = passes_;
-    // Geometry passes early exit did not run (without it all max_passes run).
-    c.work_saved = {{"passes_avoided", early_exit_ ? double(uint64_t(max_passes_) - passes_) : 0.0}};
-    // Read lazily, so no frame waits for them. Pass p's selections are
-    // composited by pass p + 1: passes 2 .. passes - 1 count.
-    GLuint fragments = 0;
-    if (passes_ > 0) glGetQueryObjectuiv(fragments_query_.id(), GL_QUERY_RESULT, &fragments);
-    const uint64_t composited = selected_queries_.sum(2, passes_);
-    c.fragments_stored = composited;
-    // Whatever was not composited: the middle layers when the passes ran out.
-    c.fragments_dropped = fragments > composited ? fragments - composited : 0;
-    return c;
+    compose(frame, compose_, {&front_, &back_});
   }
 
  private:
@@ -178,52 +124,21 @@ class DualDepthPeelingByTriangleId final : public Technique {
   // returns whether any pixel selected a fragment (waits for the pass when
   // early exit needs to know).
   bool resolve(int current, int previous, int pass, const GLuint nothing_here[4]) {
-    const Query& query = selected_queries_.at(size_t(pass));
-    glClearNamedFramebufferuiv(state_targets_[current].id(), GL_COLOR, 0, nothing_here);
-    glBindFramebuffer(GL_FRAMEBUFFER, state_targets_[current].id());
-    glUseProgram(resolve_.id());
     glBindTextureUnit(kKeysUnit, keys_[previous].id());
     glBindTextureUnit(kNextUnit, next_[previous].id());
     glBindTextureUnit(kSelectUnit, select_.id());
-    glBeginQuery(GL_SAMPLES_PASSED, query.id());
-    for (GLint count_back : {0, 1}) {
-      glProgramUniform1i(resolve_.id(), kCountBackUniform, count_back);
-      glDrawArrays(GL_TRIANGLES, 0, 3);
-    }
-    glEndQuery(GL_SAMPLES_PASSED);
-    return !early_exit_ || selected_queries_.result(size_t(pass)) != 0;
+    resolve_selection(state_targets_[current], nothing_here, resolve_, selected_queries_.at(size_t(pass)), [this] {
+      for (GLint count_back : {0, 1}) {
+        glProgramUniform1i(resolve_.id(), kCountBackUniform, count_back);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+      }
+    });
+    return selected_anything(pass);
   }
 
-  // The candidate keys rank ids up to kDualDepthPeelingMaxTriangleId;
-  // checked once per uploaded scene.
-  void check_triangle_ids(const Scene& scene) {
-    if (&scene == checked_scene_ && scene.triangle_ids.data() == checked_ids_) return;
-    const auto largest = std::max_element(scene.triangle_ids.begin(), scene.triangle_ids.end());
-    if (largest != scene.triangle_ids.end() && *largest > kDualDepthPeelingMaxTriangleId) {
-      throw std::runtime_error("dual_depth_peeling: tie_break=triangle_id ranks stable triangle ids up to " +
-                               std::to_string(kDualDepthPeelingMaxTriangleId) + "; scene '" + scene.name +
-                               "' has id " + std::to_string(*largest) + " (use tie_break=submission)");
-    }
-    checked_scene_ = &scene;
-    checked_ids_ = scene.triangle_ids.data();
-  }
-
-  static void check_complete(const Framebuffer& framebuffer, const char* what) {
-    if (glCheckNamedFramebufferStatus(framebuffer.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw GlError(std::string("dual_depth_peeling: the ") + what + " framebuffer is incomplete");
-  }
-
-  int max_passes_;
-  bool early_exit_;
   Program init_, peel_, resolve_, compose_;
-  Query fragments_query_;
-  PassSampleQueries selected_queries_;  // pass p's resolve: fragments selected
   Texture front_, back_, select_, keys_[2], next_[2];
   Framebuffer peel_target_, state_targets_[2], init_target_;
-  const Scene* checked_scene_ = nullptr;
-  const uint32_t* checked_ids_ = nullptr;
-  int width_ = 0, height_ = 0;
-  uint64_t passes_ = 0;
 };
 
 }  // namespace

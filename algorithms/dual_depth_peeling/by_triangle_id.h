@@ -4,7 +4,7 @@
 // whatever the submission order.
 #include <memory>
 
-#include "core/technique.h"
+#include "harness/core/technique.h"
 
 namespace oit {
 

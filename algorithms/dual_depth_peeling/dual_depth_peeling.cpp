@@ -13,11 +13,13 @@
 #include <stdexcept>
 #include <string>
 
-#include "by_triangle_id.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "algorithms/dual_depth_peeling/by_triangle_id.h"
+#include "harness/core/technique.h"
+#include "harness/core/passes.h"
+#include "harness/core/peeling.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 namespace {
@@ -53,23 +55,14 @@ class DualDepthPeelingBySubmission final : public Technique {
     height_ = height;
     front_ = make_texture_2d(GL_RGBA32F, width, height);
     back_ = make_texture_2d(GL_RGBA32F, width, height);
-    const GLenum draw_buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     for (int i = 0; i < 2; ++i) {
       ranges_[i] = make_texture_2d(GL_RG32F, width, height);
-      range_targets_[i] = make_framebuffer();
-      glNamedFramebufferTexture(range_targets_[i].id(), GL_COLOR_ATTACHMENT0, ranges_[i].id(), 0);
-      check_complete(range_targets_[i], "depth range");
-      peel_targets_[i] = make_framebuffer();
-      glNamedFramebufferTexture(peel_targets_[i].id(), GL_COLOR_ATTACHMENT0, ranges_[i].id(), 0);
-      glNamedFramebufferTexture(peel_targets_[i].id(), GL_COLOR_ATTACHMENT1, front_.id(), 0);
-      glNamedFramebufferTexture(peel_targets_[i].id(), GL_COLOR_ATTACHMENT2, back_.id(), 0);
-      glNamedFramebufferDrawBuffers(peel_targets_[i].id(), 3, draw_buffers);
-      check_complete(peel_targets_[i], "peel");
+      range_targets_[i] = make_target_framebuffer({&ranges_[i]}, "dual_depth_peeling: the depth range framebuffer");
+      peel_targets_[i] =
+          make_target_framebuffer({&ranges_[i], &front_, &back_}, "dual_depth_peeling: the peel framebuffer");
     }
     // The range check writes nothing; it only needs a framebuffer of this size.
-    no_attachments_ = make_framebuffer();
-    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
-    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+    no_attachments_ = make_attachmentless_framebuffer(width, height);
     gl_check("allocating dual depth peeling targets of " + std::to_string(width) + "x" + std::to_string(height));
   }
 
@@ -82,8 +75,7 @@ class DualDepthPeelingBySubmission final : public Technique {
       const GLfloat nothing_accumulated[4] = {0.0f, 0.0f, 0.0f, 1.0f};
       glClearNamedFramebufferfv(peel_targets_[0].id(), GL_COLOR, 1, nothing_accumulated);
       glClearNamedFramebufferfv(peel_targets_[0].id(), GL_COLOR, 2, nothing_accumulated);
-      const GLuint zero = 0;
-      glClearNamedBufferData(counter_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      fill_buffer_u32(counter_, 0);
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCounterBinding, counter_.id());
     for (const Program* program : {&init_[0], &init_[1], &peel_[0], &peel_[1], &range_check_, &compose_})
@@ -120,10 +112,7 @@ class DualDepthPeelingBySubmission final : public Technique {
       ++passes_;
       if (early_exit_ && !last_allowed && !range_left(current)) break;
     }
-    glDisable(GL_BLEND);
-    // Back to GL's defaults, which other techniques may assume.
-    glBlendEquation(GL_FUNC_ADD);
-    glBlendFunc(GL_ONE, GL_ZERO);
+    restore_default_blending();
     {
       auto compose = frame.clock.stage("compose");
       frame.bind_target();
@@ -135,11 +124,8 @@ class DualDepthPeelingBySubmission final : public Technique {
   }
 
   TechniqueCounters counters() const override {
-    TechniqueCounters c;
-    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * kBytesPerPixel + kCounterBytes;
-    c.passes = passes_;
-    // Geometry passes early exit did not run (without it all max_passes run).
-    c.work_saved = {{"passes_avoided", early_exit_ ? double(uint64_t(max_passes_) - passes_) : 0.0}};
+    TechniqueCounters c = peeling_counters(uint64_t(width_) * uint64_t(height_) * kBytesPerPixel + kCounterBytes,
+                                           passes_, max_passes_, early_exit_);
     // Read lazily, so no frame waits for them.
     GLuint fragments = 0, left_unpeeled = 0;
     if (passes_ > 0) glGetQueryObjectuiv(fragments_query_.id(), GL_QUERY_RESULT, &fragments);
@@ -167,11 +153,6 @@ class DualDepthPeelingBySubmission final : public Technique {
     return any != 0;
   }
 
-  static void check_complete(const Framebuffer& framebuffer, const char* what) {
-    if (glCheckNamedFramebufferStatus(framebuffer.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw GlError(std::string("dual_depth_peeling: the ") + what + " framebuffer is incomplete");
-  }
-
   int max_passes_;
   bool early_exit_;
   Program init_[2], peel_[2], range_check_, compose_;  // [1]: counting variants
@@ -190,34 +171,23 @@ void register_technique_dual_depth_peeling(TechniqueRegistry& registry) {
   d.id = "dual_depth_peeling";
   d.display_name = "Dual depth peeling";
   d.paper = "Bavoil & Myers 2008, Order independent transparency with dual depth peeling (NVIDIA)";
-  d.params = {
-      ParamSpec::integer("max_passes", 64, 1, 4096,
-                         "most geometry passes per frame, the min-max pass included (2 layers per later "
-                         "pass); too few leave the middle layers out"),
-      ParamSpec::boolean("early_exit", true,
-                         "stop once no depth range is left (occlusion query on a full-screen check); false "
-                         "runs exactly max_passes passes"),
-      ParamSpec::choice("tie_break", "triangle_id", {"triangle_id", "submission"},
-                        "order of fragments at bit-identical depth: triangle_id composites them by stable id "
-                        "like the reference (any submission order gives the same image; ceil(d/2) + 2 "
-                        "passes); submission composites a tie in one pass in submission order (faster, "
-                        "ceil(d/2) + 1 passes, but the image of coplanar geometry depends on the submission "
-                        "order)"),
-  };
-  d.stages = {"clear", "peel", "compose"};
-  d.exactness = Exactness::exact;
+  describe_peeler(
+      d,
+      {"most geometry passes per frame, the min-max pass included (2 layers per later pass); too few leave the "
+       "middle layers out",
+       "stop once no depth range is left (occlusion query on a full-screen check); false runs exactly max_passes "
+       "passes",
+       "order of fragments at bit-identical depth: triangle_id composites them by stable id like the reference (any "
+       "submission order gives the same image; ceil(d/2) + 2 passes); submission composites a tie in one pass in "
+       "submission order (faster, ceil(d/2) + 1 passes, but the image of coplanar geometry depends on the "
+       "submission order)",
+       "stops peeling when an occlusion query finds a pass empty (about half the depth complexity + 1 passes)"},
+      96,  // bytes per pixel of tie_break=triangle_id, the larger variant
+      make_dual_depth_peeling_by_triangle_id,
+      [](int max_passes, bool early_exit) -> std::unique_ptr<Technique> {
+        return std::make_unique<DualDepthPeelingBySubmission>(max_passes, early_exit);
+      });
   d.quality_sweep = {{"max_passes", {"2", "3", "5", "9", "17", "33"}}};
-  d.adaptive_switches = {{"early_exit", "stops peeling when an occlusion query finds a pass empty (about half the depth complexity + 1 passes)",
-                          {{"early_exit", "true"}}, {{"early_exit", "false"}}}};
-  // Per-pixel textures only (tie_break=triangle_id's 96 bytes, the larger variant): tiled only under a small --memory-budget.
-  d.storage_need = [](const ParamSet&, const FrameContent& content) { return StorageNeed{0, content.pixels() * 96}; };
-  d.create = [](const ParamSet& params) -> std::unique_ptr<Technique> {
-    const int max_passes = int(params.integer("max_passes"));
-    const bool early_exit = params.boolean("early_exit");
-    if (params.choice("tie_break") == "submission")
-      return std::make_unique<DualDepthPeelingBySubmission>(max_passes, early_exit);
-    return make_dual_depth_peeling_by_triangle_id(max_passes, early_exit);
-  };
   registry.add(std::move(d));
 }
 

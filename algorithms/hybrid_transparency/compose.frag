@@ -5,9 +5,10 @@
 // the mean opacity would have (Maule et al. 2013, after Bavoil & Myers).
 #include "shaders/compose.glsl"
 #include "algorithms/hybrid_transparency/core_storage.glsl"
+#include "algorithms/hybrid_transparency/bindings.h"
 
-layout(binding = OIT_FIRST_TECHNIQUE_BINDING + 0) uniform sampler2D u_tail_sum;
-layout(binding = OIT_FIRST_TECHNIQUE_BINDING + 1) uniform sampler2D u_tail_count;
+layout(binding = HYBRID_TRANSPARENCY_TAIL_SUM_UNIT) uniform sampler2D u_tail_sum;
+layout(binding = HYBRID_TRANSPARENCY_TAIL_COUNT_UNIT) uniform sampler2D u_tail_count;
 
 layout(location = 0) out vec4 out_color;
 

@@ -4,25 +4,26 @@
 // the paper's budget of one 32-bit depth and one RGBA8 colour per core
 // fragment.
 #include "shaders/bindings.h"
+#include "algorithms/hybrid_transparency/bindings.h"
 
 #define CORE_EMPTY 0xffffffffu
 
 // The u_k smallest depth keys of the pixel, ascending; EMPTY slots last.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) coherent buffer CoreKeys { uint core_keys[]; };
+layout(std430, binding = HYBRID_TRANSPARENCY_KEYS_BINDING) coherent buffer CoreKeys { uint core_keys[]; };
 // packUnorm4x8 of the straight RGBA of the fragment in that slot; 0 = not
 // claimed (a fragment whose packed colour would be 0 has alpha < 1/510 and
 // is treated as fully transparent, see hybrid_transparency.cpp).
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) coherent buffer CoreColors { uint core_colors[]; };
+layout(std430, binding = HYBRID_TRANSPARENCY_COLORS_BINDING) coherent buffer CoreColors { uint core_colors[]; };
 // stored: core fragments composed (added by compose, per pixel);
 // tied_to_tail: fragments whose key is in the core but whose run of equal
 // keys was full (more ties than slots left), composed in the tail.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 2) coherent buffer CoreCounters {
+layout(std430, binding = HYBRID_TRANSPARENCY_COUNTERS_BINDING) coherent buffer CoreCounters {
   uint core_stored;
   uint core_tied_to_tail;
 };
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform int u_width;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_k;
+layout(location = HYBRID_TRANSPARENCY_WIDTH_LOCATION) uniform int u_width;
+layout(location = HYBRID_TRANSPARENCY_SLOTS_LOCATION) uniform int u_k;
 
 uint core_first_slot() { return (uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x)) * uint(u_k); }
 

@@ -9,22 +9,15 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/passes.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "harness/core/passes.h"
+#include "harness/core/technique.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "algorithms/hybrid_transparency/bindings.h"
 
 namespace oit {
 namespace {
 
-constexpr GLuint kKeysBinding = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kColorsBinding = OIT_FIRST_TECHNIQUE_BINDING + 1;
-constexpr GLuint kCountersBinding = OIT_FIRST_TECHNIQUE_BINDING + 2;
-constexpr GLuint kTailSumUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kTailCountUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
-constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
-constexpr GLint kSlotsLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
 constexpr GLuint kEmpty = 0xffffffffu;
 
 // Per core slot: 4 (depth key) + 4 (RGBA8 colour).
@@ -42,15 +35,15 @@ class HybridTransparency final : public Technique {
         store_(build_geometry_program("algorithms/hybrid_transparency/store.frag")),
         compose_(build_fullscreen_program("algorithms/hybrid_transparency/compose.frag")),
         counters_(make_buffer(kCounterBytes, kZeroCounters)) {
-    for (GLuint program : {fill_.id(), store_.id(), compose_.id()}) glProgramUniform1i(program, kSlotsLocation, k_);
+    for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
+      glProgramUniform1i(program, HYBRID_TRANSPARENCY_SLOTS_LOCATION, k_);
   }
 
   void resize(int width, int height) override {
-    width_ = width;
-    height_ = height;
-    for (GLuint program : {fill_.id(), store_.id(), compose_.id()}) glProgramUniform1i(program, kWidthLocation, width);
+    for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
+      glProgramUniform1i(program, HYBRID_TRANSPARENCY_WIDTH_LOCATION, width);
     const uint64_t slots = uint64_t(width) * uint64_t(height) * uint64_t(k_);
-    check_fits(slots * 4);
+    check_fits(slots * 4, width, height);
     keys_ = make_buffer(GLsizeiptr(slots * 4));
     colors_ = make_buffer(GLsizeiptr(slots * 4));
     gl_check("allocating the hybrid transparency core of " + std::to_string(width) + "x" + std::to_string(height) +
@@ -61,22 +54,24 @@ class HybridTransparency final : public Technique {
     tail_count_ = make_texture_2d(GL_R32F, width, height);
     tail_framebuffer_ =
         make_target_framebuffer({&tail_sum_, &tail_count_}, "hybrid_transparency: tail framebuffer (RGBA32F + R32F)");
+    bytes_allocated_ =
+        uint64_t(width) * uint64_t(height) * (uint64_t(k_) * kSlotBytes + kTailBytesPerPixel) + kCounterBytes;
   }
 
   void render(const Frame& frame) override {
     {
       auto clear = frame.clock.stage("clear");
-      const GLuint empty = kEmpty, zero = 0;
-      glClearNamedBufferData(keys_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
-      glClearNamedBufferData(colors_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-      glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      const GLuint empty = kEmpty;
+      fill_buffer_u32(keys_, empty);
+      fill_buffer_u32(colors_, 0);
+      fill_buffer_u32(counters_, 0);
       const GLfloat transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f};
       glClearTexImage(tail_sum_.id(), 0, GL_RGBA, GL_FLOAT, transparent);
       glClearTexImage(tail_count_.id(), 0, GL_RED, GL_FLOAT, transparent);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kKeysBinding, keys_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kColorsBinding, colors_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountersBinding, counters_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_TRANSPARENCY_KEYS_BINDING, keys_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_TRANSPARENCY_COLORS_BINDING, colors_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_TRANSPARENCY_COUNTERS_BINDING, counters_.id());
     {
       auto fill = frame.clock.stage("fill");
       draw_scene_pass(frame, fill_, no_attachments_);
@@ -92,8 +87,8 @@ class HybridTransparency final : public Technique {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     {
       auto compose = frame.clock.stage("compose");
-      glBindTextureUnit(kTailSumUnit, tail_sum_.id());
-      glBindTextureUnit(kTailCountUnit, tail_count_.id());
+      glBindTextureUnit(HYBRID_TRANSPARENCY_TAIL_SUM_UNIT, tail_sum_.id());
+      glBindTextureUnit(HYBRID_TRANSPARENCY_TAIL_COUNT_UNIT, tail_count_.id());
       draw_fullscreen_pass(frame, compose_);
     }
   }
@@ -103,8 +98,7 @@ class HybridTransparency final : public Technique {
     GLuint counts[2] = {0, 0};  // stored, tied_to_tail
     glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
     TechniqueCounters c;
-    const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
-    c.bytes_allocated = pixels * (uint64_t(k_) * kSlotBytes + kTailBytesPerPixel) + kCounterBytes;
+    c.bytes_allocated = bytes_allocated_;
     c.fragments_stored = counts[0];
     c.fragments_dropped = 0;  // the tail composes every fragment beyond the core
     c.passes = 2;
@@ -113,12 +107,12 @@ class HybridTransparency final : public Technique {
   }
 
  private:
-  void check_fits(uint64_t buffer_bytes) const {
+  void check_fits(uint64_t buffer_bytes, int width, int height) const {
     GLint64 max_block = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
     if (max_block > 0 && buffer_bytes > uint64_t(max_block)) {
-      throw std::runtime_error("hybrid_transparency: k=" + std::to_string(k_) + " at " + std::to_string(width_) + "x" +
-                               std::to_string(height_) + " needs " + std::to_string(buffer_bytes >> 20) +
+      throw std::runtime_error("hybrid_transparency: k=" + std::to_string(k_) + " at " + std::to_string(width) + "x" +
+                               std::to_string(height) + " needs " + std::to_string(buffer_bytes >> 20) +
                                " MiB per core buffer, more than the device's largest storage block (" +
                                std::to_string(max_block >> 20) + " MiB); lower k or the size");
     }
@@ -129,7 +123,7 @@ class HybridTransparency final : public Technique {
   Buffer counters_, keys_, colors_;
   Texture tail_sum_, tail_count_;
   Framebuffer no_attachments_, tail_framebuffer_;
-  int width_ = 0, height_ = 0;
+  uint64_t bytes_allocated_ = 0;  // set where the storage is made
 };
 
 }  // namespace

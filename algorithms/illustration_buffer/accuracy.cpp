@@ -1,4 +1,4 @@
-#include "accuracy.h"
+#include "algorithms/illustration_buffer/accuracy.h"
 
 #include <glm/packing.hpp>  // unpackHalf2x16 (GLSL core packing)
 

@@ -2,7 +2,7 @@
 // technique itself is in technique.cpp; see README.md.
 #include <stdexcept>
 
-#include "settings.h"
+#include "algorithms/illustration_buffer/settings.h"
 
 namespace oit {
 namespace illustration_buffer {

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <memory>
 
-#include "core/technique.h"
+#include "harness/core/technique.h"
 
 namespace oit::illustration_buffer {
 

@@ -9,13 +9,14 @@
 #include <map>
 #include <stdexcept>
 
-#include "accuracy.h"
-#include "core/fragment_pool.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "settings.h"
-#include "triangle_table.h"
-#include "../../shaders/bindings.h"
+#include "algorithms/illustration_buffer/accuracy.h"
+#include "harness/core/fragment_pool.h"
+#include "harness/core/passes.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "algorithms/illustration_buffer/settings.h"
+#include "algorithms/illustration_buffer/triangle_table.h"
+#include "shaders/bindings.h"
 
 namespace oit::illustration_buffer {
 namespace {
@@ -87,9 +88,7 @@ class IllustrationBuffer final : public Technique {
     head_ = make_buffer(GLsizeiptr(width) * height * 4);
     count_ = make_buffer(GLsizeiptr(width) * height * 4);
     pool_.reset(uint64_t(width) * uint64_t(height) * s_.initial_nodes_per_pixel);
-    empty_framebuffer_ = make_framebuffer();
-    glNamedFramebufferParameteri(empty_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
-    glNamedFramebufferParameteri(empty_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+    no_attachments_ = make_attachmentless_framebuffer(width, height);
     for (GLuint program : programs()) {
       set(program, "u_width", width);
       set(program, "u_height", height);
@@ -103,19 +102,15 @@ class IllustrationBuffer final : public Technique {
       {
         auto stage = frame.clock.stage("clear");
         pool_.before_fill(frame);
-        const GLuint nil = 0xffffffffu, zero = 0;
-        glClearNamedBufferData(head_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &nil);
-        glClearNamedBufferData(count_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-        glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        const GLuint nil = 0xffffffffu;
+        fill_buffer_u32(head_, nil);
+        fill_buffer_u32(count_, 0);
+        fill_buffer_u32(counters_, 0);
       }
       {
         auto stage = frame.clock.stage("fill");
-        glBindFramebuffer(GL_FRAMEBUFFER, empty_framebuffer_.id());
-        glViewport(0, 0, width_, height_);
-        glUseProgram(fill_.id());
-        frame.set_shared_uniforms(fill_.id());
         bind_storage();
-        frame.scene.draw();
+        draw_scene_pass(frame, fill_, no_attachments_);
         ++passes_;
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
@@ -306,7 +301,7 @@ class IllustrationBuffer final : public Technique {
   std::map<uint32_t, Program> sorts_;  // by local array size
   Buffer counters_, head_, count_, next_, data_, data2_, data3_, truth_, triangles_;
   Texture fragment_view_, next_view_, search_view_, shade_view_, triangles_view_, fields_view_[2];  // read-only views (views.glsl)
-  Framebuffer empty_framebuffer_;
+  Framebuffer no_attachments_;
   const Scene* scene_seen_ = nullptr;
   std::string scene_hash_;
   int width_ = 0, height_ = 0;

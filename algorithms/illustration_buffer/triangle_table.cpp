@@ -1,4 +1,4 @@
-#include "triangle_table.h"
+#include "algorithms/illustration_buffer/triangle_table.h"
 
 #include <algorithm>
 #include <cstring>

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "scene.h"
+#include "scenes/scene.h"
 
 namespace oit::illustration_buffer {
 

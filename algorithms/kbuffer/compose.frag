@@ -4,10 +4,11 @@
 // tail (if any) behind them.
 #include "shaders/compose.glsl"
 #include "algorithms/kbuffer/kbuffer_storage.glsl"
+#include "algorithms/kbuffer/bindings.h"
 
 #ifdef TAIL_BLEND
-layout(binding = OIT_FIRST_TECHNIQUE_BINDING + 0) uniform sampler2D u_tail_accumulation;
-layout(binding = OIT_FIRST_TECHNIQUE_BINDING + 1) uniform sampler2D u_tail_revealage;
+layout(binding = KBUFFER_TAIL_ACCUMULATION_UNIT) uniform sampler2D u_tail_accumulation;
+layout(binding = KBUFFER_TAIL_REVEALAGE_UNIT) uniform sampler2D u_tail_revealage;
 #endif
 
 layout(location = 0) out vec4 out_color;

@@ -11,24 +11,17 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/fragment_pool.h"
-#include "core/list_length_pass.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "harness/core/fragment_pool.h"
+#include "harness/core/list_length_pass.h"
+#include "harness/core/technique.h"
+#include "harness/core/passes.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "algorithms/kbuffer/bindings.h"
 
 namespace oit {
 namespace {
 
-constexpr GLuint kKeysBinding = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kOwnersBinding = OIT_FIRST_TECHNIQUE_BINDING + 1;
-constexpr GLuint kColorsBinding = OIT_FIRST_TECHNIQUE_BINDING + 2;
-constexpr GLuint kCountersBinding = OIT_FIRST_TECHNIQUE_BINDING + 3;
-constexpr GLuint kTailAccumulationUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kTailRevealageUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
-constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
-constexpr GLint kSlotsLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;  // u_k
 constexpr GLuint kEmpty = 0xffffffffu;
 
 // Per slot: 4 (depth key) + 4 (owner triangle id) + 16 (RGBA32F colour).
@@ -57,8 +50,8 @@ class KBuffer final : public Technique {
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
-    for (const Program* program : {&fill_, &store_}) glProgramUniform1i(program->id(), kWidthLocation, width);
-    for (const auto& [capacity, compose] : composes_) glProgramUniform1i(compose.id(), kWidthLocation, width);
+    for (const Program* program : {&fill_, &store_}) glProgramUniform1i(program->id(), KBUFFER_WIDTH_LOCATION, width);
+    for (const auto& [capacity, compose] : composes_) glProgramUniform1i(compose.id(), KBUFFER_WIDTH_LOCATION, width);
     if (auto_k_) {
       count_pass_->resize(width, height);
       k_cap_ = auto_k_cap();
@@ -73,9 +66,7 @@ class KBuffer final : public Technique {
 
     // The fill pass (and store without a tail) writes no colour: an
     // attachment-less framebuffer of the right size rasterises it.
-    no_attachments_ = make_framebuffer();
-    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
-    glNamedFramebufferParameteri(no_attachments_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+    no_attachments_ = make_attachmentless_framebuffer(width, height);
     if (tail_blend_) {
       tail_accumulation_ = make_texture_2d(GL_RGBA16F, width, height);
       tail_revealage_ = make_texture_2d(GL_R16F, width, height);
@@ -97,14 +88,15 @@ class KBuffer final : public Technique {
       k = std::clamp(int(std::min<uint32_t>(longest_list_, kMaxK)), 1, k_cap_);
     }
     const Program& compose = compose_for(k);
-    for (GLuint program : {fill_.id(), store_.id(), compose.id()}) glProgramUniform1i(program, kSlotsLocation, k);
+    for (GLuint program : {fill_.id(), store_.id(), compose.id()})
+      glProgramUniform1i(program, KBUFFER_SLOTS_LOCATION, k);
     {
       auto clear = frame.clock.stage("clear");
       if (k != allocated_k_) allocate_slots(k);  // k=auto: storage follows the view
-      const GLuint empty = kEmpty, zero = 0;
-      glClearNamedBufferData(keys_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
-      glClearNamedBufferData(owners_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
-      glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      const GLuint empty = kEmpty;
+      fill_buffer_u32(keys_, empty);
+      fill_buffer_u32(owners_, empty);
+      fill_buffer_u32(counters_, 0);
       if (tail_blend_) {
         const GLfloat transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f}, revealed = 1.0f;
         glClearTexImage(tail_accumulation_.id(), 0, GL_RGBA, GL_FLOAT, transparent);
@@ -141,8 +133,8 @@ class KBuffer final : public Technique {
       auto stage = frame.clock.stage("compose");
       frame.bind_target();
       if (tail_blend_) {
-        glBindTextureUnit(kTailAccumulationUnit, tail_accumulation_.id());
-        glBindTextureUnit(kTailRevealageUnit, tail_revealage_.id());
+        glBindTextureUnit(KBUFFER_TAIL_ACCUMULATION_UNIT, tail_accumulation_.id());
+        glBindTextureUnit(KBUFFER_TAIL_REVEALAGE_UNIT, tail_revealage_.id());
       }
       glUseProgram(compose.id());
       frame.set_shared_uniforms(compose.id());
@@ -203,7 +195,7 @@ class KBuffer final : public Technique {
       ShaderDefines defines = tail_defines();
       defines.push_back({"K", std::to_string(capacity)});
       it = composes_.emplace(capacity, build_fullscreen_program("algorithms/kbuffer/compose.frag", defines)).first;
-      glProgramUniform1i(it->second.id(), kWidthLocation, width_);
+      glProgramUniform1i(it->second.id(), KBUFFER_WIDTH_LOCATION, width_);
     }
     return it->second;
   }
@@ -236,10 +228,10 @@ class KBuffer final : public Technique {
   }
 
   void bind_storage() const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kKeysBinding, keys_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOwnersBinding, owners_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kColorsBinding, colors_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountersBinding, counters_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, KBUFFER_KEYS_BINDING, keys_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, KBUFFER_OWNERS_BINDING, owners_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, KBUFFER_COLORS_BINDING, colors_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, KBUFFER_COUNTERS_BINDING, counters_.id());
   }
 
   bool auto_k_;

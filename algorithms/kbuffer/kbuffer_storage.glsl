@@ -3,31 +3,32 @@
 // keys are contiguous: llvmpipe shades a pixel on one CPU thread, and its
 // cache lines then hold a whole pixel's list.
 #include "shaders/bindings.h"
+#include "algorithms/kbuffer/bindings.h"
 
 #define KBUFFER_EMPTY 0xffffffffu
 
 // Sorted ascending per pixel by the fill pass; EMPTY slots come last.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) coherent buffer KBufferKeys { uint kbuffer_keys[]; };
+layout(std430, binding = KBUFFER_KEYS_BINDING) coherent buffer KBufferKeys { uint kbuffer_keys[]; };
 // Stable triangle id of the fragment whose colour the slot holds, claimed by
 // the store pass with atomicCompSwap; EMPTY = no colour stored. It makes
 // tied depth keys resolvable (see store.frag) and marks valid slots.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) coherent buffer KBufferOwners { uint kbuffer_owners[]; };
+layout(std430, binding = KBUFFER_OWNERS_BINDING) coherent buffer KBufferOwners { uint kbuffer_owners[]; };
 // Straight RGBA of the slot, read and written as whole vec4s (Mesa 22.3
 // llvmpipe misreads scalar members of struct arrays inside loops).
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 2) buffer KBufferColors { vec4 kbuffer_colors[]; };
+layout(std430, binding = KBUFFER_COLORS_BINDING) buffer KBufferColors { vec4 kbuffer_colors[]; };
 // stored: fragments composed from the slots (added by compose, per pixel);
 // dropped: fragments beyond the K nearest whose colour was discarded.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 3) coherent buffer KBufferCounters {
+layout(std430, binding = KBUFFER_COUNTERS_BINDING) coherent buffer KBufferCounters {
   uint kbuffer_stored;
   uint kbuffer_dropped;
 };
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform int u_width;
+layout(location = KBUFFER_WIDTH_LOCATION) uniform int u_width;
 // Slots per pixel, 1 <= u_k <= K. A uniform, not the define K: with k=auto
 // one program (K = the next power of two) serves every k up to K, and loops
 // bounded by a uniform are not unrolled, which made compose up to 2x faster
 // on llvmpipe (README, "k=auto"). K only sizes compose's local arrays.
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_k;
+layout(location = KBUFFER_SLOTS_LOCATION) uniform int u_k;
 
 uint kbuffer_first_slot() { return (uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x)) * uint(u_k); }
 

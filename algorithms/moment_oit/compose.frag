@@ -5,9 +5,10 @@
 // through exp(-b0). The reconstruction thus only decides how the covered
 // share is split between the fragments.
 #include "shaders/compose.glsl"
+#include "algorithms/moment_oit/bindings.h"
 
-layout(binding = OIT_FIRST_TECHNIQUE_BINDING + 0) uniform sampler2D u_zeroth;
-layout(binding = OIT_FIRST_TECHNIQUE_BINDING + 3) uniform sampler2D u_accumulation;
+layout(binding = MOMENT_OIT_ZEROTH_UNIT) uniform sampler2D u_zeroth;
+layout(binding = MOMENT_OIT_ACCUMULATION_UNIT) uniform sampler2D u_accumulation;
 
 layout(location = 0) out vec4 out_color;
 

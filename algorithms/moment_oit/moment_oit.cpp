@@ -12,24 +12,15 @@
 #include <string>
 #include <vector>
 
-#include "core/passes.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "harness/core/passes.h"
+#include "harness/core/technique.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "algorithms/moment_oit/bindings.h"
 
 namespace oit {
 namespace {
 
-constexpr GLuint kZerothUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kMoments14Unit = OIT_FIRST_TECHNIQUE_BINDING + 1;
-constexpr GLuint kMoments58Unit = OIT_FIRST_TECHNIQUE_BINDING + 2;
-constexpr GLuint kAccumulationUnit = OIT_FIRST_TECHNIQUE_BINDING + 3;
-constexpr GLint kDepthWarpLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
-constexpr GLint kLogDepthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
-constexpr GLint kWrappingZoneLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 2;
-constexpr GLint kMomentBiasLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 3;
-constexpr GLint kOverestimationLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 4;
 constexpr double kPi = 3.14159265358979323846;
 
 // One of the paper's six configurations: `moments` real numbers per pixel
@@ -85,10 +76,10 @@ class MomentOit final : public Technique {
                                   " makes the moment bias " + std::to_string(moment_bias_) +
                                   " >= 1, which discards the moments entirely");
     for (GLuint program : {fill_.id(), store_.id()}) {
-      glProgramUniform1f(program, kWrappingZoneLocation, float(wrapping_zone_));
+      glProgramUniform1f(program, MOMENT_OIT_WRAPPING_ZONE_LOCATION, float(wrapping_zone_));
     }
-    glProgramUniform1f(store_.id(), kMomentBiasLocation, float(moment_bias_));
-    glProgramUniform1f(store_.id(), kOverestimationLocation, float(overestimation_));
+    glProgramUniform1f(store_.id(), MOMENT_OIT_MOMENT_BIAS_LOCATION, float(moment_bias_));
+    glProgramUniform1f(store_.id(), MOMENT_OIT_OVERESTIMATION_LOCATION, float(overestimation_));
   }
 
   void resize(int width, int height) override {
@@ -132,7 +123,7 @@ class MomentOit final : public Technique {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     {
       auto compose = frame.clock.stage("compose");
-      glBindTextureUnit(kAccumulationUnit, accumulation_.id());
+      glBindTextureUnit(MOMENT_OIT_ACCUMULATION_UNIT, accumulation_.id());
       draw_fullscreen_pass(frame, compose_);
     }
   }
@@ -169,15 +160,15 @@ class MomentOit final : public Technique {
     glm::vec2 near_far = near_far_of(projection);
     if (perspective) near_far = glm::log(near_far);
     for (GLuint program : {fill_.id(), store_.id()}) {
-      glProgramUniform2f(program, kDepthWarpLocation, near_far.x, 1.0f / (near_far.y - near_far.x));
-      glProgramUniform1i(program, kLogDepthLocation, perspective ? 1 : 0);
+      glProgramUniform2f(program, MOMENT_OIT_DEPTH_WARP_LOCATION, near_far.x, 1.0f / (near_far.y - near_far.x));
+      glProgramUniform1i(program, MOMENT_OIT_LOG_DEPTH_LOCATION, perspective ? 1 : 0);
     }
   }
 
   void bind_moments() const {
-    glBindTextureUnit(kZerothUnit, zeroth_.id());
-    glBindTextureUnit(kMoments14Unit, moments_1_4_.id());
-    if (config_.moments > 4) glBindTextureUnit(kMoments58Unit, moments_5_8_.id());
+    glBindTextureUnit(MOMENT_OIT_ZEROTH_UNIT, zeroth_.id());
+    glBindTextureUnit(MOMENT_OIT_MOMENTS_1_4_UNIT, moments_1_4_.id());
+    if (config_.moments > 4) glBindTextureUnit(MOMENT_OIT_MOMENTS_5_8_UNIT, moments_5_8_.id());
   }
 
   MomentConfig config_;

@@ -13,6 +13,7 @@
 // Either way the moment matrix has order MOMENT_ORDER + 1 and the kernel
 // polynomial degree MOMENT_ORDER.
 #include "shaders/bindings.h"
+#include "algorithms/moment_oit/bindings.h"
 
 #define MOMENT_ORDER (MOMENT_COUNT / 2)
 #define MOMENT_PI 3.14159265358979
@@ -20,11 +21,11 @@
 // Warp: d = clamp(2 (f(z) - f(near)) u_depth_warp.y - 1, -1, 1), f = ln for a
 // perspective projection, identity for an orthographic one;
 // u_depth_warp = (f(near), 1 / (f(far) - f(near))).
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform vec2 u_depth_warp;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform bool u_log_depth;
+layout(location = MOMENT_OIT_DEPTH_WARP_LOCATION) uniform vec2 u_depth_warp;
+layout(location = MOMENT_OIT_LOG_DEPTH_LOCATION) uniform bool u_log_depth;
 // Trigonometric moments: the angle left free between the far and the near
 // end of the depth range (radians), so that they do not wrap onto each other.
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 2) uniform float u_wrapping_zone;
+layout(location = MOMENT_OIT_WRAPPING_ZONE_LOCATION) uniform float u_wrapping_zone;
 
 // The paper clamps a fragment's absorbance so that alpha = 1 stays finite
 // (and half-float sums stay far from overflow): e^-10 = 4.5e-5 of the light

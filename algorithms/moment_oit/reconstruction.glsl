@@ -20,9 +20,10 @@
 // simultaneous, cubically convergent for simple roots, which the kernel
 // polynomial of a positive definite matrix has).
 #include "algorithms/moment_oit/moments.glsl"
+#include "algorithms/moment_oit/bindings.h"
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 3) uniform float u_moment_bias;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 4) uniform float u_overestimation;
+layout(location = MOMENT_OIT_MOMENT_BIAS_LOCATION) uniform float u_moment_bias;
+layout(location = MOMENT_OIT_OVERESTIMATION_LOCATION) uniform float u_overestimation;
 
 #define ABERTH_ITERATIONS 12
 #define MATRIX_SIZE (MOMENT_ORDER + 1)

@@ -4,11 +4,12 @@
 // summed additively: (sum T a rgb, sum T a).
 #include "shaders/shading.glsl"
 #include "algorithms/moment_oit/reconstruction.glsl"
+#include "algorithms/moment_oit/bindings.h"
 
-layout(binding = OIT_FIRST_TECHNIQUE_BINDING + 0) uniform sampler2D u_zeroth;
-layout(binding = OIT_FIRST_TECHNIQUE_BINDING + 1) uniform sampler2D u_moments_1_4;
+layout(binding = MOMENT_OIT_ZEROTH_UNIT) uniform sampler2D u_zeroth;
+layout(binding = MOMENT_OIT_MOMENTS_1_4_UNIT) uniform sampler2D u_moments_1_4;
 #if MOMENT_COUNT > 4
-layout(binding = OIT_FIRST_TECHNIQUE_BINDING + 2) uniform sampler2D u_moments_5_8;
+layout(binding = MOMENT_OIT_MOMENTS_5_8_UNIT) uniform sampler2D u_moments_5_8;
 #endif
 
 layout(location = 0) out vec4 out_accumulation;

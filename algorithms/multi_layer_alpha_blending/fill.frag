@@ -1,4 +1,5 @@
 #version 450 core
+#include "algorithms/multi_layer_alpha_blending/bindings.h"
 // The one geometry pass of multi-layer alpha blending (Salvi & Vaidyanathan
 // 2014): inside the pixel's ordered critical section, insert the fragment
 // as a layer (premultiplied colour, transmittance 1 - a, depth) at its
@@ -6,7 +7,7 @@
 // with the over operator: C = C_near + T_near C_far, T = T_near T_far, at
 // the nearer depth. Fragments arriving front to back are thus composed
 // exactly for any k; in other orders the merged tail is approximate.
-#define OIT_ORDERED_LOCK_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 3)
+#define OIT_ORDERED_LOCK_BINDING MULTI_LAYER_ALPHA_BLENDING_LOCKS_BINDING
 #include "shaders/ordered_access.glsl"
 #include "shaders/shading.glsl"
 #include "algorithms/multi_layer_alpha_blending/mlab_storage.glsl"

@@ -3,18 +3,19 @@
 // depth of its nearest fragment; pixel-major (layer i of pixel p at
 // p * u_k + i). How many layers a pixel holds is its count word.
 #include "shaders/bindings.h"
+#include "algorithms/multi_layer_alpha_blending/bindings.h"
 
 // (premultiplied rgb, transmittance) of each layer.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) coherent buffer MlabColors { vec4 mlab_colors[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) coherent buffer MlabDepths { float mlab_depths[]; };
+layout(std430, binding = MULTI_LAYER_ALPHA_BLENDING_COLORS_BINDING) coherent buffer MlabColors { vec4 mlab_colors[]; };
+layout(std430, binding = MULTI_LAYER_ALPHA_BLENDING_DEPTHS_BINDING) coherent buffer MlabDepths { float mlab_depths[]; };
 // Layers in use per pixel; then, after the pixels, the fragments merged
 // into a farther layer (kept only approximately) in the last frame.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 2) coherent buffer MlabCounts {
+layout(std430, binding = MULTI_LAYER_ALPHA_BLENDING_COUNTS_BINDING) coherent buffer MlabCounts {
   uint mlab_merges;
   uint mlab_counts[];
 };
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform int u_width;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_k;
+layout(location = MULTI_LAYER_ALPHA_BLENDING_WIDTH_LOCATION) uniform int u_width;
+layout(location = MULTI_LAYER_ALPHA_BLENDING_LAYERS_LOCATION) uniform int u_k;
 
 uint mlab_pixel() { return uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x); }

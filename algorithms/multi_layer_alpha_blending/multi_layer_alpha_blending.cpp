@@ -9,22 +9,15 @@
 // back; otherwise the result depends on the rasterisation order.
 #include <string>
 
-#include "core/passes.h"
-#include "core/pixel_locks.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "harness/core/passes.h"
+#include "harness/core/pixel_locks.h"
+#include "harness/core/technique.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "algorithms/multi_layer_alpha_blending/bindings.h"
 
 namespace oit {
 namespace {
-
-constexpr GLuint kColorsBinding = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kDepthsBinding = OIT_FIRST_TECHNIQUE_BINDING + 1;
-constexpr GLuint kCountsBinding = OIT_FIRST_TECHNIQUE_BINDING + 2;
-constexpr GLuint kLocksBinding = OIT_FIRST_TECHNIQUE_BINDING + 3;
-constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
-constexpr GLint kLayersLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
 
 // Per layer: RGBA32F (premultiplied rgb, transmittance) + 32-bit float depth.
 constexpr uint64_t kLayerBytes = 16 + 4;
@@ -37,13 +30,15 @@ class MultiLayerAlphaBlending final : public Technique {
       : k_(int(params.integer("k"))),
         fill_(build_geometry_program("algorithms/multi_layer_alpha_blending/fill.frag")),
         compose_(build_fullscreen_program("algorithms/multi_layer_alpha_blending/compose.frag")) {
-    for (GLuint program : {fill_.id(), compose_.id()}) glProgramUniform1i(program, kLayersLocation, k_);
+    for (GLuint program : {fill_.id(), compose_.id()})
+      glProgramUniform1i(program, MULTI_LAYER_ALPHA_BLENDING_LAYERS_LOCATION, k_);
   }
 
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
-    for (GLuint program : {fill_.id(), compose_.id()}) glProgramUniform1i(program, kWidthLocation, width);
+    for (GLuint program : {fill_.id(), compose_.id()})
+      glProgramUniform1i(program, MULTI_LAYER_ALPHA_BLENDING_WIDTH_LOCATION, width);
     const uint64_t pixels = uint64_t(width) * uint64_t(height);
     colors_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_) * 16));
     depths_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_) * 4));
@@ -57,14 +52,13 @@ class MultiLayerAlphaBlending final : public Technique {
   void render(const Frame& frame) override {
     {
       auto clear = frame.clock.stage("clear");
-      const GLuint zero = 0;
-      glClearNamedBufferData(counts_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      fill_buffer_u32(counts_, 0);
       locks_.clear();
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kColorsBinding, colors_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDepthsBinding, depths_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountsBinding, counts_.id());
-    locks_.bind(kLocksBinding);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, MULTI_LAYER_ALPHA_BLENDING_COLORS_BINDING, colors_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, MULTI_LAYER_ALPHA_BLENDING_DEPTHS_BINDING, depths_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, MULTI_LAYER_ALPHA_BLENDING_COUNTS_BINDING, counts_.id());
+    locks_.bind(MULTI_LAYER_ALPHA_BLENDING_LOCKS_BINDING);
     {
       auto fill = frame.clock.stage("fill");
       draw_scene_pass(frame, fill_, no_attachments_);

@@ -13,11 +13,12 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/fragment_pool.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "harness/core/fragment_pool.h"
+#include "harness/core/technique.h"
+#include "harness/core/passes.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 namespace {
@@ -47,9 +48,7 @@ class Reference final : public Technique {
     heads_ = make_buffer(GLsizeiptr(width) * height * 4);
     lengths_ = make_buffer(GLsizeiptr(width) * height * 4);
     pool_.reset(uint64_t(width) * uint64_t(height) * uint64_t(nodes_per_pixel_));
-    dummy_framebuffer_ = make_framebuffer();
-    glNamedFramebufferParameteri(dummy_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
-    glNamedFramebufferParameteri(dummy_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+    no_attachments_ = make_attachmentless_framebuffer(width, height);
   }
 
   void render(const Frame& frame) override {
@@ -58,19 +57,15 @@ class Reference final : public Technique {
       {
         auto clear = frame.clock.stage("clear");
         pool_.before_fill(frame);
-        const GLuint nil = 0xffffffffu, zero = 0;
-        glClearNamedBufferData(heads_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &nil);
-        glClearNamedBufferData(lengths_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-        glClearNamedBufferData(counter_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        const GLuint nil = 0xffffffffu;
+        fill_buffer_u32(heads_, nil);
+        fill_buffer_u32(lengths_, 0);
+        fill_buffer_u32(counter_, 0);
       }
       {
         auto fill = frame.clock.stage("fill");
-        glBindFramebuffer(GL_FRAMEBUFFER, dummy_framebuffer_.id());
-        glViewport(0, 0, width_, height_);
-        glUseProgram(fill_.id());
-        frame.set_shared_uniforms(fill_.id());
         bind_storage();
-        frame.scene.draw();
+        draw_scene_pass(frame, fill_, no_attachments_);
         ++passes_;
       }
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -179,7 +174,7 @@ class Reference final : public Technique {
   Program fill_;
   std::map<uint32_t, Program> resolve_;
   Buffer counter_, heads_, lengths_, nodes_;
-  Framebuffer dummy_framebuffer_;
+  Framebuffer no_attachments_;
   Texture cpu_result_;  // only for frames resolved on the CPU
   Framebuffer cpu_result_framebuffer_;
   int cpu_result_width_ = 0, cpu_result_height_ = 0;

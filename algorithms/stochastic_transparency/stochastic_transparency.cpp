@@ -10,11 +10,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/passes.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "harness/core/passes.h"
+#include "harness/core/technique.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 namespace {

@@ -1,7 +1,7 @@
 // unsorted: alpha blending in submission order, no sorting at all. The speed
 // floor and the error ceiling of every comparison.
-#include "core/technique.h"
-#include "gl/shader_program.h"
+#include "harness/core/technique.h"
+#include "harness/gl/shader_program.h"
 
 namespace oit {
 namespace {

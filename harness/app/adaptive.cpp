@@ -1,12 +1,12 @@
-#include "app/adaptive.h"
+#include "harness/app/adaptive.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
 
-#include "app/commands.h"
-#include "core/results_csv.h"
+#include "harness/app/commands.h"
+#include "harness/core/results_csv.h"
 
 namespace oit {
 
@@ -72,7 +72,7 @@ std::vector<const TechniqueDescriptor*> selected_techniques(const AdaptiveOption
 double median_total(const std::vector<RunResult>& runs) {
   std::vector<double> samples;
   for (const auto& r : runs) {
-    if (const StageResult* total = r.stage("total", r.clock == ClockKind::gl ? "gl" : "wall"))
+    if (const StageResult* total = r.total())
       samples.insert(samples.end(), total->samples_ms.begin(), total->samples_ms.end());
   }
   return samples.empty() ? 0.0 : summarize(samples).median;

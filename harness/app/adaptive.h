@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "app/commands.h"
+#include "harness/app/commands.h"
 
 namespace oit {
 

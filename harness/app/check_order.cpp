@@ -1,4 +1,4 @@
-#include "app/check_order.h"
+#include "harness/app/check_order.h"
 
 #include <cstdio>
 

@@ -1,17 +1,17 @@
-#include "app/commands.h"
+#include "harness/app/commands.h"
 
 #include <cstdio>
 #include <iostream>
 #include <optional>
 #include <set>
 
-#include "app/huge_page_malloc.h"
-#include "gl/shader_capabilities.h"
-#include "core/heatmap.h"
-#include "cameras.h"
-#include "core/results_csv.h"
-#include "gl/program_cache.h"
-#include "scene_library.h"
+#include "harness/app/huge_page_malloc.h"
+#include "harness/gl/shader_capabilities.h"
+#include "harness/core/heatmap.h"
+#include "scenes/cameras.h"
+#include "harness/core/results_csv.h"
+#include "harness/gl/program_cache.h"
+#include "scenes/scene_library.h"
 #include "oit_revision.h"
 
 namespace oit {
@@ -28,11 +28,6 @@ void print_params(const ParamSchema& schema) {
   }
 }
 
-double median_total(const RunResult& r) {
-  const StageResult* total = r.stage("total", r.clock == ClockKind::gl ? "gl" : "wall");
-  return total ? total->summary.median : 0.0;
-}
-
 // One line per run; `x baseline` is the run's median total over that of the
 // baseline technique's run on the same scene, parameters and size (same run,
 // same machine: the only speed comparison worth quoting).
@@ -45,10 +40,10 @@ void print_summary(const std::vector<RunResult>& results, const std::string& bas
       if (b.spec.technique == baseline && b.status == RunStatus::ok && b.spec.scene == r.spec.scene &&
           b.scene_params == r.scene_params && b.spec.camera == r.spec.camera && b.spec.width == r.spec.width &&
           b.spec.height == r.spec.height && b.spec.scene_rect == r.spec.scene_rect)
-        base = median_total(b);
+        base = b.median_total_ms();
     const bool ok = r.status == RunStatus::ok;
     char ratio[32] = "";
-    if (ok && base > 0.0) std::snprintf(ratio, sizeof ratio, "%.1f", median_total(r) / base);
+    if (ok && base > 0.0) std::snprintf(ratio, sizeof ratio, "%.1f", r.median_total_ms() / base);
     const std::string camera = (r.spec.camera == "default" ? "" : " camera " + r.spec.camera) +
                                (r.spec.scene_rect ? "" : " scene_rect off");
     // A scene swept over its parameters (model name=..., quads objects=...)
@@ -64,7 +59,7 @@ void print_summary(const std::vector<RunResult>& results, const std::string& bas
     }
     if (!saved.empty()) saved = " |" + saved;
     std::printf("%-18s %-46s %-8s %10.2f %10s %7llu %10.3g %9llu  %s %dx%d%s%s\n", r.spec.technique.c_str(),
-                r.technique_params.c_str(), to_string(r.status).c_str(), ok ? median_total(r) : 0.0, ratio,
+                r.technique_params.c_str(), to_string(r.status).c_str(), ok ? r.median_total_ms() : 0.0, ratio,
                 static_cast<unsigned long long>(r.counters.passes), r.error ? r.error->max_abs : 0.0,
                 static_cast<unsigned long long>(r.counters.fragments_dropped), scene.c_str(), r.spec.width,
                 r.spec.height, camera.c_str(), saved.c_str());
@@ -79,6 +74,31 @@ std::string platform_text(const DeviceInfo& device) {
 
 RunContext run_context(const DeviceInfo& device) {
   return {device.renderer, device.version, platform_text(device), OIT_GIT_REVISION, utc_timestamp()};
+}
+
+std::string technique_table_markdown(const TechniqueRegistry& registry) {
+  // Markdown cells end at '|'; none of the registry's texts may hold one.
+  auto cell = [](const std::string& text) {
+    std::string out;
+    for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
+    return out;
+  };
+  std::string table =
+      "| id | technique | paper | kind | parameters (default, range) | stages |\n|---|---|---|---|---|---|\n";
+  for (const auto& t : registry.all()) {
+    std::string params, stages;
+    for (const auto& p : t.params) {
+      const std::string default_text = p.default_value.empty() ? "empty" : p.default_value;
+      params += (params.empty() ? "" : ", ") + ("`" + p.name + "` (" + default_text + "; " + p.range_text() + ")");
+    }
+    for (const auto& stage : t.stages) stages += (stages.empty() ? "" : ", ") + stage;
+    const std::string kind = t.is_reference ? "exact (the reference)"
+                             : t.exactness == Exactness::exact ? "exact"
+                                                               : "approximate";
+    table += "| `" + t.id + "` | " + cell(t.display_name) + " | " + cell(t.paper) + " | " + kind + " | " +
+             cell(params.empty() ? "-" : params) + " | " + stages + " |\n";
+  }
+  return table;
 }
 
 int run_list(const CommonOptions& common) {
@@ -191,8 +211,7 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
     RunResult result = harness.run(spec);
     csv.write(result, ctx);
     if (result.status == RunStatus::ok) {
-      const StageResult* total = result.stage("total", result.clock == ClockKind::gl ? "gl" : "wall");
-      std::fprintf(stderr, "%.2f ms, max error %.3g%s\n", total ? total->summary.median : 0.0,
+      std::fprintf(stderr, "%.2f ms, max error %.3g%s\n", result.median_total_ms(),
                    result.error->max_abs, result.noisy ? " (noisy: other processes were busy)" : "");
       if (result.clock_disagreement && *result.clock_disagreement > 0.10) {
         std::fprintf(stderr, "  warning: gl and wall clocks disagree by %.0f%% on total\n",

@@ -2,8 +2,8 @@
 #include <string>
 #include <vector>
 
-#include "app/sweep.h"
-#include "core/results_csv.h"
+#include "harness/app/sweep.h"
+#include "harness/core/results_csv.h"
 
 namespace oit {
 
@@ -54,6 +54,10 @@ struct BenchOptions {
 };
 
 int run_list(const CommonOptions& common);
+// The README's technique table, generated from the registry (`oitbench list
+// --markdown` prints it; a test holds the README to it): one row per
+// technique with its paper, kind, parameters (default and range) and stages.
+std::string technique_table_markdown(const TechniqueRegistry& registry);
 int run_render(const CommonOptions& common, const RenderOptions& options);
 int run_bench(const CommonOptions& common, const BenchOptions& options);
 int run_stats(const CommonOptions& common, const StatsOptions& options);

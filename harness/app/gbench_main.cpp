@@ -10,8 +10,8 @@
 
 #include <cstdio>
 
-#include "app/huge_page_malloc.h"
-#include "app/sweep.h"
+#include "harness/app/huge_page_malloc.h"
+#include "harness/app/sweep.h"
 
 namespace {
 
@@ -35,7 +35,7 @@ void run_benchmark(benchmark::State& state, oit::Harness* harness, oit::RunSpec 
     }
     return;
   }
-  const oit::StageResult* total = result.stage("total", result.clock == oit::ClockKind::gl ? "gl" : "wall");
+  const oit::StageResult* total = result.total();
   size_t frame = 0;
   for (auto _ : state) {
     state.SetIterationTime(total->samples_ms[frame++ % total->samples_ms.size()] * 1e-3);

@@ -1,4 +1,4 @@
-#include "app/huge_page_malloc.h"
+#include "harness/app/huge_page_malloc.h"
 
 #include <unistd.h>
 

@@ -4,14 +4,39 @@
 #include <cstdio>
 #include <exception>
 
-#include "app/adaptive.h"
-#include "app/check_order.h"
-#include "app/commands.h"
-#include "app/huge_page_malloc.h"
-#include "app/pareto.h"
-#include "app/stress.h"
-#include "app/viewer/view_command.h"
-#include "gl/context.h"
+#include "harness/app/adaptive.h"
+#include "harness/app/check_order.h"
+#include "harness/app/commands.h"
+#include "harness/app/huge_page_malloc.h"
+#include "harness/app/pareto.h"
+#include "harness/app/stress.h"
+#include "harness/app/viewer/view_command.h"
+#include "harness/gl/context.h"
+
+namespace {
+
+// The options bench and pareto share (pareto's defaults differ: the help
+// names them after "repeatable").
+void add_sweep_options(CLI::App* command, oit::BenchOptions& options, const std::string& scene_default,
+                       const std::string& size_default) {
+  oit::SweepOptions& sweep = options.sweep;
+  command->add_option("--technique,-t", sweep.techniques, "technique ids or 'all' (repeatable)");
+  command->add_option("--scene,-s", sweep.scenes, "scene ids or files (repeatable" + scene_default + ")");
+  command->add_option("--scene-set", sweep.scene_sets, "scene key=v1,v2 to sweep (repeatable)");
+  command->add_option("--size", sweep.sizes, "WIDTHxHEIGHT (repeatable" + size_default + ")");
+  command->add_option("--frames", sweep.frames, "timed frames per run")->check(CLI::Range(1, 100000));
+  command->add_option("--warmup", sweep.warmup, "untimed frames first (shader compilation)")
+      ->check(CLI::Range(0, 1000));
+  command->add_option("--memory-budget", sweep.memory_budget,
+                      "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G "
+                      "(default: see `list`)");
+  command->add_option("--csv", options.csv, "CSV file to append to")->required();
+  command->add_option("--images", options.images_dir, "directory for one PNG per run");
+  command->add_flag("--resume", options.resume,
+                    "leave out runs that already have an ok or skipped row in the CSV (error rows run again)");
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   oit::relaunch_with_huge_page_malloc(argv);
@@ -35,6 +60,8 @@ int main(int argc, char** argv) {
   app.add_flag("--debug-gl", common.debug_gl, "create a debug context and print KHR_debug messages");
 
   auto* list = app.add_subcommand("list", "techniques with their parameters, scenes, device");
+  bool list_markdown = false;
+  list->add_flag("--markdown", list_markdown, "print only the technique table of the README, from the registry (no GL)");
 
   oit::RenderOptions render;
   auto* render_cmd = app.add_subcommand("render", "render one image (.png: 8-bit linear RGBA, .pfm: float RGB)");
@@ -54,17 +81,11 @@ int main(int argc, char** argv) {
 
   oit::BenchOptions bench;
   auto* bench_cmd = app.add_subcommand("bench", "time every combination and append long-form CSV rows");
-  bench_cmd->add_option("--technique,-t", bench.sweep.techniques, "technique ids or 'all' (repeatable)");
-  bench_cmd->add_option("--scene,-s", bench.sweep.scenes, "scene ids or files (repeatable)");
+  add_sweep_options(bench_cmd, bench, "", "");
   bench_cmd->add_option("--set", bench.sweep.technique_sets,
                         "key=v1,v2 or technique.key=v1,v2: parameter values to sweep (repeatable)");
-  bench_cmd->add_option("--scene-set", bench.sweep.scene_sets, "scene key=v1,v2 to sweep (repeatable)");
-  bench_cmd->add_option("--size", bench.sweep.sizes, "WIDTHxHEIGHT (repeatable)");
   bench_cmd->add_option("--camera", bench.sweep.cameras,
                         "default, random:N:SEED (one run per view), random:N:SEED@I or max_list[:N:SEED] (repeatable)");
-  bench_cmd->add_option("--frames", bench.sweep.frames, "timed frames per run")->check(CLI::Range(1, 100000));
-  bench_cmd->add_option("--warmup", bench.sweep.warmup, "untimed frames first (shader compilation)")
-      ->check(CLI::Range(0, 1000));
   bench_cmd->add_option("--clock", bench.sweep.clock, "auto, gl, wall or both")
       ->check(CLI::IsMember({"auto", "gl", "wall", "both"}));
   bench_cmd->add_option("--background", bench.sweep.background, "r,g,b");
@@ -72,13 +93,8 @@ int main(int argc, char** argv) {
                         "on (default), off or on,off: confine techniques to the scene's projected rectangle")
       ->delimiter(',')
       ->check(CLI::IsMember({"on", "off"}));
-  bench_cmd->add_option("--memory-budget", bench.sweep.memory_budget, "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G (default: see `list`)");
-  bench_cmd->add_option("--csv", bench.csv, "CSV file to append to")->required();
-  bench_cmd->add_option("--images", bench.images_dir, "directory for one PNG per run");
   bench_cmd->add_option("--baseline", bench.baseline,
                         "technique whose median total the summary divides by (default unsorted)");
-  bench_cmd->add_flag("--resume", bench.resume,
-                      "leave out runs that already have an ok or skipped row in the CSV (error rows run again)");
 
   // pareto: the bench options, with each technique's quality knobs swept.
   oit::BenchOptions pareto;
@@ -88,17 +104,7 @@ int main(int argc, char** argv) {
   auto* pareto_cmd = app.add_subcommand(
       "pareto", "run time against error: bench every technique over its quality knobs (k, max_passes, ...); "
                 "plot with analysis/pareto.py");
-  pareto_cmd->add_option("--technique,-t", pareto.sweep.techniques, "technique ids or 'all' (repeatable)");
-  pareto_cmd->add_option("--scene,-s", pareto.sweep.scenes, "scene ids or files (repeatable; default quads, spheres)");
-  pareto_cmd->add_option("--scene-set", pareto.sweep.scene_sets, "scene key=v1,v2 to sweep (repeatable)");
-  pareto_cmd->add_option("--size", pareto.sweep.sizes, "WIDTHxHEIGHT (repeatable; default 128x128)");
-  pareto_cmd->add_option("--frames", pareto.sweep.frames, "timed frames per run")->check(CLI::Range(1, 100000));
-  pareto_cmd->add_option("--warmup", pareto.sweep.warmup, "untimed frames first")->check(CLI::Range(0, 1000));
-  pareto_cmd->add_option("--memory-budget", pareto.sweep.memory_budget, "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G (default: see `list`)");
-  pareto_cmd->add_option("--csv", pareto.csv, "CSV file to append to")->required();
-  pareto_cmd->add_option("--images", pareto.images_dir, "directory for one PNG per run");
-  pareto_cmd->add_flag("--resume", pareto.resume,
-                       "leave out runs that already have an ok or skipped row in the CSV (error rows run again)");
+  add_sweep_options(pareto_cmd, pareto, "; default quads, spheres", "; default 128x128");
 
   oit::AdaptiveOptions adaptive;
   auto* adaptive_cmd = app.add_subcommand(
@@ -151,6 +157,10 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
+    if (*list && list_markdown) {
+      std::fputs(oit::technique_table_markdown(oit::builtin_techniques()).c_str(), stdout);
+      return 0;
+    }
     if (*list) return oit::run_list(common);
     if (*render_cmd) return oit::run_render(common, render);
     if (*bench_cmd) return oit::run_bench(common, bench);

@@ -1,4 +1,4 @@
-#include "app/pareto.h"
+#include "harness/app/pareto.h"
 
 #include <algorithm>
 

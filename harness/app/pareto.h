@@ -2,7 +2,7 @@
 // `oitbench pareto`: a bench whose sweep is every technique's declared
 // quality knobs (TechniqueDescriptor::quality_sweep), so that run time can be
 // plotted against error (analysis/pareto.py).
-#include "app/commands.h"
+#include "harness/app/commands.h"
 
 namespace oit {
 

@@ -4,10 +4,10 @@
 #include <cstdio>
 #include <string>
 
-#include "app/commands.h"
-#include "cameras.h"
-#include "core/complexity.h"
-#include "scene_library.h"
+#include "harness/app/commands.h"
+#include "scenes/cameras.h"
+#include "harness/core/complexity.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 namespace {

@@ -1,4 +1,4 @@
-#include "app/stress.h"
+#include "harness/app/stress.h"
 
 #include <poll.h>
 #include <signal.h>
@@ -14,9 +14,9 @@
 #include <map>
 #include <sstream>
 
-#include "core/results_csv.h"
-#include "scene_library.h"
-#include "stacked_quads.h"
+#include "harness/core/results_csv.h"
+#include "scenes/scene_library.h"
+#include "scenes/stacked_quads.h"
 #include "oit_revision.h"
 
 namespace oit {
@@ -62,6 +62,25 @@ std::optional<glm::vec4> closed_form(const std::string& scene, const RawParams& 
   return std::nullopt;
 }
 
+std::string format_output_max(double output_max) {
+  if (std::isinf(output_max)) return "inf";
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", output_max);
+  return text;
+}
+
+}  // namespace
+
+size_t values_outside_output_range(const TechniqueDescriptor& technique, const std::vector<float>& rgba) {
+  // Float margins: compositing in float overshoots the exact bounds slightly.
+  const double low = -1e-4, high = technique.output_max + 1e-3;
+  size_t outside = 0;
+  for (float v : rgba) outside += !(std::isfinite(v) && double(v) >= low && double(v) <= high);
+  return outside;
+}
+
+namespace {
+
 // Reads a technique result in the child and judges it; runs in the child.
 StressOutcome judge(const TechniqueDescriptor& technique, const StressCase& c, const RunResult& r) {
   StressOutcome o;
@@ -79,12 +98,11 @@ StressOutcome judge(const TechniqueDescriptor& technique, const StressCase& c, c
     return o;
   }
   o.dropped = r.counters.fragments_dropped;
-  // Garbage: anything not finite or outside [0, 1] (with a float margin).
-  size_t garbage = 0;
-  for (float v : r.image.rgba) garbage += !(std::isfinite(v) && v >= -1e-4f && v <= 1.0f + 1e-3f);
+  const size_t garbage = values_outside_output_range(technique, r.image.rgba);
   if (garbage > 0) {
     o.verdict = Verdict::fail;
-    o.note = std::to_string(garbage) + " channel values are not finite or outside [0, 1]";
+    o.note = std::to_string(garbage) + " channel values are not finite or outside [0, " +
+             format_output_max(technique.output_max) + "]";
     return o;
   }
   o.error = r.error ? r.error->max_abs : -1.0;

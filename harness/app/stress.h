@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "app/commands.h"
-#include "core/params.h"
+#include "harness/app/commands.h"
+#include "base/params.h"
 
 namespace oit {
 
@@ -20,7 +20,7 @@ struct StressCase {
   RawParams technique_params;  // parameter-edge cases set one parameter
   // What the case expects: an exact technique matches the reference within
   // its tolerance (or reports counted truncation); any technique returns a
-  // finite image in [0, 1]; where a clear error is an acceptable answer
+  // finite image in [0, its output_max]; where a clear error is an acceptable answer
   // (non-finite input, a size beyond a technique's limits), it says so.
   std::string expectation;
   bool error_acceptable = false;
@@ -52,6 +52,10 @@ struct StressOptions {
   double timeout_s = 120.0;
   std::string csv;
 };
+
+// Channel values of a result that no correct output of `technique` holds:
+// not finite, below 0 or above its declared output_max (with float margins).
+size_t values_outside_output_range(const TechniqueDescriptor& technique, const std::vector<float>& rgba);
 
 int run_stress(const CommonOptions& common, const StressOptions& options);
 // Runs one case of one technique in a child process and judges it.

@@ -1,12 +1,12 @@
-#include "app/sweep.h"
+#include "harness/app/sweep.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
-#include "cameras.h"
-#include "scene_library.h"
+#include "scenes/cameras.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 namespace {

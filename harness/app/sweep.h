@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "core/results_csv.h"
-#include "core/runner.h"
+#include "harness/core/results_csv.h"
+#include "harness/core/runner.h"
 
 namespace oit {
 

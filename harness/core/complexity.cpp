@@ -1,12 +1,12 @@
-#include "core/complexity.h"
+#include "harness/core/complexity.h"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "core/heatmap.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "harness/core/heatmap.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 

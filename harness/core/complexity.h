@@ -2,9 +2,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "cameras.h"
-#include "core/image.h"
-#include "core/scene_gpu.h"
+#include "scenes/cameras.h"
+#include "harness/core/image.h"
+#include "harness/core/scene_gpu.h"
 
 namespace oit {
 

@@ -1,4 +1,4 @@
-#include "core/csv_file.h"
+#include "harness/core/csv_file.h"
 
 #include <csv.h>
 

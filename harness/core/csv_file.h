@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/output_file.h"
+#include "harness/core/output_file.h"
 
 namespace oit {
 

@@ -1,4 +1,4 @@
-#include "core/error_metrics.h"
+#include "harness/core/error_metrics.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-#include "core/image.h"
+#include "harness/core/image.h"
 
 namespace oit {
 

@@ -1,9 +1,9 @@
-#include "core/fragment_pool.h"
+#include "harness/core/fragment_pool.h"
 
 #include <stdexcept>
 
-#include "gl/check.h"
-#include "gl/gl.h"
+#include "harness/gl/check.h"
+#include "harness/gl/gl.h"
 
 namespace oit {
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "core/technique.h"
+#include "harness/core/technique.h"
 
 namespace oit {
 

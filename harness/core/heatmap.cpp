@@ -1,4 +1,4 @@
-#include "core/heatmap.h"
+#include "harness/core/heatmap.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 // error and list-length maps.
 #include <vector>
 
-#include "core/image.h"
+#include "harness/core/image.h"
 
 namespace oit {
 

@@ -1,4 +1,4 @@
-#include "core/image.h"
+#include "harness/core/image.h"
 
 #include <stb_image_write.h>
 
@@ -10,7 +10,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "core/output_file.h"
+#include "harness/core/output_file.h"
 
 namespace oit {
 

@@ -2,7 +2,7 @@
 #include <string>
 #include <vector>
 
-#include "gl/gl.h"
+#include "harness/gl/gl.h"
 
 namespace oit {
 

@@ -1,9 +1,9 @@
-#include "core/list_length_pass.h"
+#include "harness/core/list_length_pass.h"
 
 #include <algorithm>
 
-#include "gl/check.h"
-#include "gl/shader_program.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
 
 namespace oit {
 

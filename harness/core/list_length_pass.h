@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/technique.h"
-#include "gl/handles.h"
+#include "harness/core/technique.h"
+#include "harness/gl/handles.h"
 
 namespace oit {
 

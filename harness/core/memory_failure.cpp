@@ -1,4 +1,4 @@
-#include "core/memory_failure.h"
+#include "harness/core/memory_failure.h"
 
 #include <cmath>
 #include <new>

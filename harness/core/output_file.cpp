@@ -1,4 +1,4 @@
-#include "core/output_file.h"
+#include "harness/core/output_file.h"
 
 #include <fcntl.h>
 #include <sys/file.h>

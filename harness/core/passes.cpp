@@ -1,8 +1,8 @@
-#include "core/passes.h"
+#include "harness/core/passes.h"
 
 #include <cstdio>
 
-#include "gl/check.h"
+#include "harness/gl/check.h"
 
 namespace oit {
 

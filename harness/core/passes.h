@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/technique.h"
-#include "gl/handles.h"
+#include "harness/core/technique.h"
+#include "harness/gl/handles.h"
 
 namespace oit {
 

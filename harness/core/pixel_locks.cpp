@@ -1,7 +1,7 @@
-#include "core/pixel_locks.h"
+#include "harness/core/pixel_locks.h"
 
-#include "gl/check.h"
-#include "gl/shader_capabilities.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_capabilities.h"
 
 namespace oit {
 
@@ -12,8 +12,7 @@ void PixelLocks::resize(int width, int height) {
 }
 
 void PixelLocks::clear() const {
-  const GLuint zero = 0;
-  glClearNamedBufferData(buffer_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  fill_buffer_u32(buffer_, 0);
 }
 
 void PixelLocks::bind(GLuint binding) const { glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer_.id()); }

@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/technique.h"
-#include "gl/handles.h"
+#include "harness/core/technique.h"
+#include "harness/gl/handles.h"
 
 namespace oit {
 

@@ -1,4 +1,4 @@
-#include "core/reference_cache.h"
+#include "harness/core/reference_cache.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,9 +9,9 @@
 #include <iterator>
 #include <string_view>
 
-#include "core/output_file.h"
+#include "harness/core/output_file.h"
 
-#include "gl/embedded_shaders.h"
+#include "harness/gl/embedded_shaders.h"
 #include "oit_revision.h"
 
 namespace oit {

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "core/image.h"
+#include "harness/core/image.h"
 
 namespace oit {
 

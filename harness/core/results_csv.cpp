@@ -1,4 +1,4 @@
-#include "core/results_csv.h"
+#include "harness/core/results_csv.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>

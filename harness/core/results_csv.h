@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/csv_file.h"
-#include "core/runner.h"
+#include "harness/core/csv_file.h"
+#include "harness/core/runner.h"
 
 namespace oit {
 

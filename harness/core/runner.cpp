@@ -1,15 +1,15 @@
-#include "core/runner.h"
+#include "harness/core/runner.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 #include <sstream>
 
-#include "core/memory_failure.h"
-#include "core/system_load.h"
-#include "gl/check.h"
-#include "model_files.h"
-#include "scene_library.h"
+#include "harness/core/memory_failure.h"
+#include "harness/core/system_load.h"
+#include "harness/gl/check.h"
+#include "scenes/model_files.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 
@@ -26,6 +26,13 @@ const StageResult* RunResult::stage(const std::string& name, const std::string& 
   for (const auto& s : stages)
     if (s.stage == name && s.clock == clock_name) return &s;
   return nullptr;
+}
+
+const StageResult* RunResult::total() const { return stage("total", clock == ClockKind::gl ? "gl" : "wall"); }
+
+double RunResult::median_total_ms() const {
+  const StageResult* t = total();
+  return t ? t->summary.median : 0.0;
 }
 
 struct Harness::LoadedScene {
@@ -310,7 +317,7 @@ void Harness::execute(const RunSpec& spec, RunResult& result, RenderTarget* give
   std::optional<RenderTarget> own_target;
   if (!given_target) own_target.emplace(spec.width, spec.height);
   RenderTarget& target = given_target ? *given_target : *own_target;
-  StageClock clock(clock_kind);
+  StageClock clock(clock_kind, descriptor.stages);
   const float aspect = float(spec.width) / float(spec.height);
   const Frame frame{*loaded.gpu,  loaded.scene.camera.view,   loaded.scene.camera.projection(aspect),
                     spec.width,   spec.height,                spec.background,

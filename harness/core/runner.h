@@ -10,14 +10,14 @@
 #include <string>
 #include <vector>
 
-#include "core/complexity.h"
-#include "core/error_metrics.h"
-#include "core/image.h"
-#include "core/reference_cache.h"
-#include "core/scene_rect.h"
-#include "core/statistics.h"
-#include "core/technique.h"
-#include "core/tiling.h"
+#include "harness/core/complexity.h"
+#include "harness/core/error_metrics.h"
+#include "harness/core/image.h"
+#include "harness/core/reference_cache.h"
+#include "harness/core/scene_rect.h"
+#include "harness/core/statistics.h"
+#include "harness/core/technique.h"
+#include "harness/core/tiling.h"
 
 namespace oit {
 
@@ -87,6 +87,11 @@ struct RunResult {
   Image image;
 
   const StageResult* stage(const std::string& name, const std::string& clock) const;
+  // The `total` stage of the run's own clock (gl, or wall for wall and
+  // both); nullptr when the run did not time anything.
+  const StageResult* total() const;
+  // Its median in ms, 0 when there is none.
+  double median_total_ms() const;
 };
 
 // The RGBA32F image a technique composes into (Frame::target_framebuffer).

@@ -1,9 +1,9 @@
-#include "core/scene_gpu.h"
+#include "harness/core/scene_gpu.h"
 
 #include <cmath>
 #include <cstddef>
 
-#include "../../shaders/bindings.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 

@@ -1,7 +1,7 @@
 #pragma once
-#include "core/scene_rect.h"
-#include "gl/handles.h"
-#include "scene.h"
+#include "harness/core/scene_rect.h"
+#include "harness/gl/handles.h"
+#include "scenes/scene.h"
 
 namespace oit {
 

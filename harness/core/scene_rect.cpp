@@ -1,4 +1,4 @@
-#include "core/scene_rect.h"
+#include "harness/core/scene_rect.h"
 
 #include <algorithm>
 #include <cmath>

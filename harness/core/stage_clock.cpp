@@ -1,7 +1,8 @@
-#include "core/stage_clock.h"
+#include "harness/core/stage_clock.h"
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 namespace oit {
 
@@ -21,16 +22,17 @@ std::string to_string(ClockKind kind) {
   return "?";
 }
 
-const std::vector<std::string>& stage_vocabulary() {
-  static const std::vector<std::string> names = {"clear", "count",     "fill",    "store",   "peel", "sort",
-                                                 "bucket", "neighbors", "stylize", "compose", "total"};
-  return names;
+bool is_stage_name(std::string_view name) {
+  if (name.empty() || name.front() < 'a' || name.front() > 'z') return false;
+  return std::all_of(name.begin(), name.end(),
+                     [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_'; });
 }
 
 ScopedStage::ScopedStage(StageClock& clock, std::string_view name) : clock_(clock), slot_(clock.open(name)) {}
 ScopedStage::~ScopedStage() { clock_.close(slot_); }
 
-StageClock::StageClock(ClockKind kind) : kind_(kind) {}
+StageClock::StageClock(ClockKind kind, std::vector<std::string> declared)
+    : kind_(kind), declared_(std::move(declared)) {}
 
 void StageClock::begin_frame(bool record) {
   recording_ = record;
@@ -50,9 +52,15 @@ void StageClock::end_frame() {
 }
 
 size_t StageClock::stage_index(std::string_view name) {
-  const auto& vocabulary = stage_vocabulary();
-  if (std::find(vocabulary.begin(), vocabulary.end(), name) == vocabulary.end()) {
-    throw std::logic_error("stage name '" + std::string(name) + "' is not in the stage vocabulary");
+  if (!is_stage_name(name)) {
+    throw std::logic_error("stage name '" + std::string(name) + "' is not snake_case ([a-z][a-z0-9_]*)");
+  }
+  if (!declared_.empty() && name != "total" &&
+      std::find(declared_.begin(), declared_.end(), name) == declared_.end()) {
+    std::string list;
+    for (const auto& stage : declared_) list += (list.empty() ? "" : ", ") + stage;
+    throw std::logic_error("stage '" + std::string(name) + "' is not among the stages the technique declares (" +
+                           list + ")");
   }
   for (size_t i = 0; i < stage_names_.size(); ++i)
     if (stage_names_[i] == name) return i;

@@ -3,15 +3,17 @@
 //  - gl:   GL_TIMESTAMP query pairs, read back frames later (never stalls);
 //  - wall: CPU steady clock bracketed by glFinish (the only trustworthy
 //          clock on Mesa llvmpipe, whose per-pass GL timestamps are wrong).
-// Techniques open a ScopedStage per stage; names come from a fixed
-// vocabulary so that they become plot series.
+// Techniques open a ScopedStage per stage. A stage name is any snake_case
+// word the technique declares in TechniqueDescriptor::stages (the registry
+// checks them); each becomes a CSV row and a plot series, and the plots take
+// the stage order from the CSV (the order the stages first ran).
 #include <chrono>
 #include <map>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "gl/handles.h"
+#include "harness/gl/handles.h"
 
 namespace oit {
 
@@ -19,8 +21,9 @@ enum class ClockKind { gl, wall, both };
 ClockKind parse_clock_kind(const std::string& text);
 std::string to_string(ClockKind kind);
 
-// clear, count, fill, store, peel, sort, bucket, neighbors, stylize, compose, total
-const std::vector<std::string>& stage_vocabulary();
+// Whether `name` can name a stage: snake_case ([a-z][a-z0-9_]*), the form
+// the CSV, its readers and the plots rely on. "total" is the harness's own.
+bool is_stage_name(std::string_view name);
 
 // Milliseconds per recorded frame for one stage (a stage that runs several
 // times in a frame, e.g. one peel per layer, is summed within the frame).
@@ -45,7 +48,10 @@ class ScopedStage {
 
 class StageClock {
  public:
-  explicit StageClock(ClockKind kind);
+  // `declared`: the stages the technique declares (TechniqueDescriptor::
+  // stages); opening any other but the harness's "total" is an error that
+  // names it. Empty: any snake_case name (tests timing their own passes).
+  explicit StageClock(ClockKind kind, std::vector<std::string> declared = {});
   ClockKind kind() const { return kind_; }
 
   // Frames opened with record=false (warm-up) time nothing but behave alike.
@@ -72,6 +78,7 @@ class StageClock {
     std::chrono::steady_clock::time_point wall_begin;
   };
   ClockKind kind_;
+  std::vector<std::string> declared_;
   bool recording_ = false;
   size_t frame_ = 0;  // index of the current recorded frame
   std::vector<std::string> stage_names_;

@@ -1,4 +1,4 @@
-#include "core/statistics.h"
+#include "harness/core/statistics.h"
 
 #include <gsl/gsl_statistics_double.h>
 

@@ -1,4 +1,4 @@
-#include "core/system_load.h"
+#include "harness/core/system_load.h"
 
 #include <fstream>
 #include <sstream>

@@ -1,8 +1,11 @@
-#include "core/technique.h"
+#include "harness/core/technique.h"
 
+#include <algorithm>
 #include <stdexcept>
 
-#include "../../shaders/bindings.h"
+#include "harness/core/stage_clock.h"
+
+#include "shaders/bindings.h"
 
 namespace oit {
 
@@ -49,6 +52,13 @@ void TechniqueRegistry::add(TechniqueDescriptor descriptor) {
     if (existing.id == descriptor.id) throw std::logic_error("technique '" + descriptor.id + "' registered twice");
   }
   if (!descriptor.create) throw std::logic_error("technique '" + descriptor.id + "' has no factory");
+  for (size_t i = 0; i < descriptor.stages.size(); ++i) {
+    const std::string& stage = descriptor.stages[i];
+    if (!is_stage_name(stage) || stage == "total" ||
+        std::find(descriptor.stages.begin(), descriptor.stages.begin() + long(i), stage) != descriptor.stages.begin() + long(i))
+      throw std::logic_error("technique '" + descriptor.id + "' declares stage '" + stage +
+                             "': stages are distinct snake_case names other than 'total' (the harness's)");
+  }
   techniques_.push_back(std::move(descriptor));
 }
 

@@ -12,10 +12,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/params.h"
-#include "core/scene_gpu.h"
-#include "core/stage_clock.h"
-#include "gl/context.h"
+#include "base/params.h"
+#include "harness/core/scene_gpu.h"
+#include "harness/core/stage_clock.h"
+#include "harness/gl/context.h"
 
 namespace oit {
 
@@ -151,13 +151,18 @@ struct TechniqueDescriptor {
   std::string display_name;
   std::string paper;         // citation shown by `list` and the README
   ParamSchema params;
-  std::vector<std::string> stages;  // stage names it emits, in order
+  std::vector<std::string> stages;  // the stage names it emits, in order: any distinct snake_case words but "total"
   TechniqueNeeds needs;
   Exactness exactness = Exactness::approximate;
   // For exact techniques: the largest difference from the reference that
   // still counts as exact (1e-5 for float compositing; a technique storing
   // colour packed states the quantisation bound of its storage here).
   double exact_tolerance = 1e-5;
+  // The largest channel value a correct output can hold, which `stress`
+  // holds it to (besides finiteness, and >= 0): 1 for compositing, which
+  // blends colours in [0, 1]; infinity for an approximation whose output is
+  // legitimately unbounded (a weighted sum over many layers exceeds 1).
+  double output_max = 1.0;
   // Quality knobs for run-time-versus-error sweeps (`oitbench pareto`):
   // parameter name and the values to try, cheapest first.
   std::vector<std::pair<std::string, std::vector<std::string>>> quality_sweep;

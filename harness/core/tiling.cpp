@@ -1,4 +1,4 @@
-#include "core/tiling.h"
+#include "harness/core/tiling.h"
 
 #include <unistd.h>
 
@@ -7,7 +7,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "gl/gl.h"
+#include "harness/gl/gl.h"
 
 namespace oit {
 

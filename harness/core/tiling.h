@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "core/complexity.h"
-#include "core/scene_rect.h"
-#include "core/technique.h"
+#include "harness/core/complexity.h"
+#include "harness/core/scene_rect.h"
+#include "harness/core/technique.h"
 
 namespace oit {
 

@@ -1,9 +1,9 @@
-#include "gl/check.h"
+#include "harness/gl/check.h"
 
 #include <cstdio>
 #include <sstream>
 
-#include "gl/gl.h"
+#include "harness/gl/gl.h"
 
 namespace oit {
 namespace {
@@ -37,6 +37,11 @@ void gl_check(const std::string& what, std::source_location where) {
   for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError()) msg << ", " << error_name(e);
   msg << " during " << what << " (" << where.file_name() << ":" << where.line() << ")";
   throw GlError(msg.str());
+}
+
+void drain_gl_errors() {
+  while (glGetError() != GL_NO_ERROR) {
+  }
 }
 
 void enable_gl_debug_output() {

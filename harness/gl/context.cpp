@@ -1,4 +1,4 @@
-#include "gl/context.h"
+#include "harness/gl/context.h"
 
 #include <epoxy/egl.h>
 
@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "gl/check.h"
-#include "gl/gl.h"
+#include "harness/gl/check.h"
+#include "harness/gl/gl.h"
 
 namespace oit {
 namespace {

@@ -1,4 +1,4 @@
-#include "gl/glfw_window.h"
+#include "harness/gl/glfw_window.h"
 
 #include <GLFW/glfw3.h>
 

@@ -1,7 +1,7 @@
 #pragma once
 #include <string>
 
-#include "gl/context.h"
+#include "harness/gl/context.h"
 
 struct GLFWwindow;
 

@@ -3,7 +3,7 @@
 // GL 4.5 direct-state-access entry points so no binding state leaks.
 #include <utility>
 
-#include "gl/gl.h"
+#include "harness/gl/gl.h"
 
 namespace oit {
 
@@ -58,6 +58,12 @@ inline Buffer make_buffer(GLsizeiptr bytes, const void* data = nullptr,
   // Zero-sized storage is invalid in GL; a 4-byte buffer keeps bindings legal.
   glNamedBufferStorage(id, bytes > 0 ? bytes : 4, bytes > 0 ? data : nullptr, flags);
   return Buffer(id);
+}
+
+// Sets every 32-bit word of `buffer` to `value` (list heads to a nil index,
+// counters to zero).
+inline void fill_buffer_u32(const Buffer& buffer, GLuint value) {
+  glClearNamedBufferData(buffer.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
 }
 
 // A buffer texture reading `buffer` as `internal_format` texels: the whole

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "gl/handles.h"
+#include "harness/gl/handles.h"
 
 namespace oit {
 

@@ -1,7 +1,9 @@
-#include "gl/program_cache.h"
+#include "harness/gl/program_cache.h"
 
 #include <cstdlib>
 #include <cstring>
+
+#include "harness/gl/check.h"
 
 namespace oit {
 namespace {
@@ -39,8 +41,7 @@ std::optional<Program> ProgramCache::load(const std::string& key) {
   if (ok != GL_TRUE) {
     // Refused (GL_INVALID_ENUM for an unknown format, or a failed link):
     // clear the error so no later gl_check blames the caller, and compile.
-    while (glGetError() != GL_NO_ERROR) {
-    }
+    drain_gl_errors();
     binaries_.erase(it);
     return std::nullopt;
   }

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "gl/handles.h"
+#include "harness/gl/handles.h"
 
 namespace oit {
 

@@ -1,11 +1,11 @@
-#include "gl/shader_capabilities.h"
+#include "harness/gl/shader_capabilities.h"
 
 #include <cstdlib>
 #include <map>
 #include <set>
 #include <utility>
 
-#include "gl/gl.h"
+#include "harness/gl/gl.h"
 
 namespace oit {
 namespace {

@@ -13,7 +13,7 @@
 // access of shaders/ordered_access.glsl.
 #include <string>
 
-#include "gl/shader_program.h"
+#include "harness/gl/shader_program.h"
 
 namespace oit {
 

@@ -1,4 +1,4 @@
-#include "gl/shader_program.h"
+#include "harness/gl/shader_program.h"
 
 #include <algorithm>
 #include <optional>
@@ -7,9 +7,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "gl/embedded_shaders.h"
-#include "gl/program_cache.h"
-#include "gl/shader_capabilities.h"
+#include "harness/gl/embedded_shaders.h"
+#include "harness/gl/program_cache.h"
+#include "harness/gl/shader_capabilities.h"
 
 namespace oit {
 namespace {

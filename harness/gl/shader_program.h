@@ -4,7 +4,7 @@
 #include <utility>
 #include <vector>
 
-#include "gl/handles.h"
+#include "harness/gl/handles.h"
 
 namespace oit {
 

@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "scene_library.h"
+#include "scenes/scene_library.h"
 
 namespace {
 

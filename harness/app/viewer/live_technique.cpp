@@ -1,6 +1,6 @@
-#include "app/viewer/live_technique.h"
+#include "harness/app/viewer/live_technique.h"
 
-#include "gl/check.h"
+#include "harness/gl/check.h"
 
 namespace oit {
 
@@ -29,7 +29,7 @@ std::string LiveTechnique::configure(const std::string& id, const RawParams& par
     tiling_ = std::make_unique<Tiling>(TilePlan{width, height, width, height, 0, {{0, 0, width, height}}, {}});
     planned_scene_ = nullptr;
     target_ = std::move(target);
-    clock_ = std::make_unique<StageClock>(clock_kind_);
+    clock_ = std::make_unique<StageClock>(clock_kind_, descriptor_->stages);
     frames_in_window_ = 0;
     timings_.clear();
     id_ = id;
@@ -39,8 +39,7 @@ std::string LiveTechnique::configure(const std::string& id, const RawParams& par
     height_ = height;
     return "";
   } catch (const std::exception& e) {
-    while (glGetError() != GL_NO_ERROR) {
-    }
+    drain_gl_errors();
     return e.what();
   }
 }
@@ -84,7 +83,7 @@ void LiveTechnique::finish_window() {
     const std::vector<double>& ms = clock_name == "gl" ? samples.gl_ms : samples.wall_ms;
     if (!ms.empty()) timings_.push_back({name, summarize(ms)});
   }
-  clock_ = std::make_unique<StageClock>(clock_kind_);
+  clock_ = std::make_unique<StageClock>(clock_kind_, descriptor_->stages);
   frames_in_window_ = 0;
 }
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/runner.h"
+#include "harness/core/runner.h"
 
 namespace oit {
 

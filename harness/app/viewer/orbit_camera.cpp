@@ -1,4 +1,4 @@
-#include "app/viewer/orbit_camera.h"
+#include "harness/app/viewer/orbit_camera.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 

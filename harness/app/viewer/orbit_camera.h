@@ -7,7 +7,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "scene.h"
+#include "scenes/scene.h"
 
 namespace oit {
 

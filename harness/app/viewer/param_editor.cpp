@@ -1,4 +1,4 @@
-#include "app/viewer/param_editor.h"
+#include "harness/app/viewer/param_editor.h"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>

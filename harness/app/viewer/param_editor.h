@@ -6,7 +6,7 @@
 // knows any technique or scene.
 #include <string>
 
-#include "core/params.h"
+#include "base/params.h"
 
 namespace oit {
 

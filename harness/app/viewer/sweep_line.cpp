@@ -1,6 +1,6 @@
-#include "app/viewer/sweep_line.h"
+#include "harness/app/viewer/sweep_line.h"
 
-#include "core/output_file.h"
+#include "harness/core/output_file.h"
 
 namespace oit {
 namespace {

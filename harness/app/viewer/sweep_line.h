@@ -5,7 +5,7 @@
 // configuration, ready for `sh FILE` (or copying into a script).
 #include <string>
 
-#include "core/params.h"
+#include "base/params.h"
 
 namespace oit {
 

@@ -1,12 +1,12 @@
-#include "app/viewer/view_command.h"
+#include "harness/app/viewer/view_command.h"
 
 #include <CLI/CLI.hpp>
 
 #include <cstdlib>
 #include <stdexcept>
 
-#include "app/viewer/viewer.h"
-#include "gl/glfw_window.h"
+#include "harness/app/viewer/viewer.h"
+#include "harness/gl/glfw_window.h"
 
 namespace oit {
 

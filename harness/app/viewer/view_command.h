@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "app/commands.h"
+#include "harness/app/commands.h"
 
 namespace CLI {
 class App;

@@ -1,4 +1,4 @@
-#include "app/viewer/viewer.h"
+#include "harness/app/viewer/viewer.h"
 
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
@@ -9,11 +9,11 @@
 #include <cstdio>
 #include <sstream>
 
-#include "app/sweep.h"
-#include "app/viewer/param_editor.h"
-#include "cameras.h"
-#include "gl/check.h"
-#include "scene_library.h"
+#include "harness/app/sweep.h"
+#include "harness/app/viewer/param_editor.h"
+#include "scenes/cameras.h"
+#include "harness/gl/check.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 namespace {
@@ -106,8 +106,7 @@ std::string Viewer::open_scene(const std::string& spec, const RawParams& params)
     ++scene_generation_;
     return "";
   } catch (const std::exception& e) {
-    while (glGetError() != GL_NO_ERROR) {
-    }
+    drain_gl_errors();
     return e.what();
   }
 }
@@ -147,8 +146,7 @@ void Viewer::render_slot(Slot& slot) {
   try {
     slot.live.render(*scene_gpu_, orbit_.camera().view, projection(), background_);
   } catch (const std::exception& e) {
-    while (glGetError() != GL_NO_ERROR) {
-    }
+    drain_gl_errors();
     slot.render_error = e.what();
   }
 }

@@ -8,11 +8,11 @@
 #include <optional>
 #include <string>
 
-#include "app/viewer/live_technique.h"
-#include "app/viewer/orbit_camera.h"
-#include "app/viewer/sweep_line.h"
-#include "app/viewer/view_command.h"
-#include "gl/glfw_window.h"
+#include "harness/app/viewer/live_technique.h"
+#include "harness/app/viewer/orbit_camera.h"
+#include "harness/app/viewer/sweep_line.h"
+#include "harness/app/viewer/view_command.h"
+#include "harness/gl/glfw_window.h"
 
 namespace oit {
 

@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <sstream>
 
-#include "app/viewer/viewer.h"
-#include "core/heatmap.h"
-#include "gl/check.h"
+#include "harness/app/viewer/viewer.h"
+#include "harness/core/heatmap.h"
+#include "harness/gl/check.h"
 
 namespace oit {
 
@@ -89,8 +89,7 @@ void Viewer::update_diagnostics() {
     if (display_ != Display::diagnostic) reference_of_view();
     if (display_ == Display::reference) return upload(reference_image_);
   } catch (const std::exception& e) {
-    while (glGetError() != GL_NO_ERROR) {
-    }
+    drain_gl_errors();
     halves_[0].message = e.what();
     return;
   }
@@ -108,8 +107,7 @@ void Viewer::update_diagnostics() {
         std::copy_n(heatmap.rgba.begin() + (size_t(y) * size_t(width_) + size_t(x0)) * 4, size_t(x1 - x0) * 4,
                     shown.rgba.begin() + (size_t(y) * size_t(width_) + size_t(x0)) * 4);
     } catch (const std::exception& e) {
-      while (glGetError() != GL_NO_ERROR) {
-      }
+      drain_gl_errors();
       halves_[h].message = e.what();
     }
   }

@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "app/viewer/param_editor.h"
-#include "app/viewer/viewer.h"
-#include "scene_library.h"
+#include "harness/app/viewer/param_editor.h"
+#include "harness/app/viewer/viewer.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 namespace {

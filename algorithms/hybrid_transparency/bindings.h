@@ -1,0 +1,22 @@
+// hybrid_transparency's binding points and uniform locations, included by its C++ and
+// its GLSL alike so that no number is copied by hand between the two
+// (shaders/bindings.h: a technique's own start at OIT_FIRST_TECHNIQUE_*).
+#ifndef OIT_HYBRID_TRANSPARENCY_BINDINGS_H
+#define OIT_HYBRID_TRANSPARENCY_BINDINGS_H
+
+#include "shaders/bindings.h"
+
+// Storage buffer binding points.
+#define HYBRID_TRANSPARENCY_KEYS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 0)
+#define HYBRID_TRANSPARENCY_COLORS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 1)
+#define HYBRID_TRANSPARENCY_COUNTERS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 2)
+
+// Texture units.
+#define HYBRID_TRANSPARENCY_TAIL_SUM_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 0)
+#define HYBRID_TRANSPARENCY_TAIL_COUNT_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 1)
+
+// Uniform locations.
+#define HYBRID_TRANSPARENCY_WIDTH_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 0)
+#define HYBRID_TRANSPARENCY_SLOTS_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 1)
+
+#endif

@@ -1,0 +1,23 @@
+// kbuffer's binding points and uniform locations, included by its C++ and
+// its GLSL alike so that no number is copied by hand between the two
+// (shaders/bindings.h: a technique's own start at OIT_FIRST_TECHNIQUE_*).
+#ifndef OIT_KBUFFER_BINDINGS_H
+#define OIT_KBUFFER_BINDINGS_H
+
+#include "shaders/bindings.h"
+
+// Storage buffer binding points.
+#define KBUFFER_KEYS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 0)
+#define KBUFFER_OWNERS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 1)
+#define KBUFFER_COLORS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 2)
+#define KBUFFER_COUNTERS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 3)
+
+// Texture units.
+#define KBUFFER_TAIL_ACCUMULATION_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 0)
+#define KBUFFER_TAIL_REVEALAGE_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 1)
+
+// Uniform locations.
+#define KBUFFER_WIDTH_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 0)
+#define KBUFFER_SLOTS_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 1)  // u_k
+
+#endif

@@ -1,0 +1,22 @@
+// moment_oit's binding points and uniform locations, included by its C++ and
+// its GLSL alike so that no number is copied by hand between the two
+// (shaders/bindings.h: a technique's own start at OIT_FIRST_TECHNIQUE_*).
+#ifndef OIT_MOMENT_OIT_BINDINGS_H
+#define OIT_MOMENT_OIT_BINDINGS_H
+
+#include "shaders/bindings.h"
+
+// Texture units.
+#define MOMENT_OIT_ZEROTH_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 0)
+#define MOMENT_OIT_MOMENTS_1_4_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 1)
+#define MOMENT_OIT_MOMENTS_5_8_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 2)
+#define MOMENT_OIT_ACCUMULATION_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 3)
+
+// Uniform locations.
+#define MOMENT_OIT_DEPTH_WARP_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 0)
+#define MOMENT_OIT_LOG_DEPTH_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 1)
+#define MOMENT_OIT_WRAPPING_ZONE_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 2)
+#define MOMENT_OIT_MOMENT_BIAS_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 3)
+#define MOMENT_OIT_OVERESTIMATION_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 4)
+
+#endif

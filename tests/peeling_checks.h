@@ -1,0 +1,105 @@
+#pragma once
+// Checks both depth peelers (depth_peeling, dual_depth_peeling) must pass
+// alike; each test file states only what differs: its pass counts.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "tests/gl_fixture.h"
+
+namespace oit::test {
+
+// The geometry passes early exit avoided (work_saved passes_avoided).
+inline double passes_avoided(const RunResult& r) {
+  if (auto value = find_figure(r.counters.work_saved, "passes_avoided")) return *value;
+  ADD_FAILURE() << "no passes_avoided in work_saved";
+  return -1.0;
+}
+
+// Geometry passes a peeler needs for depth complexity d, before its tie
+// break's extra passes: d for depth peeling, ceil(d / 2) for dual.
+using PassesForDepth = uint64_t (*)(uint64_t depth);
+
+// 8 quad layers: early exit stops right after the last layer (passes_for(8)
+// + extra); without it exactly `no_exit_cap` passes run, the extra ones
+// composite nothing and the image is the same; passes_avoided counts what
+// early exit saved of the default 64, and nothing without it or under a
+// cap (`small_cap`) that early exit never reaches.
+inline void expect_early_exit_and_caps(const std::string& technique, const std::string& tie_break, uint64_t extra,
+                                       PassesForDepth passes_for, int no_exit_cap, int small_cap, int size) {
+  const RawParams layers8 = {{"layers", "8"}};
+  const RunResult early = run_ok(one_frame(technique, {{"tie_break", tie_break}}, "quads", layers8, size));
+  EXPECT_EQ(early.max_depth_complexity, 8u);
+  EXPECT_EQ(early.counters.passes, passes_for(8) + extra);
+  EXPECT_LT(early.error->max_abs, 1e-5);
+  const RunResult all = run_ok(one_frame(
+      technique, {{"tie_break", tie_break}, {"early_exit", "false"}, {"max_passes", std::to_string(no_exit_cap)}},
+      "quads", layers8, size));
+  EXPECT_EQ(all.counters.passes, uint64_t(no_exit_cap));
+  EXPECT_LT(all.error->max_abs, 1e-5);
+  EXPECT_EQ(all.counters.fragments_stored, 8u * uint64_t(size) * uint64_t(size));
+  EXPECT_EQ(all.counters.fragments_dropped, 0u);
+  EXPECT_EQ(all.image.rgba, early.image.rgba);
+  EXPECT_EQ(passes_avoided(early), double(64 - passes_for(8) - extra));
+  EXPECT_EQ(passes_avoided(all), 0.0);
+  const RunResult capped = run_ok(one_frame(
+      technique, {{"tie_break", tie_break}, {"max_passes", std::to_string(small_cap)}}, "quads", layers8, size));
+  EXPECT_EQ(capped.counters.passes, uint64_t(small_cap));
+  EXPECT_EQ(passes_avoided(capped), 0.0);
+}
+
+// passes_avoided of the default 64 passes on 32 quad layers and on the
+// spheres, whose uneven depth lets the deepest pixel decide the passes.
+inline void expect_passes_avoided_on_quads_and_spheres(const std::string& technique, const std::string& tie_break,
+                                                       uint64_t extra, PassesForDepth passes_for) {
+  const RunResult quads = run_ok(one_frame(technique, {{"tie_break", tie_break}}, "quads", {{"layers", "32"}}, 64));
+  EXPECT_LT(quads.error->max_abs, 1e-5);
+  EXPECT_EQ(passes_avoided(quads), double(64 - passes_for(32) - extra));
+  const RunResult spheres = run_ok(one_frame(technique, {{"tie_break", tie_break}}, "spheres", {}, 64));
+  EXPECT_LT(spheres.error->max_abs, 1e-5);
+  EXPECT_EQ(passes_avoided(spheres), double(64 - passes_for(spheres.max_depth_complexity) - extra));
+}
+
+// stress_layers with gap 0: 8 full-screen layers at one depth, so every
+// pixel holds an 8-way tie that only the stable triangle id orders.
+// tie_break=triangle_id matches the reference in every submission order
+// and seed, every fragment composited, in `passes` passes.
+inline void expect_coplanar_ties_like_the_reference(const std::string& technique, int size, uint64_t passes) {
+  const uint64_t pixels = uint64_t(size) * uint64_t(size);
+  for (const std::string seed : {"1", "2"}) {
+    for (const std::string order : {"original", "reversed", "shuffled:3"}) {
+      SCOPED_TRACE("seed " + seed + " " + order);
+      const RunResult r = run_ok(one_frame(technique, {{"tie_break", "triangle_id"}}, "stress_layers",
+                                           {{"gap", "0"}, {"seed", seed}}, size, order));
+      EXPECT_EQ(r.max_depth_complexity, 8u);
+      EXPECT_LT(r.error->max_abs, 1e-5);
+      EXPECT_EQ(r.counters.fragments_stored, 8u * pixels);
+      EXPECT_EQ(r.counters.fragments_dropped, 0u);
+      EXPECT_EQ(r.counters.passes, passes);
+    }
+  }
+}
+
+// The same tie with tie_break=submission: every tied fragment composited in
+// `passes` passes, none lost, but in submission order, so the image moves
+// with the order.
+inline void expect_submission_ties_in_submission_order(const std::string& technique, int size, uint64_t passes) {
+  const uint64_t pixels = uint64_t(size) * uint64_t(size);
+  Image original;
+  for (const std::string order : {"original", "reversed", "shuffled:3"}) {
+    SCOPED_TRACE(order);
+    const RunResult r =
+        run_ok(one_frame(technique, {{"tie_break", "submission"}}, "stress_layers", {{"gap", "0"}}, size, order));
+    for (float v : r.image.rgba) ASSERT_TRUE(std::isfinite(v));
+    EXPECT_EQ(r.counters.fragments_stored, 8u * pixels);
+    EXPECT_EQ(r.counters.fragments_dropped, 0u);
+    EXPECT_EQ(r.counters.passes, passes);
+    if (order == "original") original = r.image;
+    else EXPECT_GT(max_abs_difference(r.image, original), 0.05);
+  }
+}
+
+}  // namespace oit::test
