@@ -1,10 +1,10 @@
-#include "length_classes.h"
+#include "algorithms/linked_list/length_classes.h"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "gl/check.h"
-#include "../../shaders/bindings.h"
+#include "harness/gl/check.h"
+#include "shaders/bindings.h"
 
 namespace oit::linked_list {
 namespace {

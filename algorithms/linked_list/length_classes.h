@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "core/technique.h"
-#include "gl/handles.h"
-#include "gl/shader_program.h"
+#include "harness/core/technique.h"
+#include "harness/gl/handles.h"
+#include "harness/gl/shader_program.h"
 
 namespace oit::linked_list {
 

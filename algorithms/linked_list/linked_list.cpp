@@ -15,13 +15,13 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/fragment_pool.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "length_classes.h"
-#include "sorting_network.h"
-#include "../../shaders/bindings.h"
+#include "harness/core/fragment_pool.h"
+#include "harness/core/technique.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "algorithms/linked_list/length_classes.h"
+#include "algorithms/linked_list/sorting_network.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 namespace {

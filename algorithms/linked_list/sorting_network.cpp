@@ -1,4 +1,4 @@
-#include "sorting_network.h"
+#include "algorithms/linked_list/sorting_network.h"
 
 #include <bit>
 #include <stdexcept>

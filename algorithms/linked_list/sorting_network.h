@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "gl/shader_program.h"
+#include "harness/gl/shader_program.h"
 
 namespace oit::linked_list {
 
