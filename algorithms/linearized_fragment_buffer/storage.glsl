@@ -1,0 +1,9 @@
+// The linearized fragment buffer (Knowles et al. 2012): the fragments of
+// pixel p lie in slots [offset[p], offset[p+1]) of two parallel arrays, the
+// sort keys (8 bytes: view depth in unsigned order, stable triangle id) and
+// the colours (16 bytes: straight RGBA, float). Keys and colours apart: the
+// sort reads only the keys; the blend reads each colour once, in order.
+#include "shaders/bindings.h"
+
+// IEEE floats compare like sign-magnitude integers; mapped to unsigned order.
+uint lfb_depth_order(uint bits) { return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u; }
