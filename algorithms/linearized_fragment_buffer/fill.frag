@@ -3,15 +3,17 @@
 // free slot of its pixel's range, offset[pixel] + (an atomic increment of the
 // pixel's own cursor), and writes its sort key and colour there. No global
 // counter: the atomics of different pixels never touch the same word.
+// Everything per-pixel-addressed is an image or buffer texture, not an SSBO:
+// on llvmpipe those are vector gathers and scatters, an SSBO access with
+// per-lane addresses a loop over the lanes (README: fill).
 #include "shaders/shading.glsl"
 #include "algorithms/linearized_fragment_buffer/storage.glsl"
 
 // pixels + 1 exclusive prefix sums of the counts: pixel p owns [offset[p], offset[p+1]).
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) readonly buffer LfbOffsets { uint lfb_offsets[]; };
+layout(binding = 1) uniform usamplerBuffer u_offsets;
 // Fragments written so far per pixel (cleared before the fill): afterwards the list lengths.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) coherent buffer LfbCursors { uint lfb_cursors[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 2) writeonly buffer LfbKeys { uvec2 lfb_keys[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 3) writeonly buffer LfbColors { vec4 lfb_colors[]; };
+layout(binding = 2, r32ui) coherent uniform uimageBuffer u_cursors;
+layout(binding = 0, rg32ui) writeonly uniform uimageBuffer u_nodes;
 // Fragments that found their pixel's range full: the counting pass counted
 // fewer than the fill produced. Never expected (the same geometry under the
 // same state rasterizes to the same fragments); the host fails loudly if not.
@@ -19,12 +21,14 @@ layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 6) coherent buffer LfbOve
 layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_width;
 
 void main() {
-  const uint pixel = uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);
-  const uint slot = lfb_offsets[pixel] + atomicAdd(lfb_cursors[pixel], 1u);
-  if (slot >= lfb_offsets[pixel + 1u]) {
+  const int pixel = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
+  const uint slot = texelFetch(u_offsets, pixel).x + imageAtomicAdd(u_cursors, pixel, 1u);
+  if (slot >= texelFetch(u_offsets, pixel + 1).x) {
     atomicAdd(lfb_overflow, 1u);
     return;
   }
-  lfb_keys[slot] = uvec2(lfb_depth_order(floatBitsToUint(oit_view_depth())), oit_triangle_id());
-  lfb_colors[slot] = oit_shade();
+  const uvec4 color = floatBitsToUint(oit_shade());
+  imageStore(u_nodes, lfb_key_texel(slot), uvec4(lfb_depth_order(floatBitsToUint(oit_view_depth())), oit_triangle_id(), 0u, 0u));
+  imageStore(u_nodes, lfb_key_texel(slot) + 1, color.xyyy);
+  imageStore(u_nodes, lfb_key_texel(slot) + 2, color.zwww);
 }

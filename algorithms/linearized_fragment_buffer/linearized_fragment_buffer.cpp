@@ -30,18 +30,17 @@
 namespace oit {
 namespace {
 
-// Per fragment: an 8-byte key (view depth in unsigned order, triangle id) and
-// a 16-byte RGBA32F colour, in two arrays (storage.glsl).
-constexpr uint64_t kKeyBytes = 8, kColorBytes = 16, kFragmentBytes = kKeyBytes + kColorBytes;
+// Per fragment one 24-byte node (storage.glsl): the key (view depth in
+// unsigned order, triangle id) and the RGBA32F colour, read as RG32UI texels.
+constexpr uint64_t kNodeBytes = 24, kTexelBytes = 8;
 // Per pixel: the R32F count, the offset and the fill cursor; the offsets
 // have one more value (the total).
 constexpr uint64_t kPixelBytes = 12;
-constexpr GLuint kOffsetsBinding = OIT_FIRST_TECHNIQUE_BINDING + 0, kCursorsBinding = OIT_FIRST_TECHNIQUE_BINDING + 1,
-                 kKeysBinding = OIT_FIRST_TECHNIQUE_BINDING + 2, kColorsBinding = OIT_FIRST_TECHNIQUE_BINDING + 3,
-                 kOverflowBinding = OIT_FIRST_TECHNIQUE_BINDING + 6;
-// The resolve's views: keys and colours on image units 0 and 1, offsets and
-// lengths on texture units 1 and 2 (unit 2: classify.comp reads the lengths there).
-constexpr GLuint kKeysImageUnit = 0, kColorsImageUnit = 1, kOffsetsUnit = 1, kLengthsUnit = 2;
+constexpr GLuint kOverflowBinding = OIT_FIRST_TECHNIQUE_BINDING + 6;
+// Keys and colours on image units 0 and 1, the fill's cursors on image unit
+// 2; the offsets on texture unit 1 and, in the resolve, the cursors (the
+// lengths) on texture unit 2, where classify.comp reads them too.
+constexpr GLuint kNodesImageUnit = 0, kCursorsImageUnit = 2, kOffsetsUnit = 1, kLengthsUnit = 2;
 constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
 // The smallest array compiled, as in linked_list: tiny lists are not worth a program each.
 constexpr uint32_t kSmallestArray = 8;
@@ -83,8 +82,8 @@ class LinearizedFragmentBuffer final : public Technique {
         backwards_allocation_(params.boolean("backwards_allocation")),
         fill_(build_geometry_program("algorithms/linearized_fragment_buffer/fill.frag")),
         overflow_(make_buffer(4)),
-        pool_("linearized_fragment_buffer", FragmentPool::Sizing::exact, kColorBytes,
-              [this](uint64_t capacity) { allocate_pool(capacity); }, 1, kColorBytes) {}
+        pool_("linearized_fragment_buffer", FragmentPool::Sizing::exact, kNodeBytes,
+              [this](uint64_t capacity) { allocate_pool(capacity); }, 1, kTexelBytes) {}
 
   void resize(int width, int height) override {
     width_ = width;
@@ -95,7 +94,7 @@ class LinearizedFragmentBuffer final : public Technique {
     offsets_ = make_buffer(GLsizeiptr((pixels + 1) * 4));
     cursors_ = make_buffer(GLsizeiptr(pixels * 4));
     offsets_view_ = make_buffer_texture(offsets_, GL_R32UI);
-    lengths_view_ = make_buffer_texture(cursors_, GL_R32UI);
+    cursors_view_ = make_buffer_texture(cursors_, GL_R32UI);
     class_capacity_ = 0;
     pool_.reset(1);  // the prefix sum sizes it before every fill
     framebuffer_ = make_attachmentless_framebuffer(width, height);
@@ -122,11 +121,9 @@ class LinearizedFragmentBuffer final : public Technique {
     fill(frame);
     auto compose = frame.clock.stage("compose");
     frame.bind_target();
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    glBindImageTexture(kKeysImageUnit, keys_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32UI);
-    glBindImageTexture(kColorsImageUnit, colors_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-    glBindTextureUnit(kOffsetsUnit, offsets_view_.id());
-    glBindTextureUnit(kLengthsUnit, lengths_view_.id());
+    bind_views(GL_READ_WRITE);  // register blocks write their sorted blocks back
+    glBindImageTexture(kCursorsImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindTextureUnit(kLengthsUnit, cursors_view_.id());
     const std::vector<uint32_t> sizes = class_sizes();
     if (sizes.size() > class_capacity_) {
       class_capacity_ = sizes.size();
@@ -134,14 +131,13 @@ class LinearizedFragmentBuffer final : public Technique {
     }
     classes_.draw(frame, sizes, [&](uint32_t size) { return program(size); });
     for (GLuint unit : {kOffsetsUnit, kLengthsUnit}) glBindTextureUnit(unit, 0);
-    glBindImageTexture(kKeysImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32UI);
-    glBindImageTexture(kColorsImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    glBindImageTexture(kNodesImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32UI);
   }
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
     const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
-    c.bytes_allocated = pixels * kPixelBytes + 4 + prefix_sum_.bytes_allocated() + pool_.capacity() * kFragmentBytes +
+    c.bytes_allocated = pixels * kPixelBytes + 4 + prefix_sum_.bytes_allocated() + pool_.capacity() * kNodeBytes +
                         4 + (class_capacity_ > 0 ? classes_.bytes_allocated() : 0);
     c.fragments_stored = fragments_;
     c.passes = 2;
@@ -152,13 +148,12 @@ class LinearizedFragmentBuffer final : public Technique {
  private:
   void fill(const Frame& frame) {
     auto fill = frame.clock.stage("fill");
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOffsetsBinding, offsets_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCursorsBinding, cursors_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kKeysBinding, keys_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kColorsBinding, colors_.id());
+    bind_views(GL_WRITE_ONLY);
+    glBindImageTexture(kCursorsImageUnit, cursors_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOverflowBinding, overflow_.id());
     draw_scene_pass(frame, fill_, framebuffer_);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     GLuint overflow = 0;
     glGetNamedBufferSubData(overflow_.id(), 0, 4, &overflow);
     // The counting pass drew the same geometry under the same state, so
@@ -168,6 +163,12 @@ class LinearizedFragmentBuffer final : public Technique {
       throw std::runtime_error("linearized_fragment_buffer: the fill produced " + std::to_string(overflow) +
                                " fragments more than the counting pass counted in their pixels (" +
                                std::to_string(fragments_) + " counted); the image would be wrong");
+  }
+
+  // The keys and colours as images, the offsets as a buffer texture.
+  void bind_views(GLenum access) const {
+    glBindImageTexture(kNodesImageUnit, nodes_view_.id(), 0, GL_FALSE, 0, access, GL_RG32UI);
+    glBindTextureUnit(kOffsetsUnit, offsets_view_.id());
   }
 
   // The length classes of this frame (backwards memory allocation): one
@@ -201,10 +202,8 @@ class LinearizedFragmentBuffer final : public Technique {
   }
 
   void allocate_pool(uint64_t capacity) {
-    keys_ = make_buffer(GLsizeiptr(capacity * kKeyBytes));
-    colors_ = make_buffer(GLsizeiptr(capacity * kColorBytes));
-    keys_view_ = make_buffer_texture(keys_, GL_RG32UI);
-    colors_view_ = make_buffer_texture(colors_, GL_RGBA32F);
+    nodes_ = make_buffer(GLsizeiptr(capacity * kNodeBytes));
+    nodes_view_ = make_buffer_texture(nodes_, GL_RG32UI);
   }
 
   bool register_blocks_;
@@ -216,8 +215,8 @@ class LinearizedFragmentBuffer final : public Technique {
   linked_list::LengthClasses classes_;
   size_t class_capacity_ = 0;
   std::map<uint32_t, Program> programs_;  // resolves by array size
-  Buffer offsets_, cursors_, overflow_, keys_, colors_;
-  Texture offsets_view_, lengths_view_, keys_view_, colors_view_;
+  Buffer offsets_, cursors_, overflow_, nodes_;
+  Texture offsets_view_, cursors_view_, nodes_view_;
   Framebuffer framebuffer_;
   int width_ = 0, height_ = 0;
   uint32_t longest_ = 0;
@@ -252,7 +251,7 @@ void register_technique_linearized_fragment_buffer(TechniqueRegistry& registry) 
   d.create = [](const ParamSet& params) { return std::make_unique<LinearizedFragmentBuffer>(params); };
   d.storage_need = [](const ParamSet&, const FrameContent& content) {
     const uint64_t fragments = std::max<uint64_t>(content.fragments, 1);
-    return StorageNeed{fragments * kColorBytes, content.pixels() * kPixelBytes + fragments * kFragmentBytes};
+    return StorageNeed{fragments * kNodeBytes, content.pixels() * kPixelBytes + fragments * kNodeBytes};
   };
   registry.add(std::move(d));
 }

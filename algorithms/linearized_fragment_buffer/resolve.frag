@@ -17,12 +17,15 @@
 
 layout(location = 0) out vec4 out_color;
 #if defined(LFB_BLOCKS)
-layout(binding = 0, rg32ui) uniform uimageBuffer u_keys;
-layout(binding = 1, rgba32f) uniform imageBuffer u_colors;
+layout(binding = 0, rg32ui) uniform uimageBuffer u_nodes;
 #else
-layout(binding = 0, rg32ui) readonly uniform uimageBuffer u_keys;
-layout(binding = 1, rgba32f) readonly uniform imageBuffer u_colors;
+layout(binding = 0, rg32ui) readonly uniform uimageBuffer u_nodes;
 #endif
+uvec2 key_of(uint slot) { return imageLoad(u_nodes, lfb_key_texel(slot)).xy; }
+vec4 color_of(uint slot) {
+  const int at = lfb_key_texel(slot);
+  return uintBitsToFloat(uvec4(imageLoad(u_nodes, at + 1).xy, imageLoad(u_nodes, at + 2).xy));
+}
 layout(binding = 1) uniform usamplerBuffer u_offsets;
 // The fill's per-pixel cursors, i.e. the list lengths; classify.comp reads them too.
 layout(binding = 2) uniform usamplerBuffer u_lengths;
@@ -56,10 +59,10 @@ uvec3 e[LL_CAPACITY];
 // them, padding (the load re-reads the last slot instead of the next pixel's).
 #define LL_LOAD(i) { \
     const uint at_i = base + min(uint(i), max(available, 1u) - 1u); \
-    e[i] = uint(i) < available ? uvec3(imageLoad(u_keys, int(at_i)).xy, at_i) : LFB_PAD; }
+    e[i] = uint(i) < available ? uvec3(key_of(at_i), at_i) : LFB_PAD; }
 
 #if defined(LFB_NETWORK)
-#define LL_BLEND(i) if (uint(i) < available) blend(imageLoad(u_colors, int(e[i].z)));
+#define LL_BLEND(i) if (uint(i) < available) blend(color_of(e[i].z));
 
 void main() {
   const int pixel = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
@@ -76,10 +79,13 @@ vec4 colors[LL_CAPACITY];
 // After the block's network: its colours are read first, then keys and
 // colours are written back in sorted order (reads before writes: a slot may
 // be both read and overwritten). Each pixel owns its range: no races.
-#define LFB_FETCH(i) if (uint(i) < available) colors[i] = imageLoad(u_colors, int(e[i].z));
+#define LFB_FETCH(i) if (uint(i) < available) colors[i] = color_of(e[i].z);
 #define LFB_STORE(i) if (uint(i) < available) { \
-    imageStore(u_keys, int(base + uint(i)), uvec4(e[i].xy, 0u, 0u)); \
-    imageStore(u_colors, int(base + uint(i)), colors[i]); }
+    const int at_i = lfb_key_texel(base + uint(i)); \
+    const uvec4 bits_i = floatBitsToUint(colors[i]); \
+    imageStore(u_nodes, at_i, e[i].xyyy); \
+    imageStore(u_nodes, at_i + 1, bits_i.xyyy); \
+    imageStore(u_nodes, at_i + 2, bits_i.zwww); }
 #define LFB_SORT_BLOCK(b) { \
     const uint base = start + uint(b) * uint(LL_CAPACITY); \
     const uint available = count - min(count, uint(b) * uint(LL_CAPACITY)); \
@@ -88,7 +94,7 @@ vec4 colors[LL_CAPACITY];
 #define LFB_END(k) (start + min(count, uint((k) + 1) * uint(LL_CAPACITY)))
 #define LFB_HEAD(k) { \
     const uint at_k = start + uint(k) * uint(LL_CAPACITY); \
-    heads[k] = at_k < LFB_END(k) ? uvec3(imageLoad(u_keys, int(at_k)).xy, at_k) : LFB_PAD; }
+    heads[k] = at_k < LFB_END(k) ? uvec3(key_of(at_k), at_k) : LFB_PAD; }
 #define LFB_PICK(k) if (precedes(heads[k], nearest)) { nearest = heads[k]; winner = uint(k); }
 #define LFB_ADVANCE(k) if (winner == uint(k)) heads[k] = next < LFB_END(k) ? uvec3(next_key, next) : LFB_PAD;
 
@@ -105,10 +111,10 @@ void main() {
     uvec3 nearest = heads[0];
     uint winner = 0u;
     LFB_PICK_ALL
-    blend(imageLoad(u_colors, int(nearest.z)));
+    blend(color_of(nearest.z));
     // One load for whichever block advances (the slot after the winner's).
     const uint next = nearest.z + 1u;
-    const uvec2 next_key = imageLoad(u_keys, int(min(next, last))).xy;
+    const uvec2 next_key = key_of(min(next, last));
     LFB_ADVANCE_ALL
   }
   out_color = oit_finish(accumulated, transmittance);

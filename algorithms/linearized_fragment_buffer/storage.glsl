@@ -7,3 +7,6 @@
 
 // IEEE floats compare like sign-magnitude integers; mapped to unsigned order.
 uint lfb_depth_order(uint bits) { return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u; }
+
+// Node s: three RG32UI texels from 3s: the key, then the colour bits (r, g), (b, a).
+int lfb_key_texel(uint slot) { return int(3u * slot); }
