@@ -129,7 +129,9 @@ class LinearizedFragmentBuffer final : public Technique {
       class_capacity_ = sizes.size();
       classes_.resize(width_, height_, class_capacity_);
     }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOverflowBinding, overflow_.id());
     classes_.draw(frame, sizes, [&](uint32_t size) { return program(size); });
+    check_ranges();
     for (GLuint unit : {kOffsetsUnit, kLengthsUnit}) glBindTextureUnit(unit, 0);
     glBindImageTexture(kNodesImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32UI);
   }
@@ -150,18 +152,19 @@ class LinearizedFragmentBuffer final : public Technique {
     auto fill = frame.clock.stage("fill");
     bind_views(GL_WRITE_ONLY);
     glBindImageTexture(kCursorsImageUnit, cursors_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOverflowBinding, overflow_.id());
     draw_scene_pass(frame, fill_, framebuffer_);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
-                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    GLuint overflow = 0;
-    glGetNamedBufferSubData(overflow_.id(), 0, 4, &overflow);
-    // The counting pass drew the same geometry under the same state, so
-    // every pixel's range fits its fill exactly; a mismatch would be a
-    // driver breaking rasterization invariance, and is an error, not a guess.
-    if (overflow != 0)
-      throw std::runtime_error("linearized_fragment_buffer: the fill produced " + std::to_string(overflow) +
-                               " fragments more than the counting pass counted in their pixels (" +
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  }
+
+  // The resolve counted the pixels whose fill outgrew the counted range
+  // (storage.glsl): the image would be wrong, so the frame fails.
+  void check_ranges() const {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GLuint overflowed = 0;
+    glGetNamedBufferSubData(overflow_.id(), 0, 4, &overflowed);
+    if (overflowed != 0)
+      throw std::runtime_error("linearized_fragment_buffer: in " + std::to_string(overflowed) +
+                               " pixels the fill produced more fragments than the counting pass counted (" +
                                std::to_string(fragments_) + " counted); the image would be wrong");
   }
 

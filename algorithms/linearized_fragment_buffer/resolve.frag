@@ -68,6 +68,7 @@ void main() {
   const int pixel = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
   const uint base = texelFetch(u_offsets, pixel).x;
   const uint available = texelFetch(u_lengths, pixel).x;
+  lfb_check(available, base, texelFetch(u_offsets, pixel + 1).x);
   LL_LOAD_ALL
   LL_NETWORK
   LL_BLEND_ALL
@@ -104,6 +105,7 @@ void main() {
   const int pixel = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
   const uint start = texelFetch(u_offsets, pixel).x;
   const uint count = texelFetch(u_lengths, pixel).x;
+  lfb_check(count, start, texelFetch(u_offsets, pixel + 1).x);
   LFB_SORT_BLOCKS
   LFB_HEAD_ALL
   const uint last = start + max(count, 1u) - 1u;
