@@ -37,9 +37,9 @@ constexpr uint64_t kNodeBytes = 24, kTexelBytes = 8;
 // have one more value (the total).
 constexpr uint64_t kPixelBytes = 12;
 constexpr GLuint kOverflowBinding = OIT_FIRST_TECHNIQUE_BINDING + 6;
-// Keys and colours on image units 0 and 1, the fill's cursors on image unit
-// 2; the offsets on texture unit 1 and, in the resolve, the cursors (the
-// lengths) on texture unit 2, where classify.comp reads them too.
+// The nodes on image unit 0, the fill's cursors on image unit 2; the offsets
+// on texture unit 1 and, in the resolve, the cursors (the lengths) on texture
+// unit 2, where classify.comp reads them too.
 constexpr GLuint kNodesImageUnit = 0, kCursorsImageUnit = 2, kOffsetsUnit = 1, kLengthsUnit = 2;
 constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
 // The smallest array compiled, as in linked_list: tiny lists are not worth a program each.
@@ -168,7 +168,7 @@ class LinearizedFragmentBuffer final : public Technique {
                                std::to_string(fragments_) + " counted); the image would be wrong");
   }
 
-  // The keys and colours as images, the offsets as a buffer texture.
+  // The nodes as an image, the offsets as a buffer texture.
   void bind_views(GLenum access) const {
     glBindImageTexture(kNodesImageUnit, nodes_view_.id(), 0, GL_FALSE, 0, access, GL_RG32UI);
     glBindTextureUnit(kOffsetsUnit, offsets_view_.id());

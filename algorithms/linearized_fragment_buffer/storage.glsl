@@ -1,8 +1,10 @@
 // The linearized fragment buffer (Knowles et al. 2012): the fragments of
-// pixel p lie in slots [offset[p], offset[p+1]) of two parallel arrays, the
-// sort keys (8 bytes: view depth in unsigned order, stable triangle id) and
-// the colours (16 bytes: straight RGBA, float). Keys and colours apart: the
-// sort reads only the keys; the blend reads each colour once, in order.
+// pixel p lie in slots [offset[p], offset[p+1]) of one array of 24-byte
+// nodes: the sort key (view depth in unsigned order, stable triangle id) and
+// the straight RGBA colour as float bits, three RG32UI texels. One array, not
+// keys and colours apart: the fill's scattered writes then touch one or two
+// cache lines per fragment instead of two or three (fill 70 -> 35 ms,
+// compose 19 -> 9 ms on 32 quads at 256x256, README).
 #include "shaders/bindings.h"
 
 // IEEE floats compare like sign-magnitude integers; mapped to unsigned order.
