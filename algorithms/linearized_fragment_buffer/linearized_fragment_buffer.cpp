@@ -36,7 +36,9 @@ constexpr uint64_t kNodeBytes = 24, kTexelBytes = 8;
 // Per pixel: the R32F count, the offset and the fill cursor; the offsets
 // have one more value (the total).
 constexpr uint64_t kPixelBytes = 12;
-constexpr GLuint kOverflowBinding = OIT_FIRST_TECHNIQUE_BINDING + 6;
+constexpr GLuint kOffsetsBinding = OIT_FIRST_TECHNIQUE_BINDING + 0, kCursorsBinding = OIT_FIRST_TECHNIQUE_BINDING + 1,
+                 kMismatchedBinding = OIT_FIRST_TECHNIQUE_BINDING + 6;
+constexpr GLint kPixelsLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 2;
 // The nodes on image unit 0, the fill's cursors on image unit 2; the offsets
 // on texture unit 1 and, in the resolve, the cursors (the lengths) on texture
 // unit 2, where classify.comp reads them too.
@@ -81,7 +83,8 @@ class LinearizedFragmentBuffer final : public Technique {
         block_(uint32_t(std::stoul(params.choice("block_size")))),
         backwards_allocation_(params.boolean("backwards_allocation")),
         fill_(build_geometry_program("algorithms/linearized_fragment_buffer/fill.frag")),
-        overflow_(make_buffer(4)),
+        lengths_(build_compute_program("algorithms/linearized_fragment_buffer/lengths.comp")),
+        mismatched_(make_buffer(4)),
         pool_("linearized_fragment_buffer", FragmentPool::Sizing::exact, kNodeBytes,
               [this](uint64_t capacity) { allocate_pool(capacity); }, 1, kTexelBytes) {}
 
@@ -114,9 +117,9 @@ class LinearizedFragmentBuffer final : public Technique {
       fragments_ = total;
       pool_.before_fill(frame);
       pool_.set_exact(fragments_);
+      glCopyNamedBufferSubData(offsets_.id(), cursors_.id(), 0, 0, GLsizeiptr(uint64_t(width_) * uint64_t(height_) * 4));
       const GLuint zero = 0;
-      glClearNamedBufferData(cursors_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-      glClearNamedBufferData(overflow_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      glClearNamedBufferData(mismatched_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     }
     fill(frame);
     auto compose = frame.clock.stage("compose");
@@ -129,9 +132,7 @@ class LinearizedFragmentBuffer final : public Technique {
       class_capacity_ = sizes.size();
       classes_.resize(width_, height_, class_capacity_);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOverflowBinding, overflow_.id());
     classes_.draw(frame, sizes, [&](uint32_t size) { return program(size); });
-    check_ranges();
     for (GLuint unit : {kOffsetsUnit, kLengthsUnit}) glBindTextureUnit(unit, 0);
     glBindImageTexture(kNodesImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32UI);
   }
@@ -153,19 +154,28 @@ class LinearizedFragmentBuffer final : public Technique {
     bind_views(GL_WRITE_ONLY);
     glBindImageTexture(kCursorsImageUnit, cursors_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     draw_scene_pass(frame, fill_, framebuffer_);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    cursors_to_lengths();
   }
 
-  // The resolve counted the pixels whose fill outgrew the counted range
-  // (storage.glsl): the image would be wrong, so the frame fails.
-  void check_ranges() const {
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    GLuint overflowed = 0;
-    glGetNamedBufferSubData(overflow_.id(), 0, 4, &overflowed);
-    if (overflowed != 0)
-      throw std::runtime_error("linearized_fragment_buffer: in " + std::to_string(overflowed) +
-                               " pixels the fill produced more fragments than the counting pass counted (" +
-                               std::to_string(fragments_) + " counted); the image would be wrong");
+  // lengths.comp: the cursors become list lengths, and a pixel whose fill
+  // outgrew (or fell short of) its counted range fails the frame: the image
+  // would be wrong.
+  void cursors_to_lengths() {
+    const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
+    glUseProgram(lengths_.id());
+    glProgramUniform1ui(lengths_.id(), kPixelsLocation, GLuint(pixels));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOffsetsBinding, offsets_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCursorsBinding, cursors_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMismatchedBinding, mismatched_.id());
+    glDispatchCompute(GLuint((pixels + 255) / 256), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    GLuint mismatched = 0;
+    glGetNamedBufferSubData(mismatched_.id(), 0, 4, &mismatched);
+    if (mismatched != 0)
+      throw std::runtime_error("linearized_fragment_buffer: in " + std::to_string(mismatched) +
+                               " pixels the fill produced another number of fragments than the counting pass counted (" +
+                               std::to_string(fragments_) + " in all); the image would be wrong");
   }
 
   // The nodes as an image, the offsets as a buffer texture.
@@ -212,13 +222,13 @@ class LinearizedFragmentBuffer final : public Technique {
   bool register_blocks_;
   uint32_t block_;
   bool backwards_allocation_;
-  Program fill_;
+  Program fill_, lengths_;
   ListLengthPass list_lengths_;
   lfb::PrefixSum prefix_sum_;
   linked_list::LengthClasses classes_;
   size_t class_capacity_ = 0;
   std::map<uint32_t, Program> programs_;  // resolves by array size
-  Buffer offsets_, cursors_, overflow_, nodes_;
+  Buffer offsets_, cursors_, mismatched_, nodes_;
   Texture offsets_view_, cursors_view_, nodes_view_;
   Framebuffer framebuffer_;
   int width_ = 0, height_ = 0;

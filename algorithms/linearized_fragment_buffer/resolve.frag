@@ -27,7 +27,7 @@ vec4 color_of(uint slot) {
   return uintBitsToFloat(uvec4(imageLoad(u_nodes, at + 1).xy, imageLoad(u_nodes, at + 2).xy));
 }
 layout(binding = 1) uniform usamplerBuffer u_offsets;
-// The fill's per-pixel cursors, i.e. the list lengths; classify.comp reads them too.
+// The list lengths (lengths.comp); classify.comp reads them too.
 layout(binding = 2) uniform usamplerBuffer u_lengths;
 layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_width;
 
@@ -68,7 +68,6 @@ void main() {
   const int pixel = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
   const uint base = texelFetch(u_offsets, pixel).x;
   const uint available = texelFetch(u_lengths, pixel).x;
-  lfb_check(available, base, texelFetch(u_offsets, pixel + 1).x);
   LL_LOAD_ALL
   LL_NETWORK
   LL_BLEND_ALL
@@ -105,7 +104,6 @@ void main() {
   const int pixel = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
   const uint start = texelFetch(u_offsets, pixel).x;
   const uint count = texelFetch(u_lengths, pixel).x;
-  lfb_check(count, start, texelFetch(u_offsets, pixel + 1).x);
   LFB_SORT_BLOCKS
   LFB_HEAD_ALL
   const uint last = start + max(count, 1u) - 1u;

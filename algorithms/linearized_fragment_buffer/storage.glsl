@@ -13,12 +13,3 @@ uint lfb_depth_order(uint bits) { return (bits & 0x80000000u) != 0u ? ~bits : bi
 // Node s: three RG32UI texels from 3s: the key, then the colour bits (r, g), (b, a).
 int lfb_key_texel(uint slot) { return int(3u * slot); }
 
-// Pixels whose fill wrote more fragments than their range holds: the counting
-// pass counted fewer than the fill produced. Never expected (the same
-// geometry under the same state rasterizes to the same fragments), but then
-// the fill wrote into the next pixel's range (or, past the pool, nowhere), so
-// the resolve counts every such pixel and the host fails the frame loudly.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 6) coherent buffer LfbOverflow { uint lfb_overflowed_pixels; };
-void lfb_check(uint count, uint start, uint end) {
-  if (count != end - start) atomicAdd(lfb_overflowed_pixels, 1u);
-}
