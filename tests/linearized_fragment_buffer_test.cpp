@@ -122,19 +122,5 @@ TEST(LinearizedFragmentBuffer, ListsBeyondTheLargestNetworkAreSortedInRegisterBl
   }
 }
 
-TEST(LinearizedFragmentBuffer, UnknownSortIsAnErrorNamingTheParameter) {
-  RunSpec spec;
-  spec.technique = "linearized_fragment_buffer";
-  spec.params = {{"sort", "bubble"}};
-  spec.width = 8;
-  spec.height = 8;
-  spec.warmup = 0;
-  spec.frames = 1;
-  const RunResult r = test::harness().run(spec);
-  EXPECT_EQ(r.status, RunStatus::error);
-  EXPECT_NE(r.message.find("sort"), std::string::npos) << r.message;
-  EXPECT_NE(r.message.find("bubble"), std::string::npos) << r.message;
-}
-
 }  // namespace
 }  // namespace oit
