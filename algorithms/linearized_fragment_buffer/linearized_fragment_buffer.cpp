@@ -67,7 +67,6 @@ ShaderDefines resolve_defines(uint32_t size, bool blocks, uint32_t block) {
   const uint32_t count = (size + block - 1) / block;
   ShaderDefines defines = linked_list::resolve_defines("network", block);
   defines.push_back({"LFB_BLOCKS", std::to_string(count)});
-  defines.push_back({"LFB_SORT_BLOCKS", macro_sequence("LFB_SORT_BLOCK", count)});
   defines.push_back({"LFB_FETCH_ALL", macro_sequence("LFB_FETCH", block)});
   defines.push_back({"LFB_STORE_ALL", macro_sequence("LFB_STORE", block)});
   defines.push_back({"LFB_HEAD_ALL", macro_sequence("LFB_HEAD", count)});
