@@ -112,6 +112,7 @@ class LinearizedFragmentBuffer final : public Technique {
       longest_ = list_lengths_.longest_list(frame);
       prefix_sum_.scan_counts(list_lengths_.counts(), width_, offsets_);
       GLuint total = 0;
+      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the read-back and the copy below read the scan's writes
       glGetNamedBufferSubData(offsets_.id(), GLintptr(uint64_t(width_) * uint64_t(height_) * 4), 4, &total);
       fragments_ = total;
       pool_.before_fill(frame);
@@ -123,8 +124,10 @@ class LinearizedFragmentBuffer final : public Technique {
     fill(frame);
     auto compose = frame.clock.stage("compose");
     frame.bind_target();
-    bind_views(GL_READ_WRITE);  // register blocks write their sorted blocks back
+    // Read-write: register blocks write their sorted blocks back.
+    glBindImageTexture(kNodesImageUnit, nodes_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32UI);
     glBindImageTexture(kCursorsImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindTextureUnit(kOffsetsUnit, offsets_view_.id());
     glBindTextureUnit(kLengthsUnit, cursors_view_.id());
     const std::vector<uint32_t> sizes = class_sizes();
     if (sizes.size() > class_capacity_) {
@@ -150,7 +153,7 @@ class LinearizedFragmentBuffer final : public Technique {
  private:
   void fill(const Frame& frame) {
     auto fill = frame.clock.stage("fill");
-    bind_views(GL_WRITE_ONLY);
+    glBindImageTexture(kNodesImageUnit, nodes_view_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32UI);
     glBindImageTexture(kCursorsImageUnit, cursors_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     draw_scene_pass(frame, fill_, framebuffer_);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
@@ -175,12 +178,6 @@ class LinearizedFragmentBuffer final : public Technique {
       throw std::runtime_error("linearized_fragment_buffer: in " + std::to_string(mismatched) +
                                " pixels the fill produced another number of fragments than the counting pass counted (" +
                                std::to_string(fragments_) + " in all); the image would be wrong");
-  }
-
-  // The nodes as an image, the offsets as a buffer texture.
-  void bind_views(GLenum access) const {
-    glBindImageTexture(kNodesImageUnit, nodes_view_.id(), 0, GL_FALSE, 0, access, GL_RG32UI);
-    glBindTextureUnit(kOffsetsUnit, offsets_view_.id());
   }
 
   // The length classes of this frame (backwards memory allocation): one
