@@ -23,6 +23,8 @@ class ListLengthPass {
   uint32_t longest_list(const Frame& frame);
   // The R32F count target (4 bytes per pixel).
   uint64_t bytes_allocated() const;
+  // That target, holding the last pass's per-pixel counts (e.g. for a prefix sum).
+  const Texture& counts() const { return counts_; }
 
  private:
   Program program_;

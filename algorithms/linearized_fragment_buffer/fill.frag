@@ -1,0 +1,26 @@
+#version 450 core
+// Fill pass of the linearized fragment buffer: every fragment takes the next
+// free slot of its pixel's range (an atomic increment of the pixel's own
+// cursor, which starts at the pixel's offset) and writes its node there. No global
+// counter: the atomics of different pixels never touch the same word.
+// Everything per-pixel-addressed is an image or buffer texture, not an SSBO:
+// on llvmpipe those are vector gathers and scatters, an SSBO access with
+// per-lane addresses a loop over the lanes (README: fill).
+#include "shaders/shading.glsl"
+#include "algorithms/linearized_fragment_buffer/storage.glsl"
+
+// Pixel p owns slots [offset[p], offset[p+1]); its cursor starts at
+// offset[p] (a copy of the prefix sum), so the atomic returns the slot.
+layout(binding = 2, r32ui) uniform uimageBuffer u_cursors;
+layout(binding = 0, rg32ui) writeonly uniform uimageBuffer u_nodes;
+layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_width;
+
+void main() {
+  const int pixel = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
+  // No bounds check here: lengths.comp checks every pixel's range once.
+  const uint slot = imageAtomicAdd(u_cursors, pixel, 1u);
+  const uvec4 color = floatBitsToUint(oit_shade());
+  imageStore(u_nodes, lfb_key_texel(slot), uvec4(lfb_depth_order(floatBitsToUint(oit_view_depth())), oit_triangle_id(), 0u, 0u));
+  imageStore(u_nodes, lfb_key_texel(slot) + 1, color.xyyy);
+  imageStore(u_nodes, lfb_key_texel(slot) + 2, color.zwww);
+}

@@ -1,0 +1,268 @@
+// linearized_fragment_buffer: the l-LFB of Knowles et al. 2012, exact. A
+// counting pass (additive blending, core/list_length_pass.h) gives every
+// pixel's fragment count; a prefix sum in compute turns the counts into
+// offsets, so each pixel owns one contiguous range of a pool of exactly the
+// frame's fragments; the fill writes every fragment at its pixel's offset +
+// an atomic increment of the pixel's own cursor (no global counter); the
+// resolve reads each range in order, sorts it in registers (linked_list's
+// odd-even merge network, or register-based block sort, Knowles et al.
+// 2014) and blends front to back in float. The resolve is drawn by length
+// class (backwards memory allocation, Knowles et al. 2013, with linked_list's
+// 4x4 tile classes) so that short lists do not pay for the longest.
+#include <algorithm>
+#include <bit>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "algorithms/linked_list/length_classes.h"
+#include "algorithms/linked_list/sorting_network.h"
+#include "core/fragment_pool.h"
+#include "core/list_length_pass.h"
+#include "core/passes.h"
+#include "core/technique.h"
+#include "gl/check.h"
+#include "gl/shader_program.h"
+#include "prefix_sum.h"
+#include "../../shaders/bindings.h"
+
+namespace oit {
+namespace {
+
+// Per fragment one 24-byte node (storage.glsl): the key (view depth in
+// unsigned order, triangle id) and the RGBA32F colour, read as RG32UI texels.
+constexpr uint64_t kNodeBytes = 24, kTexelBytes = 8;
+// Per pixel: the R32F count, the offset and the fill cursor; the offsets
+// have one more value (the total).
+constexpr uint64_t kPixelBytes = 12;
+constexpr GLuint kOffsetsBinding = OIT_FIRST_TECHNIQUE_BINDING + 0, kCursorsBinding = OIT_FIRST_TECHNIQUE_BINDING + 1,
+                 kMismatchedBinding = OIT_FIRST_TECHNIQUE_BINDING + 6;
+constexpr GLint kPixelsLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 2;
+// The nodes on image unit 0, the fill's cursors on image unit 2; the offsets
+// on texture unit 1 and, in the resolve, the cursors (the lengths) on texture
+// unit 2, where classify.comp reads them too.
+constexpr GLuint kNodesImageUnit = 0, kCursorsImageUnit = 2, kOffsetsUnit = 1, kLengthsUnit = 2;
+constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
+// The smallest array compiled, as in linked_list: tiny lists are not worth a program each.
+constexpr uint32_t kSmallestArray = 8;
+// The largest whole-list network; longer arrays are sorted in register
+// blocks (llvmpipe compiles a 256-element network for minutes).
+constexpr uint32_t kLargestNetwork = 128;
+
+std::string macro_sequence(const std::string& macro, uint32_t count) {
+  std::string text;
+  for (uint32_t i = 0; i < count; ++i) text += macro + "(" + std::to_string(i) + ") ";
+  return text;
+}
+
+// The resolve's #defines for an array of `size` fragments: one network of
+// `size`, or blocks of `block` sorted by its network and merged.
+ShaderDefines resolve_defines(uint32_t size, bool blocks, uint32_t block) {
+  if (!blocks) {
+    ShaderDefines defines = linked_list::resolve_defines("network", size);
+    defines.push_back({"LFB_NETWORK", "1"});
+    return defines;
+  }
+  const uint32_t count = (size + block - 1) / block;
+  ShaderDefines defines = linked_list::resolve_defines("network", block);
+  defines.push_back({"LFB_BLOCKS", std::to_string(count)});
+  defines.push_back({"LFB_FETCH_ALL", macro_sequence("LFB_FETCH", block)});
+  defines.push_back({"LFB_STORE_ALL", macro_sequence("LFB_STORE", block)});
+  defines.push_back({"LFB_HEAD_ALL", macro_sequence("LFB_HEAD", count)});
+  defines.push_back({"LFB_PICK_ALL", macro_sequence("LFB_PICK", count)});
+  defines.push_back({"LFB_ADVANCE_ALL", macro_sequence("LFB_ADVANCE", count)});
+  return defines;
+}
+
+class LinearizedFragmentBuffer final : public Technique {
+ public:
+  explicit LinearizedFragmentBuffer(const ParamSet& params)
+      : register_blocks_(params.choice("sort") == "register_block"),
+        block_(uint32_t(std::stoul(params.choice("block_size")))),
+        backwards_allocation_(params.boolean("backwards_allocation")),
+        fill_(build_geometry_program("algorithms/linearized_fragment_buffer/fill.frag")),
+        lengths_(build_compute_program("algorithms/linearized_fragment_buffer/lengths.comp")),
+        mismatched_(make_buffer(4)),
+        pool_("linearized_fragment_buffer", FragmentPool::Sizing::exact, kNodeBytes,
+              [this](uint64_t capacity) { allocate_pool(capacity); }, 1, kTexelBytes) {}
+
+  void resize(int width, int height) override {
+    width_ = width;
+    height_ = height;
+    const uint64_t pixels = uint64_t(width) * uint64_t(height);
+    list_lengths_.resize(width, height);
+    prefix_sum_.resize(pixels);
+    offsets_ = make_buffer(GLsizeiptr((pixels + 1) * 4));
+    cursors_ = make_buffer(GLsizeiptr(pixels * 4));
+    offsets_view_ = make_buffer_texture(offsets_, GL_R32UI);
+    cursors_view_ = make_buffer_texture(cursors_, GL_R32UI);
+    class_capacity_ = 0;
+    pool_.reset(1);  // the prefix sum sizes it before every fill
+    framebuffer_ = make_attachmentless_framebuffer(width, height);
+    glProgramUniform1i(fill_.id(), kWidthLocation, width);
+    for (auto& [size, program] : programs_) glProgramUniform1i(program.id(), kWidthLocation, width);
+    gl_check("allocating the linearized fragment buffer's per-pixel storage");
+  }
+
+  void render(const Frame& frame) override {
+    {
+      // The counting pass and the prefix sum: everything that sizes the frame.
+      auto count = frame.clock.stage("count");
+      longest_ = list_lengths_.longest_list(frame);
+      prefix_sum_.scan_counts(list_lengths_.counts(), width_, offsets_);
+      GLuint total = 0;
+      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the read-back and the copy below read the scan's writes
+      glGetNamedBufferSubData(offsets_.id(), GLintptr(uint64_t(width_) * uint64_t(height_) * 4), 4, &total);
+      fragments_ = total;
+      pool_.before_fill(frame);
+      pool_.set_exact(fragments_);
+      glCopyNamedBufferSubData(offsets_.id(), cursors_.id(), 0, 0, GLsizeiptr(uint64_t(width_) * uint64_t(height_) * 4));
+      const GLuint zero = 0;
+      glClearNamedBufferData(mismatched_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    }
+    fill(frame);
+    auto compose = frame.clock.stage("compose");
+    frame.bind_target();
+    // Read-write: register blocks write their sorted blocks back.
+    glBindImageTexture(kNodesImageUnit, nodes_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32UI);
+    glBindImageTexture(kCursorsImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindTextureUnit(kOffsetsUnit, offsets_view_.id());
+    glBindTextureUnit(kLengthsUnit, cursors_view_.id());
+    const std::vector<uint32_t> sizes = class_sizes();
+    if (sizes.size() > class_capacity_) {
+      class_capacity_ = sizes.size();
+      classes_.resize(width_, height_, class_capacity_);
+    }
+    classes_.draw(frame, sizes, [&](uint32_t size) { return program(size); });
+    for (GLuint unit : {kOffsetsUnit, kLengthsUnit}) glBindTextureUnit(unit, 0);
+    glBindImageTexture(kNodesImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32UI);
+  }
+
+  TechniqueCounters counters() const override {
+    TechniqueCounters c;
+    const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
+    c.bytes_allocated = pixels * kPixelBytes + 4 + prefix_sum_.bytes_allocated() + pool_.capacity() * kNodeBytes +
+                        4 + (class_capacity_ > 0 ? classes_.bytes_allocated() : 0);
+    c.fragments_stored = fragments_;
+    c.passes = 2;
+    c.overflow_retries = pool_.overflow_retries();
+    return c;
+  }
+
+ private:
+  void fill(const Frame& frame) {
+    auto fill = frame.clock.stage("fill");
+    glBindImageTexture(kNodesImageUnit, nodes_view_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32UI);
+    glBindImageTexture(kCursorsImageUnit, cursors_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    draw_scene_pass(frame, fill_, framebuffer_);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    cursors_to_lengths();
+  }
+
+  // lengths.comp: the cursors become list lengths, and a pixel whose fill
+  // outgrew (or fell short of) its counted range fails the frame: the image
+  // would be wrong.
+  void cursors_to_lengths() {
+    const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
+    glUseProgram(lengths_.id());
+    glProgramUniform1ui(lengths_.id(), kPixelsLocation, GLuint(pixels));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOffsetsBinding, offsets_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCursorsBinding, cursors_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMismatchedBinding, mismatched_.id());
+    glDispatchCompute(GLuint((pixels + 255) / 256), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    GLuint mismatched = 0;
+    glGetNamedBufferSubData(mismatched_.id(), 0, 4, &mismatched);
+    if (mismatched != 0)
+      throw std::runtime_error("linearized_fragment_buffer: in " + std::to_string(mismatched) +
+                               " pixels the fill produced another number of fragments than the counting pass counted (" +
+                               std::to_string(fragments_) + " in all); the image would be wrong");
+  }
+
+  // The length classes of this frame (backwards memory allocation): one
+  // array for the frame's longest list, or that and the powers of two below
+  // it from kSmallestArray, plus 1 (0/1-fragment tiles, no sort). As in
+  // linked_list: one class when every list is as long as the longest, or
+  // when the longest is short.
+  std::vector<uint32_t> class_sizes() const {
+    const uint32_t array = std::max(kSmallestArray, std::bit_ceil(std::max<uint32_t>(longest_, 1)));
+    const bool uniform = fragments_ == uint64_t(longest_) * uint64_t(width_) * uint64_t(height_);
+    if (!backwards_allocation_ || array == kSmallestArray || uniform) return {uniform ? std::max(longest_, 1u) : array};
+    std::vector<uint32_t> sizes = linked_list::class_sizes(kSmallestArray, array);
+    sizes.insert(sizes.begin(), 1u);
+    return sizes;
+  }
+
+  // The resolve for an array of `size`: the whole-list network, or register
+  // blocks when sort=register_block and the array is larger than a block, or
+  // when the array is larger than the largest network.
+  GLuint program(uint32_t size) {
+    auto it = programs_.find(size);
+    if (it == programs_.end()) {
+      const bool blocks = size > block_ && (register_blocks_ || size > kLargestNetwork);
+      Program built = build_program({{GL_VERTEX_SHADER, "algorithms/linked_list/tile.vert"},
+                                     {GL_FRAGMENT_SHADER, "algorithms/linearized_fragment_buffer/resolve.frag"}},
+                                    linked_list::tile_defines(resolve_defines(size, blocks, block_)));
+      it = programs_.emplace(size, std::move(built)).first;
+      glProgramUniform1i(it->second.id(), kWidthLocation, width_);
+    }
+    return it->second.id();
+  }
+
+  void allocate_pool(uint64_t capacity) {
+    nodes_ = make_buffer(GLsizeiptr(capacity * kNodeBytes));
+    nodes_view_ = make_buffer_texture(nodes_, GL_RG32UI);
+  }
+
+  bool register_blocks_;
+  uint32_t block_;
+  bool backwards_allocation_;
+  Program fill_, lengths_;
+  ListLengthPass list_lengths_;
+  lfb::PrefixSum prefix_sum_;
+  linked_list::LengthClasses classes_;
+  size_t class_capacity_ = 0;
+  std::map<uint32_t, Program> programs_;  // resolves by array size
+  Buffer offsets_, cursors_, mismatched_, nodes_;
+  Texture offsets_view_, cursors_view_, nodes_view_;
+  Framebuffer framebuffer_;
+  int width_ = 0, height_ = 0;
+  uint32_t longest_ = 0;
+  uint64_t fragments_ = 0;
+  FragmentPool pool_;
+};
+
+}  // namespace
+
+void register_technique_linearized_fragment_buffer(TechniqueRegistry& registry) {
+  TechniqueDescriptor d;
+  d.id = "linearized_fragment_buffer";
+  d.display_name = "Linearized fragment buffer (l-LFB), float blend";
+  d.paper = "Knowles et al. 2012; register-based block sort and backwards memory allocation: Knowles et al. 2013, 2014";
+  d.params = {
+      ParamSpec::choice("sort", "network", {"network", "register_block"},
+                        "network: the whole list in registers, sorted by an unrolled odd-even merge network "
+                        "(up to 128 fragments; longer lists use register blocks); register_block: blocks of "
+                        "block_size fragments sorted by their network in registers, written back sorted and "
+                        "merged (Knowles et al. 2014)"),
+      ParamSpec::choice("block_size", "16", {"8", "16", "32"}, "sort=register_block: fragments per register block"),
+      ParamSpec::boolean("backwards_allocation", true,
+                         "resolve each 4x4 tile with the smallest array that holds its longest list (backwards "
+                         "memory allocation, Knowles et al. 2013; 0/1-fragment tiles unsorted); false: one "
+                         "full-screen resolve sized for the frame's longest list")};
+  d.stages = {"count", "fill", "compose"};
+  d.exactness = Exactness::exact;
+  d.adaptive_switches = {
+      {"backwards_allocation", "resolves each 4x4 tile with the smallest array that holds its longest list instead "
+       "of the frame's largest array everywhere",
+       {{"backwards_allocation", "true"}}, {{"backwards_allocation", "false"}}}};
+  d.create = [](const ParamSet& params) { return std::make_unique<LinearizedFragmentBuffer>(params); };
+  d.storage_need = [](const ParamSet&, const FrameContent& content) {
+    const uint64_t fragments = std::max<uint64_t>(content.fragments, 1);
+    return StorageNeed{fragments * kNodeBytes, content.pixels() * kPixelBytes + fragments * kNodeBytes};
+  };
+  registry.add(std::move(d));
+}
+
+}  // namespace oit

@@ -1,0 +1,72 @@
+#include "prefix_sum.h"
+
+#include "gl/check.h"
+#include "gl/shader_program.h"
+#include "../../shaders/bindings.h"
+
+namespace oit::lfb {
+namespace {
+
+constexpr GLuint kValuesBinding = OIT_FIRST_TECHNIQUE_BINDING + 0, kSumsBinding = OIT_FIRST_TECHNIQUE_BINDING + 1;
+constexpr GLint kCountLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
+constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
+constexpr GLint kPixelsLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 2;
+constexpr GLuint kCountsUnit = 0;
+constexpr uint64_t kAddGroup = 256;  // prefix_sum.comp's local size
+
+uint64_t blocks_of(uint64_t count) { return (count + PrefixSum::kBlock - 1) / PrefixSum::kBlock; }
+
+}  // namespace
+
+PrefixSum::PrefixSum()
+    : scan_counts_(build_compute_program("algorithms/linearized_fragment_buffer/prefix_sum.comp",
+                                         {{"PS_SCAN", "1"}, {"PS_FROM_COUNTS", "1"}})),
+      scan_(build_compute_program("algorithms/linearized_fragment_buffer/prefix_sum.comp", {{"PS_SCAN", "1"}})),
+      add_(build_compute_program("algorithms/linearized_fragment_buffer/prefix_sum.comp", {{"PS_ADD", "1"}})) {}
+
+void PrefixSum::resize(uint64_t pixels) {
+  pixels_ = pixels;
+  levels_.clear();
+  sums_.clear();
+  for (uint64_t count = pixels + 1;; count = blocks_of(count)) {
+    levels_.push_back(count);
+    sums_.push_back(make_buffer(GLsizeiptr(blocks_of(count) * 4)));
+    if (blocks_of(count) == 1) break;
+  }
+  gl_check("allocating the prefix sum's workgroup totals");
+}
+
+uint64_t PrefixSum::bytes_allocated() const {
+  uint64_t bytes = 0;
+  for (uint64_t count : levels_) bytes += blocks_of(count) * 4;
+  return bytes;
+}
+
+void PrefixSum::dispatch(GLuint program, const Buffer& values, uint64_t count, const Buffer& sums, uint64_t groups) {
+  glUseProgram(program);
+  glProgramUniform1ui(program, kCountLocation, GLuint(count));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kValuesBinding, values.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSumsBinding, sums.id());
+  glDispatchCompute(GLuint(groups), 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void PrefixSum::scan_counts(const Texture& counts, int width, const Buffer& offsets) {
+  glProgramUniform1i(scan_counts_.id(), kWidthLocation, width);
+  glProgramUniform1ui(scan_counts_.id(), kPixelsLocation, GLuint(pixels_));
+  glBindTextureUnit(kCountsUnit, counts.id());
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  // Up: every level scans its blocks and hands their totals to the next.
+  for (size_t k = 0; k < levels_.size(); ++k) {
+    dispatch(k == 0 ? scan_counts_.id() : scan_.id(), k == 0 ? offsets : sums_[k - 1], levels_[k], sums_[k],
+             blocks_of(levels_[k]));
+  }
+  glBindTextureUnit(kCountsUnit, 0);
+  // Down: every level adds the scanned totals of the blocks before its own.
+  for (size_t k = levels_.size() - 1; k-- > 0;) {
+    dispatch(add_.id(), k == 0 ? offsets : sums_[k - 1], levels_[k], sums_[k], (levels_[k] + kAddGroup - 1) / kAddGroup);
+  }
+  gl_check("prefix sum of the per-pixel fragment counts");
+}
+
+}  // namespace oit::lfb

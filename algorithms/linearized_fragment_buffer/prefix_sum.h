@@ -1,0 +1,40 @@
+#pragma once
+// The prefix sum of the linearized fragment buffer: per-pixel fragment
+// counts (the R32F target of core/list_length_pass.h) into per-pixel offsets,
+// on the GPU. A work-efficient scan (prefix_sum.comp) of 1024 values per
+// workgroup, applied recursively to the workgroups' totals and added back,
+// so any number of pixels takes O(n) work in a few dispatches (two levels up
+// to 1M pixels, three up to 1G).
+#include <cstdint>
+#include <vector>
+
+#include "gl/handles.h"
+
+namespace oit::lfb {
+
+class PrefixSum {
+ public:
+  // Values per workgroup: 256 invocations of 4 values (prefix_sum.comp).
+  static constexpr uint64_t kBlock = 1024;
+
+  PrefixSum();
+  // For the offsets of `pixels` pixels: pixels + 1 values, the last one the total.
+  void resize(uint64_t pixels);
+  // offsets[i] = the sum of counts[0..i) for i in [0, pixels], pixels in rows
+  // of `width` from the bottom. `offsets` holds pixels + 1 uints.
+  void scan_counts(const Texture& counts, int width, const Buffer& offsets);
+  // The workgroup totals of every level.
+  uint64_t bytes_allocated() const;
+
+ private:
+  void dispatch(GLuint program, const Buffer& values, uint64_t count, const Buffer& sums, uint64_t groups);
+
+  Program scan_counts_, scan_, add_;
+  uint64_t pixels_ = 0;
+  // Level k scans levels_[k] values in blocks; their totals go to sums_[k],
+  // which level k+1 scans in place. The last level is one block.
+  std::vector<uint64_t> levels_;
+  std::vector<Buffer> sums_;
+};
+
+}  // namespace oit::lfb

@@ -1,0 +1,127 @@
+#version 450 core
+// Resolve of the linearized fragment buffer: each pixel's keys lie in one
+// contiguous range [offset, offset + length), read in order. Drawn per length
+// class (backwards memory allocation, linked_list/length_classes.h: tiles by
+// their longest list) or full screen; LL_CAPACITY is the class's array.
+//
+// LFB_NETWORK: the whole range goes into registers (constant indices only)
+// and is sorted by linked_list's generated odd-even merge network
+// (sorting_network.h: LL_LOAD_ALL, LL_NETWORK, LL_BLEND_ALL, LL_CE).
+// LFB_BLOCKS (register-based block sort, Knowles et al. 2014): blocks of
+// LL_CAPACITY fragments are loaded into registers one after the other,
+// sorted there by the network of the block size and written back sorted into
+// the pixel's own range (keys and colours); then a LFB_BLOCKS-way merge of
+// the sorted blocks, their heads in registers, blends front to back.
+#include "shaders/compose.glsl"
+#include "algorithms/linearized_fragment_buffer/storage.glsl"
+
+layout(location = 0) out vec4 out_color;
+#if defined(LFB_BLOCKS)
+layout(binding = 0, rg32ui) uniform uimageBuffer u_nodes;
+#else
+layout(binding = 0, rg32ui) readonly uniform uimageBuffer u_nodes;
+#endif
+uvec2 key_of(uint slot) { return imageLoad(u_nodes, lfb_key_texel(slot)).xy; }
+vec4 color_of(uint slot) {
+  const int at = lfb_key_texel(slot);
+  return uintBitsToFloat(uvec4(imageLoad(u_nodes, at + 1).xy, imageLoad(u_nodes, at + 2).xy));
+}
+layout(binding = 1) uniform usamplerBuffer u_offsets;
+// The list lengths (lengths.comp); classify.comp reads them too.
+layout(binding = 2) uniform usamplerBuffer u_lengths;
+layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_width;
+
+vec3 accumulated = vec3(0.0);
+float transmittance = 1.0;
+
+// Front-to-back "under" in the reference's operation order, in float.
+void blend(vec4 c) {
+  const float weight = transmittance * c.a;
+  accumulated += weight * c.rgb;
+  transmittance *= 1.0 - c.a;
+}
+
+// Element: x = view depth in unsigned order, y = stable triangle id (the
+// tie-break: unique per pixel, so the order is submission independent),
+// z = slot. Padding sorts after every real fragment.
+#define LFB_PAD uvec3(0xffffffffu, 0xffffffffu, 0u)
+bool precedes(uvec3 a, uvec3 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
+
+// Constant indices only (every macro expands to literals): the elements stay
+// in registers; a runtime-indexed array is memory, accessed lane by lane on llvmpipe.
+uvec3 e[LL_CAPACITY];
+#define LL_CE(i, j) { \
+    const bool swap_ij = precedes(e[j], e[i]); \
+    const uvec3 first_ij = swap_ij ? e[j] : e[i]; \
+    e[j] = swap_ij ? e[i] : e[j]; \
+    e[i] = first_ij; }
+// Element i of the range from `base` holding `available` fragments; past
+// them, padding (the load re-reads the last slot instead of the next pixel's).
+#define LL_LOAD(i) { \
+    const uint at_i = base + min(uint(i), max(available, 1u) - 1u); \
+    e[i] = uint(i) < available ? uvec3(key_of(at_i), at_i) : LFB_PAD; }
+
+#if defined(LFB_NETWORK)
+#define LL_BLEND(i) if (uint(i) < available) blend(color_of(e[i].z));
+
+void main() {
+  const int pixel = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
+  const uint base = texelFetch(u_offsets, pixel).x;
+  const uint available = texelFetch(u_lengths, pixel).x;
+  LL_LOAD_ALL
+  LL_NETWORK
+  LL_BLEND_ALL
+  out_color = oit_finish(accumulated, transmittance);
+}
+
+#elif defined(LFB_BLOCKS)
+vec4 colors[LL_CAPACITY];
+// After the block's network: its colours are read first, then keys and
+// colours are written back in sorted order (reads before writes: a slot may
+// be both read and overwritten). Each pixel owns its range: no races.
+#define LFB_FETCH(i) if (uint(i) < available) colors[i] = color_of(e[i].z);
+#define LFB_STORE(i) if (uint(i) < available) { \
+    const int at_i = lfb_key_texel(base + uint(i)); \
+    const uvec4 bits_i = floatBitsToUint(colors[i]); \
+    imageStore(u_nodes, at_i, e[i].xyyy); \
+    imageStore(u_nodes, at_i + 1, bits_i.xyyy); \
+    imageStore(u_nodes, at_i + 2, bits_i.zwww); }
+#define LFB_SORT_BLOCK(b) { \
+    const uint base = start + uint(b) * uint(LL_CAPACITY); \
+    const uint available = count - min(count, uint(b) * uint(LL_CAPACITY)); \
+    LL_LOAD_ALL LL_NETWORK LFB_FETCH_ALL LFB_STORE_ALL }
+// Block k's end, and its head: the next unmerged key of the block.
+#define LFB_END(k) (start + min(count, uint((k) + 1) * uint(LL_CAPACITY)))
+#define LFB_HEAD(k) { \
+    const uint at_k = start + uint(k) * uint(LL_CAPACITY); \
+    heads[k] = at_k < LFB_END(k) ? uvec3(key_of(at_k), at_k) : LFB_PAD; }
+#define LFB_PICK(k) if (precedes(heads[k], nearest)) { nearest = heads[k]; winner = uint(k); }
+#define LFB_ADVANCE(k) if (winner == uint(k)) heads[k] = next < LFB_END(k) ? uvec3(next_key, next) : LFB_PAD;
+
+uvec3 heads[LFB_BLOCKS];
+
+void main() {
+  const int pixel = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
+  const uint start = texelFetch(u_offsets, pixel).x;
+  const uint count = texelFetch(u_lengths, pixel).x;
+  // A loop over the blocks, the network unrolled inside: code size grows with
+  // the block, not with the list (unrolled over 16 blocks of 16, a 256-array
+  // took llvmpipe most of a minute to compile).
+  for (uint b = 0u; b < uint(LFB_BLOCKS); ++b) LFB_SORT_BLOCK(b)
+  LFB_HEAD_ALL
+  const uint last = start + max(count, 1u) - 1u;
+  for (uint n = 0u; n < count; ++n) {
+    uvec3 nearest = heads[0];
+    uint winner = 0u;
+    LFB_PICK_ALL
+    blend(color_of(nearest.z));
+    // One load for whichever block advances (the slot after the winner's).
+    const uint next = nearest.z + 1u;
+    const uvec2 next_key = key_of(min(next, last));
+    LFB_ADVANCE_ALL
+  }
+  out_color = oit_finish(accumulated, transmittance);
+}
+#else
+#error "resolve.frag: define LFB_NETWORK or LFB_BLOCKS"
+#endif

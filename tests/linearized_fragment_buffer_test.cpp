@@ -1,0 +1,126 @@
+// linearized_fragment_buffer: the GPU prefix sum against the CPU over three
+// levels, every sort and resolve option against the exact reference (32
+// quads, spheres, uneven random quads, shuffled submission, lists beyond the
+// largest network), and its memory: exactly the frame's fragments, never an
+// overflow.
+#include <gtest/gtest.h>
+
+#include <numeric>
+#include <random>
+
+#include "../algorithms/linearized_fragment_buffer/prefix_sum.h"
+#include "gl/check.h"
+#include "gl_fixture.h"
+
+namespace oit {
+namespace {
+
+// Float blending of up to 136 layers against the reference's double blend.
+constexpr double kFloatTolerance = 1e-5;
+
+// sort x block size x backwards allocation: the network with and without
+// length classes, register blocks of 8 and 16 (two and four blocks on 32
+// layers), and blocks without classes.
+const std::vector<RawParams> kOptions = {
+    {{"sort", "network"}},
+    {{"sort", "network"}, {"backwards_allocation", "false"}},
+    {{"sort", "register_block"}, {"block_size", "8"}},
+    {{"sort", "register_block"}, {"block_size", "16"}},
+    {{"sort", "register_block"}, {"block_size", "8"}, {"backwards_allocation", "false"}}};
+
+std::string describe(const RawParams& params) {
+  std::string text;
+  for (const auto& [name, value] : params) text += name + "=" + value + " ";
+  return text;
+}
+
+TEST(LinearizedFragmentBufferPrefixSum, EqualsTheCpuSumOverThreeLevels) {
+  test::gl_context();
+  // 1500 x 800 pixels + 1: 1172 blocks of 1024, then 2, then 1.
+  const int width = 1500, height = 800;
+  const size_t pixels = size_t(width) * size_t(height);
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> count(0, 40);
+  std::vector<float> counts(pixels);
+  for (float& c : counts) c = float(count(rng));
+  Texture texture = make_texture_2d(GL_R32F, width, height);
+  glTextureSubImage2D(texture.id(), 0, 0, 0, width, height, GL_RED, GL_FLOAT, counts.data());
+  lfb::PrefixSum sum;
+  sum.resize(pixels);
+  EXPECT_EQ(sum.bytes_allocated(), (1172u + 2u + 1u) * 4u);
+  Buffer offsets = make_buffer(GLsizeiptr((pixels + 1) * 4));
+  sum.scan_counts(texture, width, offsets);
+  std::vector<uint32_t> gpu(pixels + 1);
+  glGetNamedBufferSubData(offsets.id(), 0, GLsizeiptr(gpu.size() * 4), gpu.data());
+  gl_check("reading the prefix sum back");
+  uint32_t expected = 0;
+  for (size_t i = 0; i <= pixels; ++i) {
+    ASSERT_EQ(gpu[i], expected) << "offset " << i;
+    if (i < pixels) expected += uint32_t(counts[i]);
+  }
+}
+
+TEST(LinearizedFragmentBuffer, EveryOptionMatchesTheReferenceOnThirtyTwoQuadsWithExactMemory) {
+  const uint64_t w = 48, h = 48, pixels = w * h, fragments = 32 * pixels;
+  for (const RawParams& params : kOptions) {
+    const std::string what = describe(params);
+    const RunResult r = test::render_once("linearized_fragment_buffer", params, "quads", {{"layers", "32"}}, 48, 48);
+    ASSERT_TRUE(r.error.has_value()) << what;
+    EXPECT_LT(r.error->max_abs, kFloatTolerance) << what;
+    EXPECT_EQ(r.counters.fragments_stored, fragments) << what;
+    EXPECT_EQ(r.counters.fragments_dropped, 0u) << what;
+    EXPECT_EQ(r.counters.overflow_retries, 0u) << what;
+    EXPECT_EQ(r.counters.passes, 2u) << what << ": the count and the fill";
+    // 24 B per fragment, 12 B per pixel, the overflow word and the total,
+    // the prefix sum's block totals (2305 values: 3 blocks, then 1) and one
+    // length class (every list is 32 long: one full-screen draw).
+    const uint64_t tiles = (w / 4) * (h / 4);
+    EXPECT_EQ(r.counters.bytes_allocated, 24 * fragments + 12 * pixels + 8 + (3 + 1) * 4 + (16 + 4 * tiles)) << what;
+  }
+}
+
+TEST(LinearizedFragmentBuffer, EveryOptionMatchesTheReferenceOnSpheresAndUnevenLists) {
+  for (const RawParams& params : kOptions) {
+    const std::string what = describe(params);
+    const RunResult spheres = test::render_once("linearized_fragment_buffer", params, "spheres", {}, 48, 48);
+    EXPECT_LT(spheres.error->max_abs, kFloatTolerance) << what << "spheres";
+    EXPECT_EQ(spheres.counters.fragments_stored, spheres.scene_fragments) << what;
+    // Lists of 2..23 fragments: classes 1, 8, 16 and 32; 37x29 cuts tiles at the edges.
+    const RunResult uneven = test::render_once("linearized_fragment_buffer", params, "random_quads", {}, 37, 29);
+    ASSERT_GT(uneven.max_depth_complexity, 16u);
+    EXPECT_LT(uneven.error->max_abs, kFloatTolerance) << what << "random_quads";
+    EXPECT_EQ(uneven.counters.fragments_stored, uneven.scene_fragments) << what;
+  }
+}
+
+TEST(LinearizedFragmentBuffer, EveryOptionIsOrderIndependent) {
+  for (const RawParams& params : kOptions) {
+    RunSpec spec;
+    spec.technique = "linearized_fragment_buffer";
+    spec.params = params;
+    spec.scene = "quads";
+    spec.scene_params = {{"layers", "32"}};
+    spec.submission_order = "shuffled:7";
+    spec.width = 48;
+    spec.height = 48;
+    spec.warmup = 0;
+    spec.frames = 1;
+    const RunResult r = test::harness().run(spec);
+    ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+    EXPECT_LT(r.error->max_abs, kFloatTolerance) << describe(params);
+  }
+}
+
+TEST(LinearizedFragmentBuffer, ListsBeyondTheLargestNetworkAreSortedInRegisterBlocks) {
+  // 136 layers: beyond the 128-element network, sorted in 9 blocks of 16
+  // (sort=network) or 17 blocks of 8, and merged.
+  for (const RawParams& params : {RawParams{{"sort", "network"}}, RawParams{{"sort", "register_block"}, {"block_size", "8"}}}) {
+    const RunResult r = test::render_once("linearized_fragment_buffer", params, "quads",
+                                          {{"layers", "136"}, {"alpha", "0.05"}}, 8, 8);
+    EXPECT_EQ(r.counters.fragments_stored, 136u * 64u) << describe(params);
+    EXPECT_LT(r.error->max_abs, kFloatTolerance) << describe(params);
+  }
+}
+
+}  // namespace
+}  // namespace oit
