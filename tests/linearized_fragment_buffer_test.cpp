@@ -8,9 +8,9 @@
 #include <numeric>
 #include <random>
 
-#include "../algorithms/linearized_fragment_buffer/prefix_sum.h"
-#include "gl/check.h"
-#include "gl_fixture.h"
+#include "algorithms/linearized_fragment_buffer/prefix_sum.h"
+#include "harness/gl/check.h"
+#include "tests/gl_fixture.h"
 
 namespace oit {
 namespace {

@@ -18,14 +18,14 @@
 
 #include "algorithms/linked_list/length_classes.h"
 #include "algorithms/linked_list/sorting_network.h"
-#include "core/fragment_pool.h"
-#include "core/list_length_pass.h"
-#include "core/passes.h"
-#include "core/technique.h"
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "prefix_sum.h"
-#include "../../shaders/bindings.h"
+#include "harness/core/fragment_pool.h"
+#include "harness/core/list_length_pass.h"
+#include "harness/core/passes.h"
+#include "harness/core/technique.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "algorithms/linearized_fragment_buffer/prefix_sum.h"
+#include "shaders/bindings.h"
 
 namespace oit {
 namespace {

@@ -1,8 +1,8 @@
-#include "prefix_sum.h"
+#include "algorithms/linearized_fragment_buffer/prefix_sum.h"
 
-#include "gl/check.h"
-#include "gl/shader_program.h"
-#include "../../shaders/bindings.h"
+#include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
+#include "shaders/bindings.h"
 
 namespace oit::lfb {
 namespace {

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "gl/handles.h"
+#include "harness/gl/handles.h"
 
 namespace oit::lfb {
 
