@@ -105,7 +105,8 @@ case "$mode" in
     ;;
   test)
     cd "$build_dir"
-    ctest --output-on-failure --timeout 600
+    # Both cores: GL tests render on llvmpipe, whose threads share them.
+    ctest --output-on-failure --timeout 600 -j "$(nproc)"
     ;;
   build) ;;
   *)
