@@ -260,8 +260,7 @@ RunResult Harness::run(const RunSpec& spec) {
   } catch (const std::exception& e) {
     result.status = RunStatus::error;
     result.message = explain_failure(e, spec.width, spec.height);  // a memory failure names the size and remedy
-    while (glGetError() != GL_NO_ERROR) {
-    }
+    drain_gl_errors();
     reset_gl_state();
   }
   return result;
@@ -274,8 +273,7 @@ void Harness::compare_with_reference(const RunSpec& spec, RunResult& result) {
   } catch (const std::exception& e) {
     // The run's timings stand; only its error is unknown.
     result.message = std::string("no reference image, error columns empty: ") + e.what();
-    while (glGetError() != GL_NO_ERROR) {
-    }
+    drain_gl_errors();
     reset_gl_state();
   }
 }
