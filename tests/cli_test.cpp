@@ -168,6 +168,25 @@ TEST(Cli, BenchKeepsGoingPastAFailingRunAndRecordsIt) {
   EXPECT_NE(text.str().find("missing_scene.gltf' does not exist"), std::string::npos) << text.str();
 }
 
+// A budget too small for any reference tile plan: the run keeps its timings,
+// its error columns stay empty, and the console says why instead of crashing.
+TEST(Cli, BenchRunWithoutAReferenceKeepsItsTimingsAndSaysWhy) {
+  const std::string csv = kOut + "/no_reference.csv";
+  std::filesystem::remove(csv);
+  const Outcome o = run_oitbench("bench --technique unsorted --scene quads --size 16x16 --warmup 0 --frames 1 "
+                                 "--background 0.5,0.25,0.125 --memory-budget 64 --csv " + csv);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("no reference image"), std::string::npos) << o.output;
+  const test::CsvTable table = test::read_csv_table(csv);
+  ASSERT_FALSE(table.rows.empty());
+  for (const auto& row : table.rows) {
+    EXPECT_EQ(row[table.column("status")], "ok");
+    EXPECT_EQ(row[table.column("error_max")], "");
+    EXPECT_NE(row[table.column("message")].find("no reference image"), std::string::npos);
+    if (row[table.column("stage")] == "total") EXPECT_NE(row[table.column("median_ms")], "");
+  }
+}
+
 std::vector<std::vector<std::string>> rows_of(const std::string& csv, const std::string& technique) {
   std::vector<std::vector<std::string>> rows;
   const auto records = read_csv(csv);

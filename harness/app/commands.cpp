@@ -138,6 +138,18 @@ std::string per_view_path(const std::string& out, size_t index) {
   return has_extension ? out.substr(0, dot) + suffix + out.substr(dot) : out + suffix;
 }
 
+namespace {
+
+// "max error X, rmse Y vs reference", or why there is no reference.
+std::string error_text(const RunResult& result) {
+  if (!result.error) return result.message;
+  char text[96];
+  std::snprintf(text, sizeof text, "max error %.3g, rmse %.3g vs reference", result.error->max_abs, result.error->rmse);
+  return text;
+}
+
+}  // namespace
+
 int run_render(const CommonOptions& common, const RenderOptions& options) {
   const std::vector<std::string> cameras = expand_camera_spec(options.camera);
   auto context = open_context(common);
@@ -163,10 +175,9 @@ int run_render(const CommonOptions& common, const RenderOptions& options) {
     }
     const std::string out = cameras.size() > 1 ? per_view_path(options.out, view) : options.out;
     write_image(result.image, out);
-    std::printf("%s on %s %dx%d%s -> %s (max error %.3g, rmse %.3g vs reference)\n", options.technique.c_str(),
-                options.scene.c_str(), spec.width, spec.height,
-                spec.camera == "default" ? "" : (" camera " + spec.camera).c_str(), out.c_str(),
-                result.error->max_abs, result.error->rmse);
+    std::printf("%s on %s %dx%d%s -> %s (%s)\n", options.technique.c_str(), options.scene.c_str(), spec.width,
+                spec.height, spec.camera == "default" ? "" : (" camera " + spec.camera).c_str(), out.c_str(),
+                error_text(result).c_str());
   }
   return 0;
 }
@@ -211,8 +222,8 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
     RunResult result = harness.run(spec);
     csv.write(result, ctx);
     if (result.status == RunStatus::ok) {
-      std::fprintf(stderr, "%.2f ms, max error %.3g%s\n", result.median_total_ms(),
-                   result.error->max_abs, result.noisy ? " (noisy: other processes were busy)" : "");
+      std::fprintf(stderr, "%.2f ms, %s%s\n", result.median_total_ms(), error_text(result).c_str(),
+                   result.noisy ? " (noisy: other processes were busy)" : "");
       if (result.clock_disagreement && *result.clock_disagreement > 0.10) {
         std::fprintf(stderr, "  warning: gl and wall clocks disagree by %.0f%% on total\n",
                      *result.clock_disagreement * 100.0);
@@ -221,7 +232,7 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
         const std::string stem = options.images_dir + "/" + run_label(result);
         write_image(result.image, stem + ".png");
         // Where the image is wrong, and how much (scaled to this run's largest error).
-        if (result.error->max_abs > 0.0) {
+        if (result.error && result.error->max_abs > 0.0) {
           const Image& reference = harness.reference_image(spec.scene, spec.scene_params, spec.width, spec.height,
                                                            spec.background, spec.camera);
           write_image(error_heatmap(result.image, reference), stem + "_error.png");
