@@ -160,7 +160,8 @@ TEST(Cli, BenchKeepsGoingPastAFailingRunAndRecordsIt) {
   // The second scene file does not exist: an error row, and the first run still lands.
   const Outcome o = run_oitbench("bench --technique unsorted --scene quads --scene missing_scene.gltf --size 8x8 "
                                  "--warmup 0 --frames 1 --csv " + csv);
-  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(o.exit_code, kExitRunsFailed) << o.output;  // every row written, the failure still reported
+  EXPECT_NE(o.output.find("1 run failed"), std::string::npos) << o.output;
   std::ifstream in(csv);
   std::stringstream text;
   text << in.rdbuf();

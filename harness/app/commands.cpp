@@ -58,11 +58,17 @@ void print_summary(const std::vector<RunResult>& results, const std::string& bas
       saved += pair;
     }
     if (!saved.empty()) saved = " |" + saved;
-    std::printf("%-18s %-46s %-8s %10.2f %10s %7llu %10.3g %9llu  %s %dx%d%s%s\n", r.spec.technique.c_str(),
-                r.technique_params.c_str(), to_string(r.status).c_str(), ok ? r.median_total_ms() : 0.0, ratio,
-                static_cast<unsigned long long>(r.counters.passes), r.error ? r.error->max_abs : 0.0,
-                static_cast<unsigned long long>(r.counters.fragments_dropped), scene.c_str(), r.spec.width,
-                r.spec.height, camera.c_str(), saved.c_str());
+    // Skipped and error runs measured nothing: blanks, not zeros.
+    char total[32] = "", passes[32] = "", error[32] = "", dropped[32] = "";
+    if (ok) {
+      std::snprintf(total, sizeof total, "%.2f", r.median_total_ms());
+      std::snprintf(passes, sizeof passes, "%llu", static_cast<unsigned long long>(r.counters.passes));
+      std::snprintf(dropped, sizeof dropped, "%llu", static_cast<unsigned long long>(r.counters.fragments_dropped));
+      if (r.error) std::snprintf(error, sizeof error, "%.3g", r.error->max_abs);
+    }
+    std::printf("%-18s %-46s %-8s %10s %10s %7s %10s %9s  %s %dx%d%s%s\n", r.spec.technique.c_str(),
+                r.technique_params.c_str(), to_string(r.status).c_str(), total, ratio, passes, error, dropped,
+                scene.c_str(), r.spec.width, r.spec.height, camera.c_str(), saved.c_str());
   }
 }
 
@@ -264,6 +270,12 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
   std::printf("GL programs: %llu compiled, %llu from the in-process binary cache%s\n",
               static_cast<unsigned long long>(programs.compiled), static_cast<unsigned long long>(programs.reused),
               ProgramCache::instance().enabled() ? "" : " (OIT_PROGRAM_CACHE=off)");
+  // Every row is written; a sweep with failed runs still says so to scripts.
+  if (failed > 0) {
+    std::fprintf(stderr, "oitbench bench: %zu run%s failed (error rows in %s)\n", failed, failed == 1 ? "" : "s",
+                 options.csv.c_str());
+    return kExitRunsFailed;
+  }
   return 0;
 }
 

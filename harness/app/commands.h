@@ -7,6 +7,12 @@
 
 namespace oit {
 
+// Exit codes: 0 every run ok or skipped; 1 an error outside the runs (a bad
+// value, an unreadable or foreign file); CLI11's own non-zero codes for
+// malformed options; 3 stress or check-order found a failure; 4 bench or
+// pareto wrote every row but some runs are error rows.
+inline constexpr int kExitRunsFailed = 4;
+
 // The CSV's `platform` column and the `Device:` lines: how the context was
 // made, the page policy of the host heap (huge_page_malloc.h), which on
 // software GL holds every GL buffer, and whether shared counters take the

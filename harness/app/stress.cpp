@@ -337,6 +337,8 @@ int run_stress(const CommonOptions& common, const StressOptions& options) {
     for (auto& c : cases)
       if (options.case_filter.empty() || c.name.find(options.case_filter) != std::string::npos) runs.push_back({t, c});
   }
+  if (runs.empty())
+    throw std::invalid_argument("stress: no case matches --case '" + options.case_filter + "' for the chosen techniques");
   outcomes.reserve(runs.size());
   for (const auto& [t, c] : runs) {
     std::fprintf(stderr, "[%zu/%zu] %s / %s ... ", ++done, runs.size(), t->id.c_str(), c.name.c_str());
