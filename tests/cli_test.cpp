@@ -188,6 +188,12 @@ TEST(Cli, BenchRunWithoutAReferenceKeepsItsTimingsAndSaysWhy) {
   }
 }
 
+TEST(Cli, StressCaseFilterMatchingNothingIsAnError) {
+  const Outcome o = run_oitbench("stress --technique unsorted --case no_such_case");
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("no case matches --case 'no_such_case'"), std::string::npos) << o.output;
+}
+
 std::vector<std::vector<std::string>> rows_of(const std::string& csv, const std::string& technique) {
   std::vector<std::vector<std::string>> rows;
   const auto records = read_csv(csv);
