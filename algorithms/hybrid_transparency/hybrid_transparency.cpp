@@ -79,10 +79,7 @@ class HybridTransparency final : public Technique {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     {
       auto store = frame.clock.stage("store");
-      glEnable(GL_BLEND);
-      glBlendFunc(GL_ONE, GL_ONE);
-      draw_scene_pass(frame, store_, tail_framebuffer_);
-      glDisable(GL_BLEND);
+      draw_additive_scene_pass(frame, store_, tail_framebuffer_);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     {

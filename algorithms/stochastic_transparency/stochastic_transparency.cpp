@@ -111,10 +111,7 @@ class StochasticTransparency final : public Technique {
         auto store = frame.clock.stage("store");
         glDepthFunc(GL_LEQUAL);
         glDepthMask(GL_FALSE);
-        glEnable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ONE);
-        draw_scene_pass(frame, accumulate_, accumulation_framebuffer_);
-        glDisable(GL_BLEND);
+        draw_additive_scene_pass(frame, accumulate_, accumulation_framebuffer_);
         glDisable(GL_DEPTH_TEST);
         glDepthMask(GL_TRUE);
       }

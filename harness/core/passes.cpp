@@ -14,6 +14,13 @@ void draw_scene_pass(const Frame& frame, const Program& program, const Framebuff
   frame.scene.draw();
 }
 
+void draw_additive_scene_pass(const Frame& frame, const Program& program, const Framebuffer& framebuffer) {
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  draw_scene_pass(frame, program, framebuffer);
+  glDisable(GL_BLEND);
+}
+
 void draw_fullscreen_pass(const Frame& frame, const Program& program) {
   frame.bind_target();
   glUseProgram(program.id());

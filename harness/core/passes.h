@@ -14,6 +14,9 @@ namespace oit {
 // frame's shared uniforms, and draws the scene. GL state (blending, depth
 // test) is the caller's.
 void draw_scene_pass(const Frame& frame, const Program& program, const Framebuffer& framebuffer);
+// draw_scene_pass with additive blending (ONE, ONE) on every draw buffer,
+// off again afterwards: the accumulation passes of the approximate techniques.
+void draw_additive_scene_pass(const Frame& frame, const Program& program, const Framebuffer& framebuffer);
 
 // Binds the frame's target and draws `program` over it as one full-screen
 // triangle (shaders/fullscreen.vert), with the frame's shared uniforms.
