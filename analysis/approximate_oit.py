@@ -26,9 +26,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-import pandas as pd  # noqa: E402
 
 from analysis.pareto import load_totals, pareto_front  # noqa: E402
+from analysis.presentation import varying_params  # noqa: E402
 
 DEFAULT_TECHNIQUES = ["unsorted", "weighted_blended", "moment_oit", "hybrid_transparency",
                       "stochastic_transparency", "multi_layer_alpha_blending", "adaptive_transparency",
@@ -48,18 +48,6 @@ def read_pfm(path):
     if data.size != width * height * channels:
         raise ValueError(f"{path}: {data.size} values, expected {width * height * channels}")
     return np.flipud(data.reshape(height, width, channels))
-
-
-def varying_params(points):
-    """Each run's params reduced to the keys whose value differs between runs of its technique."""
-    params = points["label"].str.slice_replace(0, 0, "").combine(points["technique"], lambda l, t: l[len(t):].split())
-    reduced = {}
-    for technique, rows in params.groupby(points["technique"]):
-        values = [dict(item.partition("=")[::2] for item in items) for items in rows]
-        varying = {key for v in values for key in v if len({u.get(key) for u in values}) > 1}
-        for index, v in zip(rows.index, values):
-            reduced[index] = " ".join(f"{k}={v[k]}" for k in v if k in varying)
-    return pd.Series(reduced)
 
 
 def table(args):

@@ -1,37 +1,59 @@
 #!/usr/bin/python3
-"""Run time against error, one plot per scene, with the Pareto front marked.
+"""Run time against error, one plot per scene configuration, with the Pareto front marked.
 
-Usage: analysis/pareto.py runs.csv [--out-dir DIR] [--metric error_rmse|error_max]
+Usage: python3 -m analysis.pareto runs.csv [--out-dir DIR] [--prefix NAME] [--metric error_rmse|error_max]
+                                  [--oitbench build/harness/oitbench]
 
 Input: the CSV of `oitbench pareto` (or any bench). x = median total time
-per frame (log), y = the error against the exact reference (symlog, so exact
-runs sit on the zero line). A run is on the Pareto front when no other run of
-the same scene and size is both at least as fast and at least as accurate.
+per frame (log) with a whisker from p05 to p95 of the timed frames, y = the
+error against the exact reference (symlog, so exact runs sit on the zero
+line). A run is on the Pareto front when no other run of the same scene
+configuration (scene and parameters, size, camera set, clock, device) is
+both at least as fast and at least as accurate; front points are labelled
+with the parameters off their technique's defaults.
+
+One PNG and one SVG per configuration, named PREFIX_SCENE_SIZE.png (PREFIX:
+the CSV's name, so sweeps written to one directory keep apart); a scene
+parameter, camera set, clock or device is added to the name where the CSV
+holds several. Two configurations never share a name, and a file replaced
+is said so.
 """
 import argparse
 import os
+import re
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import pandas as pd  # noqa: E402
 
 # Run as a script, analysis/ is on the path, not the repository root.
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from analysis.results_io import read_results, save_figure  # noqa: E402
+from analysis import presentation  # noqa: E402
+from analysis.common import tokens  # noqa: E402
+from analysis.results_io import read_results  # noqa: E402
 
 
 def load_totals(path, metric):
-    runs = read_results(path, keep_default_na=False, na_values={"median_ms": [""], metric: [""]})
+    """One row per run configuration (the facet columns of presentation,
+    technique, params, scene_rect where present): the median over repeated
+    runs of the median total time and of `metric`, the p05..p95 envelope,
+    and `label` = technique and its full params."""
+    runs = read_results(path, keep_default_na=False, dtype=str)
     runs = runs[(runs["status"] == "ok") & (runs["stage"] == "total")].copy()
     if runs.empty:
         sys.exit(f"{path}: no successful runs with a total stage")
+    for column in ["median_ms", "p05_ms", "p95_ms", metric]:
+        runs[column] = pd.to_numeric(runs[column], errors="coerce") if column in runs else float("nan")
     runs["label"] = runs["technique"] + runs["params"].map(lambda p: f" {p}" if p else "")
-    runs["size"] = runs["width"].astype(str) + "x" + runs["height"].astype(str)
-    # One point per run configuration: the median over repeated rows.
-    group = ["scene", "scene_params", "size", "technique", "label", "clock"]
-    return runs.groupby(group, as_index=False).agg(time_ms=("median_ms", "median"), error=(metric, "median"))
+    runs = presentation.with_facets(runs)
+    group = presentation.FACET_COLUMNS + ["technique", "params", "label"] + (
+        ["scene_rect"] if "scene_rect" in runs else [])
+    return runs.groupby(group, as_index=False).agg(time_ms=("median_ms", "median"), error=(metric, "median"),
+                                                   p05=("p05_ms", "min"), p95=("p95_ms", "max"),
+                                                   timestamp=("timestamp", "min"))
 
 
 def pareto_front(points):
@@ -45,43 +67,98 @@ def pareto_front(points):
     return points.loc[front].sort_values("time_ms")
 
 
-def plot_scene(points, title, out, metric):
-    fig, ax = plt.subplots(figsize=(7.5, 5))
-    for technique, rows in points.groupby("technique"):
-        ax.scatter(rows["time_ms"], rows["error"], label=technique, s=28)
-    front = pareto_front(points)
-    ax.step(front["time_ms"], front["error"], where="post", color="black", linewidth=1, label="Pareto front")
-    for _, row in front.iterrows():
-        ax.annotate(row["label"], (row["time_ms"], row["error"]), fontsize=6, xytext=(3, 3),
-                    textcoords="offset points")
-    ax.set_xscale("log")
-    ax.set_yscale("symlog", linthresh=1e-4)
-    ax.set_ylim(bottom=0.0)
-    ax.set_xlabel("median total time per frame (ms, log)")
-    ax.set_ylabel(f"{metric} against the exact reference")
-    ax.set_title(title, fontsize=9)
-    ax.legend(fontsize=7, loc="lower left")
-    fig.tight_layout()
-    save_figure(fig, out, dpi=120)
-    plt.close(fig)
-    return front
+def slug(text):
+    return re.sub(r"[^A-Za-z0-9._]+", "-", str(text)).strip("-")
+
+
+def file_names(totals, prefix):
+    """{facet key: file name} for every configuration: PREFIX_SCENE_SIZE,
+    then whatever else tells the CSV's configurations apart (the scene
+    parameters that differ between a scene's configurations, camera set,
+    clock, device). A name two configurations would share is an error."""
+    keys = list(totals.groupby(presentation.FACET_COLUMNS).groups)
+    varying = {column: len({key[i] for key in keys}) > 1 for i, column in enumerate(presentation.FACET_COLUMNS)}
+    scene_keys = {}
+    for key in keys:
+        scene_keys.setdefault(key[2], set()).add(key[3])
+    names = {}
+    for key in keys:
+        device, platform, scene, scene_params, size, camera, clock = key
+        settings = [tokens(p) for p in scene_keys[scene]]
+        differing = [f"{k}={v}" for k, v in tokens(scene_params).items() if len({s.get(k) for s in settings}) > 1]
+        parts = [prefix, os.path.splitext(os.path.basename(scene))[0], *differing, size]
+        parts += [camera] if varying["camera_set"] else []
+        parts += [clock] if varying["clock"] else []
+        parts += [f"{device} {platform}"] if varying["device"] or varying["platform"] else []
+        names[key] = "_".join(slug(p) for p in parts) + ".png"
+    taken = pd.Series(list(names.values())).value_counts()
+    if (taken > 1).any():
+        raise ValueError(f"several configurations would be written to {', '.join(taken[taken > 1].index)}")
+    return names
+
+
+def draw_configuration(points, title, metric):
+    with plt.rc_context(presentation.READABLE):
+        fig, ax = plt.subplots(figsize=(9, 6), layout="constrained")
+        for technique, rows in points.groupby("technique"):
+            dots = ax.scatter(rows["time_ms"], rows["error"], label=technique, s=30, zorder=3)
+            spread = rows.dropna(subset=["p05", "p95"])
+            ax.errorbar(spread["time_ms"], spread["error"], xerr=[(spread["time_ms"] - spread["p05"]).clip(lower=0),
+                                                                  (spread["p95"] - spread["time_ms"]).clip(lower=0)],
+                        fmt="none", ecolor=dots.get_facecolor()[0], elinewidth=0.8, alpha=0.6)
+        front = pareto_front(points)
+        ax.step(front["time_ms"], front["error"], where="post", color="black", linewidth=1, label="Pareto front")
+        # Front points carry numbers (staggered: several often sit on the
+        # zero line side by side); their labels are listed beside the plot.
+        for i, (_, row) in enumerate(front.iterrows(), start=1):
+            ax.annotate(str(i), (row["time_ms"], row["error"]), xytext=(0, 5 + 10 * ((i - 1) % 2)),
+                        textcoords="offset points", ha="center", fontweight="bold")
+        listing = "\n".join(f"{i} {presentation.wrap(label)}" for i, label in enumerate(front["short"], start=1))
+        ax.text(1.01, 0.0, f"Pareto front, fastest first:\n{listing}", transform=ax.transAxes, va="bottom")
+        ax.set_xscale("log")
+        ax.set_yscale("symlog", linthresh=1e-4)
+        ax.set_ylim(0.0, max(points["error"].max(), 1e-4) * 3)  # room above the worst run
+        ax.set_xlabel("median total time per frame (ms, log); whisker: p05..p95 of the timed frames")
+        ax.set_ylabel(f"{metric} against the exact reference")
+        ax.set_title(title, loc="left")
+        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
+        ax.grid(alpha=0.3)
+    return fig, front
+
+
+def figures(totals, defaults, metric, prefix):
+    """(file name, figure, front) for each configuration of `totals`, one
+    at a time; every name is checked before the first figure."""
+    totals = totals.copy()
+    short = presentation.short_params(totals, defaults)
+    totals["short"] = totals["technique"] + short.map(lambda s: f" {s}" if s else "")
+    names = file_names(totals, prefix)
+    for key, points in totals.groupby(presentation.FACET_COLUMNS):
+        title = presentation.facet_title(key, totals) + "\n" + presentation.caption(points, "Run time against error",
+                                                                                    defaults)
+        yield (names[key],) + draw_configuration(points, title, metric)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("csv")
     parser.add_argument("--out-dir", default=None, help="default: next to the CSV")
+    parser.add_argument("--prefix", default=None, help="start of every file name (default: the CSV's name without "
+                                                       ".csv)")
     parser.add_argument("--metric", default="error_rmse", choices=["error_rmse", "error_max"])
+    parser.add_argument("--oitbench", default=None, help="the build whose parameter defaults the labels leave out "
+                                                         f"(default: {presentation.DEFAULT_OITBENCH})")
     args = parser.parse_args()
     out_dir = args.out_dir or os.path.dirname(os.path.abspath(args.csv))
-    os.makedirs(out_dir, exist_ok=True)
-    totals = load_totals(args.csv, args.metric)
-    devices = read_results(args.csv, keep_default_na=False)["device"].unique()
-    for (scene, scene_params, size, clock), points in totals.groupby(["scene", "scene_params", "size", "clock"]):
-        name = f"pareto_{os.path.basename(scene).replace('.', '_')}_{size}.png"
-        title = f"{scene} {scene_params} {size}, clock {clock}\n{', '.join(devices)}"
-        front = plot_scene(points, title, os.path.join(out_dir, name), args.metric)
-        print(f"wrote {os.path.join(out_dir, name)}: front = {', '.join(front['label'])}")
+    prefix = args.prefix or os.path.splitext(os.path.basename(args.csv))[0]
+    try:
+        totals = load_totals(args.csv, args.metric)
+        for name, fig, front in figures(totals, presentation.technique_defaults(args.oitbench), args.metric, prefix):
+            presentation.save_png_and_svg(fig, os.path.join(out_dir, name), dpi=120)
+            plt.close(fig)
+            print(f"  front = {', '.join(front['short'])}")
+    except (ValueError, RuntimeError, OSError) as e:
+        sys.exit(f"pareto: {e}")
 
 
 if __name__ == "__main__":

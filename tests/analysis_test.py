@@ -102,7 +102,7 @@ class ParetoTest(unittest.TestCase):
             result = subprocess.run([sys.executable, os.path.join(HERE, "..", "analysis", "pareto.py"), csv],
                                     check=True, capture_output=True, text=True)
             self.assertIn("front = unsorted, kbuffer k=4, kbuffer k=32", result.stdout)
-            self.assertTrue(os.path.exists(os.path.join(tmp, "pareto_quads_64x64.png")))
+            self.assertTrue(os.path.exists(os.path.join(tmp, "runs_quads_64x64.png")))
 
 
 class ResultsIoTest(unittest.TestCase):
