@@ -82,7 +82,7 @@ def stage_order(runs):
     """The stage names of `runs` in the order they first appear in the CSV:
     a run writes its stages in the order they first ran, so this is pipeline
     order, whatever stages a technique declares (docs/ARCHITECTURE.md,
-    "Stages"); `total` and the empty stage of a failed run are left out."""
+    "Stages and timing"); `total` and the empty stage of a failed run are left out."""
     return [s for s in dict.fromkeys(runs["stage"]) if s and s != "total"]
 
 

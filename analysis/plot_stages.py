@@ -83,7 +83,7 @@ def bars(facet):
 
 def bar_label(label, row):
     notes = ([f"mean of {int(row['runs'])} runs"] if row["runs"] > 1 else []) + (["noisy"] if row["noisy"] else [])
-    return presentation.wrap(label + (f" ({', '.join(notes)})" if notes else ""))
+    return presentation.wrap(label) + (f"\n({', '.join(notes)})" if notes else "")
 
 
 def draw_facet(ax, table, stages, colors, title):

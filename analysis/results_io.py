@@ -1,5 +1,5 @@
 """What the analysis reads and writes, held to the harness's rules
-(README "Reliability"): only whole runs of a results CSV count, and a plot is
+(docs/REFERENCE.md, "Reliability"): only whole runs of a results CSV count, and a plot is
 written whole or not at all.
 
 Kept free of pandas and matplotlib imports so that reproduce.py can use it
