@@ -18,7 +18,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 sys.path.insert(0, os.path.join(HERE, ".."))
 sys.path.insert(0, HERE)
 import analysis_fixtures as fx  # noqa: E402
-from analysis import common, reproduce, results_io  # noqa: E402
+
+OITBENCH = os.path.abspath(sys.argv.pop(1) if len(sys.argv) > 1 else os.path.join(HERE, "..", "build", "harness",
+                                                                                  "oitbench"))
+from analysis import common, presentation, reproduce, results_io  # noqa: E402
+import matplotlib.text  # noqa: E402
 
 COLUMNS = ("timestamp,git_revision,device,gl_version,platform,technique,params,scene,scene_params,camera,width,height,"
            "clock,stage,median_ms,min_ms,p05_ms,p95_ms,mean_ms,frames,warmup,status,message,fragments,"
@@ -103,6 +107,122 @@ class ParetoTest(unittest.TestCase):
                                     check=True, capture_output=True, text=True)
             self.assertIn("front = unsorted, kbuffer k=4, kbuffer k=32", result.stdout)
             self.assertTrue(os.path.exists(os.path.join(tmp, "runs_quads_64x64.png")))
+
+
+TABLE = """| id | technique | paper | kind | parameters (default, range) | stages |
+|---|---|---|---|---|---|
+| `kbuffer` | Dual-pass k-buffer | Kubisch 2014 | exact | `k` (16; integer in [1, 64] or auto), `tail` (drop; one of {drop, blend}) | count, fill |
+| `bucketed_kbuffer` | Bucketed \\| k-buffer | Murray 2016 | approximate | `color_transfer_file` (empty; path of a readable file without spaces, ',' or '=' (empty: none)), `depth_bits` (16; one of {16, 24}) | fill |
+| `unsorted` | Unsorted alpha blending | (baseline) | approximate | - | fill |
+"""
+DEFAULTS = {"kbuffer": {"k": "16", "tail": "drop"}, "bucketed_kbuffer": {"color_transfer_file": "", "depth_bits": "16"},
+            "unsorted": {}}
+
+
+class PresentationTest(unittest.TestCase):
+    def test_defaults_read_from_the_technique_table(self):
+        self.assertEqual(presentation.parse_technique_table(TABLE), DEFAULTS)
+
+    def test_defaults_of_the_built_oitbench(self):
+        built = presentation.technique_defaults(OITBENCH)
+        self.assertEqual(built["kbuffer"], {"k": "16", "tail": "drop", "auto_k_memory_mb": "1024"})
+        self.assertEqual(built["unsorted"], {})
+
+    def test_an_oitbench_that_does_not_answer_is_an_error_naming_it(self):
+        with self.assertRaises(RuntimeError) as raised:
+            presentation.technique_defaults("/nonexistent/oitbench")
+        self.assertIn("'/nonexistent/oitbench list --markdown'", str(raised.exception))
+
+    def test_labels_keep_only_parameters_off_their_defaults(self):
+        runs = pd.DataFrame({"technique": ["kbuffer", "kbuffer", "bucketed_kbuffer", "newcomer", "kbuffer"],
+                             "params": ["k=16 tail=drop", "k=4 tail=drop", "color_transfer_file= depth_bits=24",
+                                        "x=1", "k=16 tail=drop added_later=3"]})
+        self.assertEqual(list(presentation.non_default_params(runs, DEFAULTS)),
+                         ["", "k=4", "depth_bits=24", "x=1", "added_later=3"])
+        self.assertEqual(list(presentation.short_params(runs, None)),
+                         ["k=16", "k=4", "", "", "k=16 added_later=3"])  # without defaults: what differs
+
+
+def stage_rows(technique, params, scene_params, clock="wall", scale=1.0, camera="default"):
+    return [fx.row(technique, stage, ms * scale, params=params, scene_params=scene_params, clock=clock,
+                   camera=camera, p05_ms=ms * scale * 0.5, p95_ms=ms * scale * 2)
+            for stage, ms in (("fill", 2.0), ("compose", 1.0), ("total", 3.5))]
+
+
+class StageFacetsTest(unittest.TestCase):
+    def draw(self, rows, defaults=DEFAULTS):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "runs.csv")
+            fx.write_csv(path, rows)
+            return plot_stages.draw(plot_stages.load_runs(path), defaults)
+
+    def test_scenes_and_clocks_never_share_a_bar(self):
+        fig = self.draw(stage_rows("kbuffer", "k=16 tail=drop", "layers=32") +
+                        stage_rows("kbuffer", "k=4 tail=drop", "layers=32", scale=2) +
+                        stage_rows("kbuffer", "k=16 tail=drop", "layers=64", scale=3) +
+                        stage_rows("kbuffer", "k=16 tail=drop", "layers=64", clock="gl", scale=4))
+        facets = [ax for ax in fig.axes if ax.get_title(loc="left")]
+        self.assertEqual([ax.get_title(loc="left") for ax in facets],
+                         ["quads layers=32 | 64x64 | clock wall", "quads layers=64 | 64x64 | clock gl",
+                          "quads layers=64 | 64x64 | clock wall"])
+        self.assertEqual([[t.get_text() for t in ax.get_yticklabels()] for ax in facets],
+                         [["kbuffer", "kbuffer k=4"], ["kbuffer"], ["kbuffer"]])
+        fills = [[round(p.get_width(), 6) for p in ax.patches][:len(ax.get_yticklabels())] for ax in facets]
+        self.assertEqual(fills, [[2.0, 4.0], [8.0], [6.0]])
+        whisker = [c for c in facets[0].collections if isinstance(c, matplotlib.collections.LineCollection)][0]
+        self.assertEqual([tuple(segment[:, 0]) for segment in whisker.get_segments()], [(1.75, 7.0), (3.5, 14.0)])
+
+    def test_every_text_is_at_least_9_points(self):
+        fig = self.draw(stage_rows("kbuffer", "k=4 tail=blend", "layers=32") + stage_rows("unsorted", "", "layers=32"))
+        fig.canvas.draw()  # tick labels are made when drawn
+        texts = [t for t in fig.findobj(matplotlib.text.Text) if t.get_text() and t.get_visible()]
+        self.assertGreater(len(texts), 10)
+        self.assertGreaterEqual(min(t.get_fontsize() for t in texts), presentation.SMALLEST_POINTS)
+
+    def test_two_configurations_under_one_label_are_an_error_not_one_bar(self):
+        with self.assertRaises(ValueError) as raised:
+            self.draw(stage_rows("kbuffer", "k=16", "layers=32") + stage_rows("kbuffer", "", "layers=32"))
+        self.assertIn("labels kbuffer each name several configurations", str(raised.exception))
+
+    def test_out_must_be_a_png(self):
+        result = subprocess.run([sys.executable, "-m", "analysis.plot_stages", "runs.csv", "--out", "x.jpg"],
+                                cwd=os.path.join(HERE, ".."), capture_output=True, text=True)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("--out x.jpg: name a .png file (an .svg is written beside it)", result.stderr)
+
+
+class ParetoNamesTest(unittest.TestCase):
+    def totals(self, rows):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "runs.csv")
+            fx.write_csv(path, rows)
+            return pareto.load_totals(path, "error_rmse")
+
+    def test_names_tell_every_configuration_apart(self):
+        rows = [fx.row("unsorted", "total", 1.0, scene_params=f"layers={n} seed=1", clock=clock)
+                for n in (32, 64) for clock in ("gl", "wall")]
+        names = pareto.file_names(self.totals(rows), "sweep_a")
+        self.assertEqual(sorted(names.values()),
+                         ["sweep_a_quads_layers-32_64x64_gl.png", "sweep_a_quads_layers-32_64x64_wall.png",
+                          "sweep_a_quads_layers-64_64x64_gl.png", "sweep_a_quads_layers-64_64x64_wall.png"])
+
+    def test_a_name_two_configurations_would_share_is_an_error(self):
+        rows = [fx.row("unsorted", "total", 1.0, scene_params=f"name={n}", scene="model") for n in ("a+b", "a-b")]
+        with self.assertRaises(ValueError) as raised:
+            pareto.file_names(self.totals(rows), "p")
+        self.assertIn("several configurations would be written to p_model_name-a-b_64x64.png", str(raised.exception))
+
+    def test_a_replaced_plot_is_said(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "sweep.csv")
+            fx.write_csv(path, [fx.row("unsorted", "total", 1.0, error_rmse=0.1)])
+            command = [sys.executable, "-m", "analysis.pareto", path, "--oitbench", OITBENCH]
+            first = subprocess.run(command, cwd=os.path.join(HERE, ".."), capture_output=True, text=True, check=True)
+            second = subprocess.run(command, cwd=os.path.join(HERE, ".."), capture_output=True, text=True, check=True)
+            png = os.path.join(tmp, "sweep_quads_64x64.png")
+            svg = os.path.join(tmp, "sweep_quads_64x64.svg")
+            self.assertIn(f"wrote {png} and {svg}\n", first.stdout)
+            self.assertIn(f"wrote {png} and {svg} (replaced {png}, {svg})\n", second.stdout)
 
 
 class ResultsIoTest(unittest.TestCase):
