@@ -28,7 +28,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from analysis.pareto import load_totals, pareto_front  # noqa: E402
-from analysis.presentation import varying_params  # noqa: E402
+from analysis.presentation import FACET_COLUMNS, facet_title, varying_params  # noqa: E402
 
 DEFAULT_TECHNIQUES = ["unsorted", "weighted_blended", "moment_oit", "hybrid_transparency",
                       "stochastic_transparency", "multi_layer_alpha_blending", "adaptive_transparency",
@@ -56,14 +56,16 @@ def table(args):
     lines = [f"Run time against {args.metric} from `{os.path.basename(args.csv)}`, {what}; params show the swept "
              "knobs; `front` = on the Pareto front of its scene (no run of any technique is both faster and more "
              "accurate).", ""]
-    for (scene, scene_params, size), points in totals.groupby(["scene", "scene_params", "size"]):
+    # One section per scene configuration: times of other clocks, devices or
+    # camera sets are not comparable (presentation.FACET_COLUMNS).
+    for key, points in totals.groupby(FACET_COLUMNS):
         front = set(pareto_front(points).index)
         params = varying_params(points)
         if args.short:
             ends = [rows.sort_values(key).index[0] for _, rows in points.groupby("technique")
                     for key in (["time_ms", "error"], ["error", "time_ms"])]
             points = points.loc[sorted(set(ends))]
-        lines += [f"### {scene} {scene_params} {size}", "",
+        lines += [f"### {facet_title(key, totals)}", "",
                   f"| technique | params | median total ms | {args.metric} | front |", "|---|---|---|---|---|"]
         for index, row in points.sort_values(["time_ms", "error"]).iterrows():
             lines.append(f"| {row['technique']} | {params[index]} | {row['time_ms']:.2f} | {row['error']:.3g} | "

@@ -185,7 +185,7 @@ class ReadmeExamplesTest(unittest.TestCase):
     def test_pareto_table_marks_the_front(self):
         with open(self.path("pareto.md")) as f:
             table = f.read()
-        self.assertIn(f"### quads {QUADS} 64x64", table)
+        self.assertIn(f"### quads {QUADS} | 64x64\n", table)
         self.assertEqual(table.count("| front |"), 6 + 2)  # 3 front runs per scene, one header per scene
 
     def test_merge_joins_the_shards(self):
