@@ -79,11 +79,27 @@ def title(runs, what):
 
 
 def stage_order(runs):
-    """The stage names of `runs` in the order they first appear in the CSV:
-    a run writes its stages in the order they first ran, so this is pipeline
-    order, whatever stages a technique declares (docs/ARCHITECTURE.md,
-    "Stages and timing"); `total` and the empty stage of a failed run are left out."""
-    return [s for s in dict.fromkeys(runs["stage"]) if s and s != "total"]
+    """The stage names of `runs` in pipeline order: a run writes its stages
+    in the order they first ran (docs/ARCHITECTURE.md, "Stages and timing"),
+    so every stage comes after those that precede it in any run (each
+    run_id, or each technique in a CSV without run ids); stages no run
+    orders stay in the order they first appear in the CSV, as do stages
+    whose runs disagree. `total` and the empty stage of a failed run are
+    left out."""
+    named = runs[(runs["stage"] != "total") & (runs["stage"].astype(str) != "")]
+    first_seen = list(dict.fromkeys(named["stage"]))
+    key = named["run_id"] if "run_id" in named and (named["run_id"] != "").all() else named["technique"]
+    before = {stage: set() for stage in first_seen}
+    for _, stages in named["stage"].groupby(key, sort=False):
+        sequence = list(dict.fromkeys(stages))
+        for i, stage in enumerate(sequence):
+            before[stage].update(sequence[:i])
+    order = []
+    while len(order) < len(first_seen):
+        left = [s for s in first_seen if s not in order]
+        ready = [s for s in left if before[s] <= set(order)]
+        order.append(ready[0] if ready else left[0])  # no stage ready: the runs disagree, take the CSV's order
+    return order
 
 
 def stage_table(runs, index):

@@ -72,6 +72,18 @@ class PlotStagesTest(unittest.TestCase):
             table = common.stage_table(runs, "technique")
             self.assertEqual(list(table.columns), ["clear", "build_histogram", "fill", "blend_tail", "total"])
 
+    def test_stage_order_follows_every_runs_pipeline_not_only_the_first_rows(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            csv = os.path.join(tmp, "runs.csv")
+            fx.write_csv(csv, [fx.row("unsorted", "fill", 1.0)] +
+                         [fx.row("linearized_fragment_buffer", s, 1.0) for s in ("count", "fill", "compose")] +
+                         [fx.row("linked_list", s, 1.0) for s in ("clear", "fill", "compose")] +
+                         [fx.row("disagrees", s, 1.0) for s in ("compose", "fill")])
+            runs = plot_stages.load_runs(csv)
+            self.assertEqual(common.stage_order(runs), ["count", "clear", "fill", "compose"])
+            self.assertEqual(common.stage_order(runs[runs["technique"] != "disagrees"]),
+                             ["count", "clear", "fill", "compose"])
+
     def test_no_matching_rows_is_a_clear_error(self):
         with tempfile.TemporaryDirectory() as tmp:
             csv = os.path.join(tmp, "runs.csv")
