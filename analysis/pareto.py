@@ -128,12 +128,20 @@ def draw_configuration(points, title, metric):
 
 def figures(totals, defaults, metric, prefix):
     """(file name, figure, front) for each configuration of `totals`, one
-    at a time; every name is checked before the first figure."""
+    at a time; every name is checked before the first figure. Runs without
+    a time or `metric` are left out, and stderr says how many."""
     totals = totals.copy()
     short = presentation.short_params(totals, defaults)
     totals["short"] = totals["technique"] + short.map(lambda s: f" {s}" if s else "")
     names = file_names(totals, prefix)
     for key, points in totals.groupby(presentation.FACET_COLUMNS):
+        measured = points.dropna(subset=["time_ms", "error"])
+        if len(measured) < len(points):  # e.g. a bench without --reference writes no error
+            print(f"{presentation.facet_title(key, totals)}: {len(points) - len(measured)} run(s) without a time or "
+                  f"{metric} left out", file=sys.stderr)
+        if measured.empty:
+            continue
+        points = measured
         title = presentation.facet_title(key, totals) + "\n" + presentation.caption(points, "Run time against error",
                                                                                     defaults)
         yield (names[key],) + draw_configuration(points, title, metric)

@@ -224,6 +224,19 @@ class ParetoNamesTest(unittest.TestCase):
             pareto.file_names(self.totals(rows), "p")
         self.assertIn("several configurations would be written to p_model_name-a-b_64x64.png", str(raised.exception))
 
+    def test_runs_without_an_error_are_left_out_and_said(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "sweep.csv")
+            fx.write_csv(path, [fx.row("unsorted", "total", 1.0, error_rmse=0.1),
+                                fx.row("kbuffer", "total", 2.0, params="k=4"),
+                                fx.row("kbuffer", "total", 2.0, scene="spheres", scene_params="count=3")])
+            result = subprocess.run([sys.executable, "-m", "analysis.pareto", path, "--oitbench", OITBENCH],
+                                    cwd=os.path.join(HERE, ".."), capture_output=True, text=True, check=True)
+            self.assertEqual(result.stderr, "quads layers=32 | 64x64: 1 run(s) without a time or error_rmse left out\n"
+                                            "spheres count=3 | 64x64: 1 run(s) without a time or error_rmse left "
+                                            "out\n")
+            self.assertEqual(sorted(os.listdir(tmp)), ["sweep.csv", "sweep_quads_64x64.png", "sweep_quads_64x64.svg"])
+
     def test_a_replaced_plot_is_said(self):
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "sweep.csv")
