@@ -34,6 +34,7 @@ from analysis.common import stage_order  # noqa: E402
 from analysis.results_io import read_results  # noqa: E402
 
 TIMES = ["median_ms", "p05_ms", "p95_ms"]
+MAX_HEIGHT_IN = 400
 
 
 def load_runs(path, scene=None, clock=None):
@@ -121,9 +122,12 @@ def draw(runs, defaults):
     lines = [sum(bar_label(label, row).count("\n") + 1 for label, row in table.iterrows()) for _, table in facets]
     heights = [0.2 * n + 0.25 * len(table) for n, (_, table) in zip(lines, facets)]
     legend_rows = math.ceil((len(stages) + 1) / 5)
+    height = 0.9 + 0.3 * legend_rows + sum(h + 1.0 for h in heights)
+    if height > MAX_HEIGHT_IN:  # a PNG is at most 2^16 pixels high
+        raise ValueError(f"{len(facets)} scene configurations do not fit one figure ({height:.0f} in high): choose "
+                         f"some with --scene or --clock")
     with plt.rc_context(presentation.READABLE):
-        fig = plt.figure(figsize=(8.5, 0.9 + 0.3 * legend_rows + sum(h + 1.0 for h in heights)),
-                         layout="constrained")
+        fig = plt.figure(figsize=(8.5, height), layout="constrained")
         grid = fig.add_gridspec(len(facets) + 1, 1, height_ratios=[0.3 * legend_rows] + heights)
         for i, (key, table) in enumerate(facets):
             draw_facet(fig.add_subplot(grid[i + 1]), table, stages, colors, presentation.facet_title(key, runs))

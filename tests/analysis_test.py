@@ -196,6 +196,13 @@ class StageFacetsTest(unittest.TestCase):
             self.draw(stage_rows("kbuffer", "k=16", "layers=32") + stage_rows("kbuffer", "", "layers=32"))
         self.assertIn("labels kbuffer each name several configurations", str(raised.exception))
 
+    def test_more_configurations_than_a_png_can_hold_are_an_error(self):
+        rows = [fx.row("unsorted", s, 1.0, scene_params=f"layers={n}") for n in range(300) for s in ("fill", "total")]
+        with self.assertRaises(ValueError) as raised:
+            self.draw(rows)
+        self.assertIn("300 scene configurations do not fit one figure (436 in high): choose some with --scene or "
+                      "--clock", str(raised.exception))
+
     def test_out_must_be_a_png(self):
         result = subprocess.run([sys.executable, "-m", "analysis.plot_stages", "runs.csv", "--out", "x.jpg"],
                                 cwd=os.path.join(HERE, ".."), capture_output=True, text=True)
