@@ -244,6 +244,17 @@ class ParetoNamesTest(unittest.TestCase):
                                             "out\n")
             self.assertEqual(sorted(os.listdir(tmp)), ["sweep.csv", "sweep_quads_64x64.png", "sweep_quads_64x64.svg"])
 
+    def test_every_text_is_at_least_9_points_and_the_front_is_listed(self):
+        rows = [fx.row("kbuffer", "total", ms, params=f"k={k} tail=drop", error_rmse=err)
+                for k, ms, err in ((4, 1.0, 0.1), (16, 3.0, 0.0), (8, 2.0, 0.2))]
+        (name, fig, front), = pareto.figures(self.totals(rows), DEFAULTS, "error_rmse", "p")
+        self.assertEqual(name, "p_quads_64x64.png")
+        self.assertEqual(list(front["short"]), ["kbuffer k=4", "kbuffer"])
+        fig.canvas.draw()
+        texts = [t for t in fig.findobj(matplotlib.text.Text) if t.get_text() and t.get_visible()]
+        self.assertIn("Pareto front, fastest first:\n1 kbuffer k=4\n2 kbuffer", [t.get_text() for t in texts])
+        self.assertGreaterEqual(min(t.get_fontsize() for t in texts), presentation.SMALLEST_POINTS)
+
     def test_a_replaced_plot_is_said(self):
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "sweep.csv")
