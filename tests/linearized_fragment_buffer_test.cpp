@@ -18,15 +18,24 @@ namespace {
 // Float blending of up to 136 layers against the reference's double blend.
 constexpr double kFloatTolerance = 1e-5;
 
-// sort x block size x backwards allocation: the network with and without
-// length classes, register blocks of 8 and 16 (two and four blocks on 32
-// layers), and blocks without classes.
+// sort x block size x backwards allocation x node layout: the network with
+// and without length classes, register blocks of 8 and 16 (two and four
+// blocks on 32 layers), and blocks without classes; on unlit scenes (quads,
+// random quads) flat-colour 8-byte nodes by default, 24-byte nodes with
+// flat_color_nodes=false.
 const std::vector<RawParams> kOptions = {
     {{"sort", "network"}},
     {{"sort", "network"}, {"backwards_allocation", "false"}},
     {{"sort", "register_block"}, {"block_size", "8"}},
     {{"sort", "register_block"}, {"block_size", "16"}},
-    {{"sort", "register_block"}, {"block_size", "8"}, {"backwards_allocation", "false"}}};
+    {{"sort", "register_block"}, {"block_size", "8"}, {"backwards_allocation", "false"}},
+    {{"sort", "network"}, {"flat_color_nodes", "false"}},
+    {{"sort", "register_block"}, {"block_size", "8"}, {"flat_color_nodes", "false"}}};
+
+bool flat_nodes(const RawParams& params) {
+  const auto it = params.find("flat_color_nodes");
+  return it == params.end() || it->second == "true";
+}
 
 std::string describe(const RawParams& params) {
   std::string text;
@@ -71,11 +80,14 @@ TEST(LinearizedFragmentBuffer, EveryOptionMatchesTheReferenceOnThirtyTwoQuadsWit
     EXPECT_EQ(r.counters.fragments_dropped, 0u) << what;
     EXPECT_EQ(r.counters.overflow_retries, 0u) << what;
     EXPECT_EQ(r.counters.passes, 2u) << what << ": the count and the fill";
-    // 24 B per fragment, 12 B per pixel, the overflow word and the total,
-    // the prefix sum's block totals (2305 values: 3 blocks, then 1) and one
-    // length class (every list is 32 long: one full-screen draw).
+    // 24 B per fragment (8 B and the 64 triangles' flat colours, 16 B
+    // each, with flat-colour nodes), 12 B per pixel, the overflow word and
+    // the total, the prefix sum's block totals (2305 values: 3 blocks, then
+    // 1) and one length class (every list is 32 long: one full-screen draw).
     const uint64_t tiles = (w / 4) * (h / 4);
-    EXPECT_EQ(r.counters.bytes_allocated, 24 * fragments + 12 * pixels + 8 + (3 + 1) * 4 + (16 + 4 * tiles)) << what;
+    const uint64_t nodes = flat_nodes(params) ? 8 * fragments + 64 * 16 : 24 * fragments;
+    EXPECT_EQ(r.counters.bytes_allocated, nodes + 12 * pixels + 8 + (3 + 1) * 4 + (16 + 4 * tiles)) << what;
+    EXPECT_EQ(find_figure(r.counters.extra, "node_bytes"), flat_nodes(params) ? 8.0 : 24.0) << what;
   }
 }
 
@@ -84,6 +96,8 @@ TEST(LinearizedFragmentBuffer, EveryOptionMatchesTheReferenceOnSpheresAndUnevenL
     const std::string what = describe(params);
     const RunResult spheres = test::render_once("linearized_fragment_buffer", params, "spheres", {}, 48, 48);
     EXPECT_LT(spheres.error->max_abs, kFloatTolerance) << what << "spheres";
+    // The spheres are lit: their colour is not the triangle's, so the nodes keep it.
+    EXPECT_EQ(find_figure(spheres.counters.extra, "node_bytes"), 24.0) << what;
     EXPECT_EQ(spheres.counters.fragments_stored, spheres.scene_fragments) << what;
     // Lists of 2..23 fragments: classes 1, 8, 16 and 32; 37x29 cuts tiles at the edges.
     const RunResult uneven = test::render_once("linearized_fragment_buffer", params, "random_quads", {}, 37, 29);

@@ -19,8 +19,10 @@ void main() {
   const int pixel = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
   // No bounds check here: lengths.comp checks every pixel's range once.
   const uint slot = imageAtomicAdd(u_cursors, pixel, 1u);
-  const uvec4 color = floatBitsToUint(oit_shade());
   imageStore(u_nodes, lfb_key_texel(slot), uvec4(lfb_depth_order(floatBitsToUint(oit_view_depth())), oit_triangle_id(), 0u, 0u));
+#if !defined(LFB_FLAT_COLOR)
+  const uvec4 color = floatBitsToUint(oit_shade());
   imageStore(u_nodes, lfb_key_texel(slot) + 1, color.xyyy);
   imageStore(u_nodes, lfb_key_texel(slot) + 2, color.zwww);
+#endif
 }

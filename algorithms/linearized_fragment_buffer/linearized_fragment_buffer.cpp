@@ -31,8 +31,10 @@ namespace oit {
 namespace {
 
 // Per fragment one 24-byte node (storage.glsl): the key (view depth in
-// unsigned order, triangle id) and the RGBA32F colour, read as RG32UI texels.
-constexpr uint64_t kNodeBytes = 24, kTexelBytes = 8;
+// unsigned order, triangle id) and the RGBA32F colour, read as RG32UI texels;
+// on unlit scenes with flat_color_nodes, the 8-byte key alone (the colour is
+// the triangle's, fetched by its id from the scene's flat-colour table).
+constexpr uint64_t kNodeBytes = 24, kFlatNodeBytes = 8, kTexelBytes = 8;
 // Per pixel: the R32F count, the offset and the fill cursor; the offsets
 // have one more value (the total).
 constexpr uint64_t kPixelBytes = 12;
@@ -41,8 +43,9 @@ constexpr GLuint kOffsetsBinding = OIT_FIRST_TECHNIQUE_BINDING + 0, kCursorsBind
 constexpr GLint kPixelsLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 2;
 // The nodes on image unit 0, the fill's cursors on image unit 2; the offsets
 // on texture unit 1 and, in the resolve, the cursors (the lengths) on texture
-// unit 2, where classify.comp reads them too.
-constexpr GLuint kNodesImageUnit = 0, kCursorsImageUnit = 2, kOffsetsUnit = 1, kLengthsUnit = 2;
+// unit 2, where classify.comp reads them too; unit 3 holds tile.vert's class
+// tiles, unit 4 the scene's flat colours.
+constexpr GLuint kNodesImageUnit = 0, kCursorsImageUnit = 2, kOffsetsUnit = 1, kLengthsUnit = 2, kFlatColorsUnit = 4;
 constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
 // The smallest array compiled, as in linked_list: tiny lists are not worth a program each.
 constexpr uint32_t kSmallestArray = 8;
@@ -58,14 +61,14 @@ std::string macro_sequence(const std::string& macro, uint32_t count) {
 
 // The resolve's #defines for an array of `size` fragments: one network of
 // `size`, or blocks of `block` sorted by its network and merged.
-ShaderDefines resolve_defines(uint32_t size, bool blocks, uint32_t block) {
+ShaderDefines resolve_defines(uint32_t size, bool blocks, uint32_t block, bool flat) {
+  ShaderDefines defines = linked_list::resolve_defines("network", blocks ? block : size);
+  if (flat) defines.push_back({"LFB_FLAT_COLOR", "1"});
   if (!blocks) {
-    ShaderDefines defines = linked_list::resolve_defines("network", size);
     defines.push_back({"LFB_NETWORK", "1"});
     return defines;
   }
   const uint32_t count = (size + block - 1) / block;
-  ShaderDefines defines = linked_list::resolve_defines("network", block);
   defines.push_back({"LFB_BLOCKS", std::to_string(count)});
   defines.push_back({"LFB_FETCH_ALL", macro_sequence("LFB_FETCH", block)});
   defines.push_back({"LFB_STORE_ALL", macro_sequence("LFB_STORE", block)});
@@ -81,6 +84,7 @@ class LinearizedFragmentBuffer final : public Technique {
       : register_blocks_(params.choice("sort") == "register_block"),
         block_(uint32_t(std::stoul(params.choice("block_size")))),
         backwards_allocation_(params.boolean("backwards_allocation")),
+        flat_color_nodes_(params.boolean("flat_color_nodes")),
         fill_(build_geometry_program("algorithms/linearized_fragment_buffer/fill.frag")),
         lengths_(build_compute_program("algorithms/linearized_fragment_buffer/lengths.comp")),
         mismatched_(make_buffer(4)),
@@ -100,7 +104,8 @@ class LinearizedFragmentBuffer final : public Technique {
     class_capacity_ = 0;
     pool_.reset(1);  // the prefix sum sizes it before every fill
     framebuffer_ = make_attachmentless_framebuffer(width, height);
-    glProgramUniform1i(fill_.id(), kWidthLocation, width);
+    for (const Program* fill : {&fill_, &fill_flat_})
+      if (fill->id() != 0) glProgramUniform1i(fill->id(), kWidthLocation, width);
     for (auto& [size, program] : programs_) glProgramUniform1i(program.id(), kWidthLocation, width);
     gl_check("allocating the linearized fragment buffer's per-pixel storage");
   }
@@ -109,6 +114,8 @@ class LinearizedFragmentBuffer final : public Technique {
     {
       // The counting pass and the prefix sum: everything that sizes the frame.
       auto count = frame.clock.stage("count");
+      flat_ = flat_color_nodes_ && frame.scene.flat_colors_view() != 0;
+      pool_.set_record_bytes(node_bytes());
       longest_ = list_lengths_.longest_list(frame);
       prefix_sum_.scan_counts(list_lengths_.counts(), width_, offsets_);
       GLuint total = 0;
@@ -129,21 +136,23 @@ class LinearizedFragmentBuffer final : public Technique {
     glBindImageTexture(kCursorsImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
     glBindTextureUnit(kOffsetsUnit, offsets_view_.id());
     glBindTextureUnit(kLengthsUnit, cursors_view_.id());
+    if (flat_) glBindTextureUnit(kFlatColorsUnit, frame.scene.flat_colors_view());
     const std::vector<uint32_t> sizes = class_sizes();
     if (sizes.size() > class_capacity_) {
       class_capacity_ = sizes.size();
       classes_.resize(width_, height_, class_capacity_);
     }
     classes_.draw(frame, sizes, [&](uint32_t size) { return program(size); });
-    for (GLuint unit : {kOffsetsUnit, kLengthsUnit}) glBindTextureUnit(unit, 0);
+    for (GLuint unit : {kOffsetsUnit, kLengthsUnit, kFlatColorsUnit}) glBindTextureUnit(unit, 0);
     glBindImageTexture(kNodesImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32UI);
   }
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
     const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
-    c.bytes_allocated = pixels * kPixelBytes + 4 + prefix_sum_.bytes_allocated() + pool_.capacity() * kNodeBytes +
-                        4 + (class_capacity_ > 0 ? classes_.bytes_allocated() : 0);
+    c.bytes_allocated = pixels * kPixelBytes + 4 + prefix_sum_.bytes_allocated() + pool_.capacity() * node_bytes() +
+                        4 + (class_capacity_ > 0 ? classes_.bytes_allocated() : 0) + flat_table_bytes_;
+    c.extra.push_back({"node_bytes", double(node_bytes())});
     c.fragments_stored = fragments_;
     c.passes = 2;
     c.overflow_retries = pool_.overflow_retries();
@@ -155,7 +164,12 @@ class LinearizedFragmentBuffer final : public Technique {
     auto fill = frame.clock.stage("fill");
     glBindImageTexture(kNodesImageUnit, nodes_view_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32UI);
     glBindImageTexture(kCursorsImageUnit, cursors_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-    draw_scene_pass(frame, fill_, framebuffer_);
+    if (flat_ && fill_flat_.id() == 0) {
+      fill_flat_ = build_geometry_program("algorithms/linearized_fragment_buffer/fill.frag", {{"LFB_FLAT_COLOR", "1"}});
+      glProgramUniform1i(fill_flat_.id(), kWidthLocation, width_);
+    }
+    flat_table_bytes_ = flat_ ? frame.scene.flat_colors_bytes() : 0;
+    draw_scene_pass(frame, flat_ ? fill_flat_ : fill_, framebuffer_);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     cursors_to_lengths();
   }
@@ -198,32 +212,36 @@ class LinearizedFragmentBuffer final : public Technique {
   // blocks when sort=register_block and the array is larger than a block, or
   // when the array is larger than the largest network.
   GLuint program(uint32_t size) {
-    auto it = programs_.find(size);
+    auto it = programs_.find({size, flat_});
     if (it == programs_.end()) {
       const bool blocks = size > block_ && (register_blocks_ || size > kLargestNetwork);
       Program built = build_program({{GL_VERTEX_SHADER, "algorithms/linked_list/tile.vert"},
                                      {GL_FRAGMENT_SHADER, "algorithms/linearized_fragment_buffer/resolve.frag"}},
-                                    linked_list::tile_defines(resolve_defines(size, blocks, block_)));
-      it = programs_.emplace(size, std::move(built)).first;
+                                    linked_list::tile_defines(resolve_defines(size, blocks, block_, flat_)));
+      it = programs_.emplace(std::make_pair(size, flat_), std::move(built)).first;
       glProgramUniform1i(it->second.id(), kWidthLocation, width_);
     }
     return it->second.id();
   }
 
+  uint64_t node_bytes() const { return flat_ ? kFlatNodeBytes : kNodeBytes; }
+
   void allocate_pool(uint64_t capacity) {
-    nodes_ = make_buffer(GLsizeiptr(capacity * kNodeBytes));
+    nodes_ = make_buffer(GLsizeiptr(capacity * node_bytes()));
     nodes_view_ = make_buffer_texture(nodes_, GL_RG32UI);
   }
 
   bool register_blocks_;
   uint32_t block_;
-  bool backwards_allocation_;
-  Program fill_, lengths_;
+  bool backwards_allocation_, flat_color_nodes_;
+  bool flat_ = false;  // this frame stores flat-colour nodes
+  uint64_t flat_table_bytes_ = 0;
+  Program fill_, fill_flat_, lengths_;
   ListLengthPass list_lengths_;
   lfb::PrefixSum prefix_sum_;
   linked_list::LengthClasses classes_;
   size_t class_capacity_ = 0;
-  std::map<uint32_t, Program> programs_;  // resolves by array size
+  std::map<std::pair<uint32_t, bool>, Program> programs_;  // resolves by (array size, flat colours)
   Buffer offsets_, cursors_, mismatched_, nodes_;
   Texture offsets_view_, cursors_view_, nodes_view_;
   Framebuffer framebuffer_;
@@ -250,13 +268,20 @@ void register_technique_linearized_fragment_buffer(TechniqueRegistry& registry) 
       ParamSpec::boolean("backwards_allocation", true,
                          "resolve each 4x4 tile with the smallest array that holds its longest list (backwards "
                          "memory allocation, Knowles et al. 2013; 0/1-fragment tiles unsorted); false: one "
-                         "full-screen resolve sized for the frame's longest list")};
+                         "full-screen resolve sized for the frame's longest list"),
+      ParamSpec::boolean("flat_color_nodes", true,
+                         "unlit scenes (every fragment has its triangle's flat colour): 8-byte nodes holding the "
+                         "sort key alone, the exact colour fetched by triangle id in the resolve; false, or lit "
+                         "scenes: 24-byte nodes with the float colour")};
   d.stages = {"count", "fill", "compose"};
   d.exactness = Exactness::exact;
   d.adaptive_switches = {
       {"backwards_allocation", "resolves each 4x4 tile with the smallest array that holds its longest list instead "
        "of the frame's largest array everywhere",
-       {{"backwards_allocation", "true"}}, {{"backwards_allocation", "false"}}}};
+       {{"backwards_allocation", "true"}}, {{"backwards_allocation", "false"}}},
+      {"flat_color_nodes", "stores 8-byte keys on unlit scenes and fetches each fragment's flat colour by triangle id "
+       "instead of storing 24-byte nodes with the colour",
+       {{"flat_color_nodes", "true"}}, {{"flat_color_nodes", "false"}}}};
   d.create = [](const ParamSet& params) { return std::make_unique<LinearizedFragmentBuffer>(params); };
   d.storage_need = [](const ParamSet&, const FrameContent& content) {
     const uint64_t fragments = std::max<uint64_t>(content.fragments, 1);

@@ -22,9 +22,18 @@ layout(binding = 0, rg32ui) uniform uimageBuffer u_nodes;
 layout(binding = 0, rg32ui) readonly uniform uimageBuffer u_nodes;
 #endif
 uvec2 key_of(uint slot) { return imageLoad(u_nodes, lfb_key_texel(slot)).xy; }
-vec4 color_of(uint slot) {
-  const int at = lfb_key_texel(slot);
+#if defined(LFB_FLAT_COLOR)
+// The scene's flat colour of each stable triangle id (storage.glsl).
+layout(binding = 4) uniform samplerBuffer u_flat_colors;  // unit 3: tile.vert's class tiles
+#endif
+// The colour of element e (x: key, y: triangle id, z: slot; below).
+vec4 color_of(uvec3 e) {
+#if defined(LFB_FLAT_COLOR)
+  return texelFetch(u_flat_colors, int(e.y));
+#else
+  const int at = lfb_key_texel(e.z);
   return uintBitsToFloat(uvec4(imageLoad(u_nodes, at + 1).xy, imageLoad(u_nodes, at + 2).xy));
+#endif
 }
 layout(binding = 1) uniform usamplerBuffer u_offsets;
 // The list lengths (lengths.comp); classify.comp reads them too.
@@ -62,7 +71,7 @@ uvec3 e[LL_CAPACITY];
     e[i] = uint(i) < available ? uvec3(key_of(at_i), at_i) : LFB_PAD; }
 
 #if defined(LFB_NETWORK)
-#define LL_BLEND(i) if (uint(i) < available) blend(color_of(e[i].z));
+#define LL_BLEND(i) if (uint(i) < available) blend(color_of(e[i]));
 
 void main() {
   const int pixel = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
@@ -75,17 +84,23 @@ void main() {
 }
 
 #elif defined(LFB_BLOCKS)
-vec4 colors[LL_CAPACITY];
 // After the block's network: its colours are read first, then keys and
 // colours are written back in sorted order (reads before writes: a slot may
-// be both read and overwritten). Each pixel owns its range: no races.
-#define LFB_FETCH(i) if (uint(i) < available) colors[i] = color_of(e[i].z);
+// be both read and overwritten). Each pixel owns its range: no races. Flat
+// colours live in the scene's table: only the keys move.
+#if defined(LFB_FLAT_COLOR)
+#define LFB_FETCH(i)
+#define LFB_STORE(i) if (uint(i) < available) imageStore(u_nodes, lfb_key_texel(base + uint(i)), e[i].xyyy);
+#else
+vec4 colors[LL_CAPACITY];
+#define LFB_FETCH(i) if (uint(i) < available) colors[i] = color_of(e[i]);
 #define LFB_STORE(i) if (uint(i) < available) { \
     const int at_i = lfb_key_texel(base + uint(i)); \
     const uvec4 bits_i = floatBitsToUint(colors[i]); \
     imageStore(u_nodes, at_i, e[i].xyyy); \
     imageStore(u_nodes, at_i + 1, bits_i.xyyy); \
     imageStore(u_nodes, at_i + 2, bits_i.zwww); }
+#endif
 #define LFB_SORT_BLOCK(b) { \
     const uint base = start + uint(b) * uint(LL_CAPACITY); \
     const uint available = count - min(count, uint(b) * uint(LL_CAPACITY)); \
@@ -114,7 +129,7 @@ void main() {
     uvec3 nearest = heads[0];
     uint winner = 0u;
     LFB_PICK_ALL
-    blend(color_of(nearest.z));
+    blend(color_of(nearest));
     // One load for whichever block advances (the slot after the winner's).
     const uint next = nearest.z + 1u;
     const uvec2 next_key = key_of(min(next, last));

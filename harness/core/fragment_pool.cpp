@@ -28,6 +28,12 @@ void FragmentPool::before_fill(const Frame& frame) {
   if (const uint64_t shrunk = fragment_pool::shrunk_capacity(capacity_, most)) allocate(shrunk);
 }
 
+void FragmentPool::set_record_bytes(uint64_t largest_record_bytes) {
+  if (largest_record_bytes == largest_record_bytes_) return;
+  largest_record_bytes_ = largest_record_bytes;
+  capacity_ = 0;  // whatever is held has the old layout's size
+}
+
 void FragmentPool::set_exact(uint64_t fragments) {
   if (std::max(fragments, smallest_) != capacity_) allocate(fragments);
 }

@@ -66,6 +66,10 @@ class FragmentPool {
   // Before the fill of `frame` (previous_frame: shrinks a pool far above
   // every tile's last need).
   void before_fill(const Frame& frame);
+  // A technique whose node layout depends on the scene (linearized_fragment_
+  // buffer's flat-colour nodes) says the bytes of its largest record before
+  // sizing; a change drops the buffers, which the next sizing allocates anew.
+  void set_record_bytes(uint64_t largest_record_bytes);
   // exact: the frame's fragments, from a counting pass.
   void set_exact(uint64_t fragments);
   // After the fill: true when its `produced` fragments fit; otherwise the

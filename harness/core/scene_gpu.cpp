@@ -1,6 +1,8 @@
 #include "harness/core/scene_gpu.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 #include <cstddef>
 
 #include "shaders/bindings.h"
@@ -50,6 +52,34 @@ SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
   uint_attribute(OIT_ATTRIB_SURFACE_ID, offsetof(Vertex, surface_id));
   float_attribute(OIT_ATTRIB_UV, 2, offsetof(Vertex, uv));
   float_attribute(OIT_ATTRIB_MEAN_CURVATURE, 1, offsetof(Vertex, mean_curvature));
+}
+
+GLuint SceneGpu::flat_colors_view() const {
+  if (!flat_colors_built_) build_flat_colors();
+  flat_colors_built_ = true;
+  return flat_colors_view_.id();
+}
+
+void SceneGpu::build_flat_colors() const {
+  if (scene_.lit) return;
+  const size_t triangles = scene_.triangle_count();
+  if (triangles == 0) return;
+  const uint32_t largest = *std::max_element(scene_.triangle_ids.begin(), scene_.triangle_ids.end());
+  GLint max_texels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+  // Sparse ids, or more than a buffer texture holds: no table.
+  if (uint64_t(largest) >= 4 * uint64_t(triangles) + 16 || uint64_t(largest) >= uint64_t(max_texels)) return;
+  std::vector<glm::vec4> colors(size_t(largest) + 1, glm::vec4(0.0f));
+  std::vector<bool> seen(colors.size(), false);
+  for (size_t t = 0; t < triangles; ++t) {
+    const uint32_t id = scene_.triangle_ids[t];
+    if (seen[id]) return;  // ids must be unique for the table to name one colour
+    seen[id] = true;
+    colors[id] = scene_.vertices[scene_.indices[3 * t + 2]].color;  // the provoking (last) vertex
+  }
+  flat_colors_ = make_buffer(GLsizeiptr(colors.size() * sizeof(glm::vec4)), colors.data(), 0);
+  flat_colors_view_ = make_buffer_texture(flat_colors_, GL_RGBA32F);
+  flat_colors_bytes_ = colors.size() * sizeof(glm::vec4);
 }
 
 void SceneGpu::bind() const {

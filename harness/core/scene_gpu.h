@@ -16,12 +16,29 @@ class SceneGpu {
   // One draw call over every triangle, so gl_PrimitiveID = triangle index.
   void draw() const;
   size_t bytes() const { return bytes_; }
+  // Unlit scenes shade every fragment with its triangle's flat colour
+  // (shading.glsl: v_color, read from the provoking vertex), so a technique
+  // that stores a fragment's stable triangle id can fetch its exact colour
+  // later instead of storing 16 bytes of it. This buffer texture (RGBA32F,
+  // indexed by stable triangle id) holds those colours; 0 for lit scenes and
+  // for scenes whose stable ids are not unique or are far larger than the
+  // triangle count (no table is worth building then). Built on the first
+  // call, so scenes pay nothing unless a technique asks; the technique counts
+  // flat_colors_bytes() in its memory.
+  GLuint flat_colors_view() const;
+  size_t flat_colors_bytes() const { return flat_colors_bytes_; }
   // Of every vertex, computed once here (the harness's scene rectangle).
   const BoundingBox& bounding_box() const { return box_; }
 
  private:
   const Scene& scene_;
+  void build_flat_colors() const;
+
   Buffer vertices_, indices_, triangle_ids_;
+  mutable Buffer flat_colors_;
+  mutable Texture flat_colors_view_;
+  mutable bool flat_colors_built_ = false;
+  mutable size_t flat_colors_bytes_ = 0;
   VertexArray vertex_array_;
   size_t bytes_ = 0;
   BoundingBox box_;
