@@ -15,6 +15,7 @@
 #include "harness/app/bench_files.h"
 
 #include "harness/app/commands.h"
+#include "harness/app/pareto.h"
 #include "harness/core/image.h"
 #include "tests/oitbench_process.h"
 #include "harness/core/results_csv.h"
@@ -452,6 +453,34 @@ TEST(Cli, ExportWideHasAColumnPerParameterFigureAndStage) {
     EXPECT_GE(matched, 4u);  // fill and total (at least), each on both clocks
   }
   EXPECT_EQ(ks, (std::set<std::string>{"2", "4"}));
+}
+
+TEST(Cli, ExportOfAMissingCsvIsAnErrorNamingIt) {
+  const std::string missing = kOut + "/no_such_results.csv", out = kOut + "/never_wide.csv";
+  std::filesystem::remove(out);
+  const Outcome o = run_oitbench("export --wide " + missing + " -o " + out);
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("oitbench: error: results CSV '" + missing + "' does not exist or is empty"),
+            std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// pareto sweeps each technique's declared knobs, except one the user's --set
+// already names, which keeps the user's values.
+TEST(Cli, ParetoSweepsTheDeclaredKnobsUnlessTheUserSetsThem) {
+  SweepOptions sweep;
+  sweep.techniques = {"kbuffer"};
+  const auto& declared = builtin_techniques().get("kbuffer").quality_sweep;
+  ASSERT_FALSE(declared.empty());
+  const SweepOptions all_knobs = pareto_sweep(sweep, builtin_techniques());
+  EXPECT_EQ(all_knobs.technique_sets.size(), declared.size());
+  const std::string knob = declared.begin()->first;
+  sweep.technique_sets = {knob + "=4"};
+  const SweepOptions user = pareto_sweep(sweep, builtin_techniques());
+  EXPECT_EQ(user.technique_sets.size(), declared.size());  // the user's set and the other knobs
+  EXPECT_EQ(user.technique_sets.front(), knob + "=4");
+  for (size_t i = 1; i < user.technique_sets.size(); ++i)
+    EXPECT_EQ(user.technique_sets[i].rfind("kbuffer." + knob + "=", 0), std::string::npos) << user.technique_sets[i];
 }
 
 // --json: this invocation's runs with the CSV's figures and every frame's
