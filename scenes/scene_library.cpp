@@ -173,9 +173,26 @@ const std::vector<SceneDescriptor>& scene_library() {
   return library;
 }
 
+namespace {
+
+// A spec that is no library scene must be a scene file, without parameters.
+void check_scene_file_spec(const std::string& spec, const RawParams& params) {
+  if (is_gltf_file(spec) || is_mesh_file(spec)) {
+    if (!params.empty()) throw std::invalid_argument("scene file '" + spec + "' takes no scene parameters");
+    return;
+  }
+  std::string names;
+  for (const auto& descriptor : scene_library()) names += (names.empty() ? "" : ", ") + descriptor.id;
+  throw std::invalid_argument("unknown scene '" + spec + "': expected one of " + names +
+                              " or a .gltf/.glb/.obj/.off/.ply/.stl file");
+}
+
+}  // namespace
+
 std::string canonical_scene_params(const std::string& spec, const RawParams& params) {
   for (const auto& descriptor : scene_library())
     if (descriptor.id == spec) return ParamSet(descriptor.params, params, "scene '" + spec + "'").canonical();
+  check_scene_file_spec(spec, params);
   return "";
 }
 
@@ -188,14 +205,8 @@ Scene load_scene(const std::string& spec, const RawParams& params) {
     scene.validate();
     return scene;
   }
-  if (is_gltf_file(spec) || is_mesh_file(spec)) {
-    if (!params.empty()) throw std::invalid_argument("scene file '" + spec + "' takes no scene parameters");
-    return load_scene_file(spec);
-  }
-  std::string names;
-  for (const auto& descriptor : scene_library()) names += (names.empty() ? "" : ", ") + descriptor.id;
-  throw std::invalid_argument("unknown scene '" + spec + "': expected one of " + names +
-                              " or a .gltf/.glb/.obj/.off/.ply/.stl file");
+  check_scene_file_spec(spec, params);
+  return load_scene_file(spec);
 }
 
 }  // namespace oit

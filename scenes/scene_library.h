@@ -27,7 +27,8 @@ Scene load_scene(const std::string& spec, const RawParams& params);
 
 // The canonical parameters load_scene gives the scene (`Scene::params`:
 // defaults filled in; "" for a file) without building or reading anything;
-// throws like load_scene on an invalid value.
+// throws like load_scene on an invalid value, an unknown scene id, or
+// parameters given to a file (a missing file is load_scene's to find).
 std::string canonical_scene_params(const std::string& spec, const RawParams& params);
 
 // The typed parameters of the `stress_layers` scene (for its closed form).

@@ -12,7 +12,10 @@
 #include <set>
 #include <sstream>
 
+#include "harness/app/bench_files.h"
+
 #include "harness/app/commands.h"
+#include "harness/app/pareto.h"
 #include "harness/core/image.h"
 #include "tests/oitbench_process.h"
 #include "harness/core/results_csv.h"
@@ -28,6 +31,12 @@ using test::Outcome;
 const std::string kOut = std::string(OIT_BINARY_DIR) + "/test_output/cli";
 
 Outcome run_oitbench(const std::string& arguments) { return test::run_oitbench(kOut, arguments); }
+
+// The output with the console's wrapped lines (continued after "\n    ") joined again.
+std::string unwrapped(std::string text) {
+  for (size_t at = text.find("\n    "); at != std::string::npos; at = text.find("\n    ", at)) text.replace(at, 5, " ");
+  return text;
+}
 
 
 // The README's technique table sits between these markers, written by
@@ -113,8 +122,11 @@ TEST(Cli, BenchSummaryNamesTheSweptSceneParameters) {
   const Outcome o = run_oitbench("bench --technique unsorted --scene quads --scene-set layers=2,3 --size 8x8 "
                                  "--frames 1 --warmup 0 --csv " + csv);
   ASSERT_EQ(o.exit_code, 0) << o.output;
-  EXPECT_NE(o.output.find("quads layers=2 "), std::string::npos) << o.output;
-  EXPECT_NE(o.output.find("quads layers=3 "), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("-- quads layers=2, 8x8\n"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("-- quads layers=3, 8x8\n"), std::string::npos) << o.output;
+  // The progress lines tell the two apart too.
+  EXPECT_NE(o.output.find("[1/2] unsorted on quads layers=2 8x8 ... "), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("[2/2] unsorted on quads layers=3 8x8 ... "), std::string::npos) << o.output;
 }
 
 TEST(Cli, BadParameterExitsNonZeroNamingTheKey) {
@@ -177,7 +189,7 @@ TEST(Cli, BenchRunWithoutAReferenceKeepsItsTimingsAndSaysWhy) {
   const Outcome o = run_oitbench("bench --technique unsorted --scene quads --size 16x16 --warmup 0 --frames 1 "
                                  "--background 0.5,0.25,0.125 --memory-budget 64 --csv " + csv);
   EXPECT_EQ(o.exit_code, 0) << o.output;
-  EXPECT_NE(o.output.find("no reference image"), std::string::npos) << o.output;
+  EXPECT_NE(unwrapped(o.output).find("no reference image"), std::string::npos) << o.output;
   const test::CsvTable table = test::read_csv_table(csv);
   ASSERT_FALSE(table.rows.empty());
   for (const auto& row : table.rows) {
@@ -217,9 +229,11 @@ TEST(Cli, BenchResumeRunsNothingTwiceAndMatchesCanonicalParameters) {
   // k=16 is kbuffer's default and seed=1 the scene's: the rows written without them are the same runs.
   const Outcome second = run_oitbench(sweep + " --set kbuffer.k=16 --scene-set seed=1");
   ASSERT_EQ(second.exit_code, 0) << second.output;
-  EXPECT_NE(second.output.find("[1/2] unsorted on quads 16x16 ... already in " + csv + ", not run again"),
+  EXPECT_NE(unwrapped(second.output).find("[1/2] unsorted on quads layers=4 seed=1 16x16 ... already in " + csv +
+                                          ", not run again [elapsed "),
             std::string::npos) << second.output;
-  EXPECT_NE(second.output.find("[2/2] kbuffer k=16 on quads 16x16 ... already in " + csv + ", not run again"),
+  EXPECT_NE(unwrapped(second.output).find("[2/2] kbuffer k=16 on quads layers=4 seed=1 16x16 ... already in " + csv +
+                                          ", not run again [elapsed "),
             std::string::npos) << second.output;
   EXPECT_NE(second.output.find("runs: 0 done (0 ok, 0 error), 2 resumed"), std::string::npos) << second.output;
   EXPECT_EQ(read_csv(csv).size(), rows);
@@ -256,7 +270,8 @@ TEST(Cli, BenchResumeRunsErrorRowsAgainAndKeepsSkippedOnes) {
   const Outcome o = run_oitbench("bench --technique unsorted --technique kbuffer --scene quads --scene-set layers=4 "
                                  "--size 16x16 --warmup 0 --frames 1 --resume --csv " + csv);
   ASSERT_EQ(o.exit_code, 0) << o.output;
-  EXPECT_NE(o.output.find("[2/2] kbuffer on quads 16x16 ... already in"), std::string::npos) << o.output;
+  EXPECT_NE(unwrapped(o.output).find("[2/2] kbuffer on quads layers=4 16x16 ... already in"), std::string::npos)
+      << o.output;
   EXPECT_NE(o.output.find("runs: 1 done (1 ok, 0 error), 1 resumed"), std::string::npos) << o.output;
   EXPECT_EQ(rows_of(csv, "kbuffer").size(), 1u);  // only the old skipped row
   const auto unsorted = rows_of(csv, "unsorted");
@@ -264,6 +279,255 @@ TEST(Cli, BenchResumeRunsErrorRowsAgainAndKeepsSkippedOnes) {
   const size_t status = size_t(std::find(csv_columns().begin(), csv_columns().end(), "status") - csv_columns().begin());
   EXPECT_EQ(unsorted.front()[status], "error");
   EXPECT_EQ(unsorted.back()[status], "ok");
+}
+
+// ---- issue 21: output people can read and trust ----
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// A CSV cell ("1.23456") as the summary prints it ("1.23").
+std::string two_decimals(const std::string& cell) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", std::stod(cell));
+  return text;
+}
+
+// The summary's row of `technique` (the first line that starts with it and a space).
+std::string summary_row(const std::string& output, const std::string& technique) {
+  for (const auto& line : lines_of(output))
+    if (line.rfind(technique + " ", 0) == 0) return line;
+  return "";
+}
+
+TEST(Cli, BenchConsoleFitsIn120ColumnsWithSpreadRatioAndNonDefaultParameters) {
+  const std::string csv = kOut + "/summary.csv";
+  std::filesystem::remove(csv);
+  const Outcome o = run_oitbench("bench --technique kbuffer --technique unsorted --set kbuffer.k=4 "
+                                 "--set kbuffer.tail=drop --scene quads --scene-set layers=4 --size 16x16 "
+                                 "--warmup 0 --frames 3 --csv " + csv);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  for (const auto& line : lines_of(o.output)) EXPECT_LE(line.size(), 120u) << "'" << line << "'";
+  EXPECT_NE(o.output.find("technique                  params               status  median ms  p05-p95 ms      "
+                          "x unsorted max error   dropped noisy\n-- quads layers=4, 16x16\n"),
+            std::string::npos) << o.output;
+  // Progress: the runs told apart, the elapsed time, and what is left while runs remain.
+  EXPECT_NE(o.output.find("[1/2] kbuffer k=4 tail=drop on quads layers=4 16x16 ... "), std::string::npos) << o.output;
+  EXPECT_NE(unwrapped(o.output).find(" [elapsed 0:"), std::string::npos) << o.output;
+  EXPECT_NE(unwrapped(o.output).find(", ETA 0:"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("(x unsorted: median total over unsorted's in the same block"), std::string::npos)
+      << o.output;
+  // Rows: kbuffer names k (swept) and tail (given) but not auto_k_memory_mb (a default left alone).
+  const std::string unsorted = summary_row(o.output, "unsorted"), kbuffer = summary_row(o.output, "kbuffer");
+  ASSERT_FALSE(unsorted.empty()) << o.output;
+  ASSERT_FALSE(kbuffer.empty()) << o.output;
+  EXPECT_EQ(kbuffer.substr(27, 21), "k=4 tail=drop        ") << kbuffer;
+  EXPECT_EQ(unsorted.substr(27, 29), "                     ok      ") << unsorted;
+  EXPECT_EQ(unsorted.substr(83, 10), "      1.00") << unsorted;  // the baseline over itself
+  // The block is ordered fastest first; the CSV holds the same medians and spreads.
+  const double first = std::stod(o.output.substr(o.output.find("-- quads layers=4, 16x16\n") + 25 + 56, 9));
+  const double unsorted_ms = std::stod(unsorted.substr(56, 9)), kbuffer_ms = std::stod(kbuffer.substr(56, 9));
+  EXPECT_EQ(first, std::min(unsorted_ms, kbuffer_ms));
+  const test::CsvTable table = test::read_csv_table(csv);
+  for (const auto& row : table.rows) {
+    if (row[table.column("technique")] != "unsorted" || row[table.column("stage")] != "total") continue;
+    char expected[64];
+    std::snprintf(expected, sizeof expected, "%9.2f  %-15s", std::stod(row[table.column("median_ms")]),
+                  (two_decimals(row[table.column("p05_ms")]) + "-" +
+                   two_decimals(row[table.column("p95_ms")])).c_str());
+    EXPECT_EQ(unsorted.substr(56, 26), expected) << unsorted;
+  }
+}
+
+TEST(Cli, BenchWithoutTheBaselineDividesByTheFastestAndSaysSo) {
+  const std::string csv = kOut + "/no_baseline.csv";
+  std::filesystem::remove(csv);
+  const Outcome o = run_oitbench("bench --technique kbuffer --set k=2,4 --scene quads --scene-set layers=4 "
+                                 "--size 16x16 --warmup 0 --frames 2 --csv " + csv);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find(" x fastest "), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("(x fastest: unsorted did not run ok here, so ratios are over each block's fastest run)"),
+            std::string::npos) << o.output;
+  // The first row of the block is the fastest: 1.00.
+  const size_t block = o.output.find("-- quads layers=4, 16x16\n");
+  ASSERT_NE(block, std::string::npos) << o.output;
+  EXPECT_EQ(o.output.substr(block + 25 + 83, 10), "      1.00") << o.output;
+}
+
+// Every combination is checked before the first run: a bad value in the
+// sweep's last combination fails at once, names the value, writes nothing.
+TEST(Cli, BenchValidatesEveryCombinationBeforeTheFirstRun) {
+  const std::string csv = kOut + "/never_written.csv";
+  std::filesystem::remove(csv);
+  const Outcome k = run_oitbench("bench --technique unsorted --technique kbuffer --set k=4,abc --scene quads "
+                                 "--size 8x8 --csv " + csv);
+  EXPECT_EQ(k.exit_code, 1) << k.output;
+  EXPECT_NE(k.output.find("oitbench: error: run 3 of 3 of the sweep: technique 'kbuffer': parameter 'k' = 'abc' "
+                          "is not an integer; allowed: integer in [1, 64] or auto (nothing was run)\n"),
+            std::string::npos) << k.output;
+  EXPECT_EQ(k.output.find("[1/"), std::string::npos) << k.output;
+  EXPECT_FALSE(std::filesystem::exists(csv));
+
+  const Outcome scene = run_oitbench("bench --technique unsorted --scene quads --scene-set layers=2,0 --size 8x8 "
+                                     "--csv " + csv);
+  EXPECT_EQ(scene.exit_code, 1) << scene.output;
+  EXPECT_NE(scene.output.find("run 2 of 2 of the sweep: scene 'quads': parameter 'layers' = '0' is out of range"),
+            std::string::npos) << scene.output;
+  const Outcome unknown = run_oitbench("bench --technique unsorted --scene quads --scene no_such_scene --csv " + csv);
+  EXPECT_EQ(unknown.exit_code, 1) << unknown.output;
+  EXPECT_NE(unknown.output.find("run 2 of 2 of the sweep: unknown scene 'no_such_scene'"), std::string::npos)
+      << unknown.output;
+  const Outcome technique = run_oitbench("bench --technique no_such_technique --csv " + csv);
+  EXPECT_EQ(technique.exit_code, 1) << technique.output;
+  EXPECT_NE(technique.output.find("unknown technique 'no_such_technique'"), std::string::npos) << technique.output;
+  EXPECT_FALSE(std::filesystem::exists(csv));
+}
+
+// --help shows every default, and the commands that render share one size.
+TEST(Cli, HelpShowsEveryDefault) {
+  const Outcome bench = run_oitbench("bench --help");
+  EXPECT_EQ(bench.exit_code, 0) << bench.output;
+  for (const char* expected : {"--frames INT:INT in [1 - 100000]=10", "--warmup INT:INT in [0 - 1000]=2",
+                               "--size TEXT=[256x256] ...", "-t,--technique TEXT=[all] ...", "-s,--scene TEXT=[quads] ...",
+                               "--clock TEXT:{auto,gl,wall,both}=auto", "--baseline TEXT=unsorted",
+                               "--camera TEXT=[default] ...", "--background TEXT=0,0,0"})
+    EXPECT_NE(bench.output.find(expected), std::string::npos) << expected << "\n" << bench.output;
+  const Outcome pareto = run_oitbench("pareto --help");
+  EXPECT_NE(pareto.output.find("--size TEXT=[128x128] ..."), std::string::npos) << pareto.output;
+  EXPECT_NE(pareto.output.find("--frames INT:INT in [1 - 100000]=5"), std::string::npos) << pareto.output;
+  EXPECT_NE(pareto.output.find("smaller than bench's default"), std::string::npos) << pareto.output;
+  for (const char* command : {"render", "stats", "adaptive"}) {
+    const Outcome help = run_oitbench(std::string(command) + " --help");
+    EXPECT_NE(help.output.find("--size TEXT=256x256"), std::string::npos) << command << "\n" << help.output;
+  }
+  const Outcome adaptive = run_oitbench("adaptive --help");
+  EXPECT_NE(adaptive.output.find("--repeats INT:INT in [1 - 1000]=2"), std::string::npos) << adaptive.output;
+  const Outcome gbench = test::run_command(kOut, std::string(OIT_BINARY_DIR) + "/harness/oitbench_gbench --help");
+  EXPECT_NE(gbench.output.find("--size TEXT=[256x256] ..."), std::string::npos) << gbench.output;
+  EXPECT_NE(gbench.output.find("without it --benchmark_min_time decides"), std::string::npos) << gbench.output;
+}
+
+// The wide export: one row per run, every parameter, figure and stage time
+// in a column of its own, equal to the long CSV's cells.
+TEST(Cli, ExportWideHasAColumnPerParameterFigureAndStage) {
+  const std::string csv = kOut + "/long.csv", wide = kOut + "/wide.csv";
+  std::filesystem::remove(csv);
+  std::filesystem::remove(wide);
+  const Outcome bench = run_oitbench("bench --technique unsorted --technique kbuffer --set k=2,4 --scene quads "
+                                     "--scene-set layers=4 --size 16x16 --warmup 0 --frames 2 --clock both --csv " + csv);
+  ASSERT_EQ(bench.exit_code, 0) << bench.output;
+  const Outcome o = run_oitbench("export --wide " + csv + " -o " + wide);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const test::CsvTable long_form = test::read_csv_table(csv), table = test::read_csv_table(wide);
+  EXPECT_NE(o.output.find("3 runs, " + std::to_string(table.header.size()) + " columns -> " + wide), std::string::npos)
+      << o.output;
+  ASSERT_EQ(table.rows.size(), 3u);
+  for (const char* column : {"run_id", "technique", "param.k", "param.tail", "param.auto_k_memory_mb", "scene.layers",
+                             "total.wall.median_ms", "total.gl.p95_ms", "fill.wall.median_ms", "error_max"})
+    EXPECT_LT(table.column(column), table.header.size()) << column;
+  EXPECT_EQ(table.column("stage"), table.header.size());  // folded into the stage columns
+  std::set<std::string> ks;
+  for (auto row : table.rows) {
+    ASSERT_EQ(row.size(), table.header.size());
+    row.push_back("<no such column>");  // what table.column() of a missing name reads
+    EXPECT_EQ(row[table.column("scene.layers")], "4");
+    const bool kbuffer = row[table.column("technique")] == "kbuffer";
+    if (kbuffer) ks.insert(row[table.column("param.k")]);
+    else EXPECT_EQ(row[table.column("param.k")], "");
+    // Every long row of this run: its time under <stage>.<clock>.<time>, its extra figures under extra.<name>.
+    size_t matched = 0;
+    for (const auto& long_row : long_form.rows) {
+      if (long_row[long_form.column("run_id")] != row[table.column("run_id")]) continue;
+      ++matched;
+      const std::string stage = long_row[long_form.column("stage")] + "." + long_row[long_form.column("clock")];
+      for (const char* time : {"median_ms", "min_ms", "p05_ms", "p95_ms", "mean_ms"})
+        EXPECT_EQ(row[table.column(stage + "." + time)], long_row[long_form.column(time)]) << stage << time;
+      std::istringstream extra(long_row[long_form.column("extra")]);
+      for (std::string pair; extra >> pair;)
+        EXPECT_EQ(row[table.column("extra." + pair.substr(0, pair.find('=')))], pair.substr(pair.find('=') + 1));
+    }
+    EXPECT_GE(matched, 4u);  // fill and total (at least), each on both clocks
+  }
+  EXPECT_EQ(ks, (std::set<std::string>{"2", "4"}));
+}
+
+TEST(Cli, ExportOfAMissingCsvIsAnErrorNamingIt) {
+  const std::string missing = kOut + "/no_such_results.csv", out = kOut + "/never_wide.csv";
+  std::filesystem::remove(out);
+  const Outcome o = run_oitbench("export --wide " + missing + " -o " + out);
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("oitbench: error: results CSV '" + missing + "' does not exist or is empty"),
+            std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// pareto sweeps each technique's declared knobs, except one the user's --set
+// already names, which keeps the user's values.
+TEST(Cli, ParetoSweepsTheDeclaredKnobsUnlessTheUserSetsThem) {
+  SweepOptions sweep;
+  sweep.techniques = {"kbuffer"};
+  const auto& declared = builtin_techniques().get("kbuffer").quality_sweep;
+  ASSERT_FALSE(declared.empty());
+  const SweepOptions all_knobs = pareto_sweep(sweep, builtin_techniques());
+  EXPECT_EQ(all_knobs.technique_sets.size(), declared.size());
+  const std::string knob = declared.begin()->first;
+  sweep.technique_sets = {knob + "=4"};
+  const SweepOptions user = pareto_sweep(sweep, builtin_techniques());
+  EXPECT_EQ(user.technique_sets.size(), declared.size());  // the user's set and the other knobs
+  EXPECT_EQ(user.technique_sets.front(), knob + "=4");
+  for (size_t i = 1; i < user.technique_sets.size(); ++i)
+    EXPECT_EQ(user.technique_sets[i].rfind("kbuffer." + knob + "=", 0), std::string::npos) << user.technique_sets[i];
+}
+
+// --json: this invocation's runs with the CSV's figures and every frame's
+// time; --samples: the same frames as CSV rows.
+TEST(Cli, BenchJsonAndSamplesHoldEveryFrameOfTheCsvRuns) {
+  const std::string csv = kOut + "/json_runs.csv", json_path = kOut + "/runs.json", samples = kOut + "/samples.csv";
+  for (const auto& path : {csv, json_path, samples}) std::filesystem::remove(path);
+  const Outcome o = run_oitbench("bench --technique unsorted --technique kbuffer --set kbuffer.k=4 --scene quads "
+                                 "--scene-set layers=4 --size 16x16 --warmup 0 --frames 3 --csv " + csv +
+                                 " --json " + json_path + " --samples " + samples);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  std::ifstream in(json_path);
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["device"].get<std::string>().rfind("llvmpipe", 0), 0u) << report["device"];
+  ASSERT_EQ(report["runs"].size(), 2u);
+  const auto& kbuffer = report["runs"][1];
+  EXPECT_EQ(kbuffer["technique"], "kbuffer");
+  EXPECT_EQ(kbuffer["params"]["k"], "4");
+  EXPECT_EQ(kbuffer["params"]["tail"], "drop");
+  EXPECT_EQ(kbuffer["scene_params"]["layers"], "4");
+  EXPECT_EQ(kbuffer["status"], "ok");
+  EXPECT_EQ(kbuffer["fragments"], 4 * 16 * 16);
+  const test::CsvTable table = test::read_csv_table(csv);
+  const test::CsvTable frames = test::read_csv_table(samples);
+  ASSERT_EQ(frames.header, sample_columns());
+  size_t stages = 0;
+  for (const auto& run : report["runs"]) {
+    for (const auto& stage : run["stages"]) {
+      ++stages;
+      ASSERT_EQ(stage["samples_ms"].size(), 3u);
+      EXPECT_EQ(stage["frames"], 3);
+      // The CSV's row of this run and stage holds the same median (to its 6 digits).
+      for (const auto& row : table.rows)
+        if (row[table.column("run_id")] == run["run_id"] && row[table.column("stage")] == stage["stage"])
+          EXPECT_NEAR(std::stod(row[table.column("median_ms")]), stage["median_ms"].get<double>(),
+                      1e-5 * stage["median_ms"].get<double>());
+      size_t frame = 0;
+      for (const auto& row : frames.rows)
+        if (row[frames.column("run_id")] == run["run_id"] && row[frames.column("stage")] == stage["stage"]) {
+          EXPECT_EQ(row[frames.column("frame")], std::to_string(frame));
+          EXPECT_NEAR(std::stod(row[frames.column("ms")]), stage["samples_ms"][frame].get<double>(), 1e-6);
+          ++frame;
+        }
+      EXPECT_EQ(frame, 3u) << run["technique"] << " " << stage["stage"];
+    }
+  }
+  EXPECT_EQ(frames.rows.size(), 3 * stages);
 }
 
 TEST(Cli, GoogleBenchmarkBinaryReportsManualTimeAndCounters) {
@@ -282,6 +546,39 @@ TEST(Cli, GoogleBenchmarkBinaryReportsManualTimeAndCounters) {
   EXPECT_GT(run["real_time"].get<double>(), 0.0);
   EXPECT_EQ(run["error_max"].get<double>(), 0.0);
   EXPECT_EQ(run["fragments"].get<double>(), 4.0 * 16 * 16);
+}
+
+// The README's promise: oitbench_gbench takes bench's sweep options
+// (--frames, --camera among them), and Google Benchmark's own flags decide
+// the iterations when --frames does not.
+TEST(Cli, GoogleBenchmarkBinaryTakesBenchSweepOptionsAndItsOwnIterationFlags) {
+  const std::string gbench = std::string(OIT_BINARY_DIR) + "/harness/oitbench_gbench --benchmark_format=json "
+                             "--technique unsorted --scene-set layers=4 --size 16x16 --warmup 0 ";
+  auto report_of = [&](const std::string& arguments) {
+    const std::string path = kOut + "/gbench_flags.json";
+    std::filesystem::remove(path);
+    EXPECT_EQ(std::system((gbench + arguments + " > " + path + " 2>/dev/null").c_str()), 0) << arguments;
+    std::ifstream in(path);
+    return nlohmann::json::parse(in);
+  };
+  const nlohmann::json fixed = report_of("--frames 3 --camera random:2:7");
+  ASSERT_EQ(fixed["benchmarks"].size(), 2u) << fixed.dump(2);
+  EXPECT_EQ(fixed["benchmarks"][0]["name"], "unsorted/scene:quads/layers:4/16x16/camera:random:2:7@0/iterations:3/manual_time");
+  EXPECT_EQ(fixed["benchmarks"][1]["name"], "unsorted/scene:quads/layers:4/16x16/camera:random:2:7@1/iterations:3/manual_time");
+  for (const auto& run : fixed["benchmarks"]) EXPECT_EQ(run["iterations"], 3);
+  // No --frames: --benchmark_min_time asks for more frames than one.
+  const nlohmann::json timed = report_of("--benchmark_min_time=0.2");
+  ASSERT_EQ(timed["benchmarks"].size(), 1u) << timed.dump(2);
+  EXPECT_EQ(timed["benchmarks"][0]["name"], "unsorted/scene:quads/layers:4/16x16/manual_time");
+  EXPECT_GT(timed["benchmarks"][0]["iterations"].get<int>(), 1) << timed.dump(2);
+  EXPECT_EQ(timed["context"]["timing"], "manual: oitbench's per-frame stage clock total");
+  // A bad value fails before anything runs, naming it.
+  const test::Outcome bad = test::run_command(kOut, gbench + "--set k=abc --technique kbuffer");
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_NE(bad.output.find("oitbench_gbench: error: run 2 of 2 of the sweep: technique 'kbuffer': parameter 'k' = "
+                            "'abc' is not an integer"),
+            std::string::npos)
+      << bad.output;
 }
 
 }  // namespace

@@ -26,15 +26,20 @@ struct Outcome {
 // `environment` is prefixed to the command line (e.g. "OIT_MODEL_DIR=/x").
 // The output goes through a log in `out_dir`, one per test process: CTest
 // runs the tests of one file in parallel.
-inline Outcome run_oitbench(const std::string& out_dir, const std::string& arguments,
-                            const std::string& environment = "") {
+// run_command: any command line (oitbench_gbench too), gathered the same way.
+inline Outcome run_command(const std::string& out_dir, const std::string& command) {
   std::filesystem::create_directories(out_dir);
   const std::string log = out_dir + "/last_command_" + std::to_string(::getpid()) + ".txt";
-  const int status = std::system((environment + " " + kOitbench + " " + arguments + " > " + log + " 2>&1").c_str());
+  const int status = std::system((command + " > " + log + " 2>&1").c_str());
   std::ifstream in(log);
   std::stringstream text;
   text << in.rdbuf();
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+inline Outcome run_oitbench(const std::string& out_dir, const std::string& arguments,
+                            const std::string& environment = "") {
+  return run_command(out_dir, environment + " " + kOitbench + " " + arguments);
 }
 
 // A results CSV as the harness reads it (read_csv, libcsv): the header, the

@@ -196,7 +196,7 @@ int run_adaptive(const CommonOptions& common, const AdaptiveOptions& options) {
               row.message = result.message;
               break;
             }
-            std::fprintf(stderr, "%.2f ms\n", median_total({result}));
+            std::fprintf(stderr, "%.2f ms\n", result.median_total_ms());
             std::vector<RunResult>& side_runs = is_on ? on : off;
             // Only the last image of each side is compared; drop the others.
             if (!side_runs.empty()) side_runs.back().image = {};

@@ -20,7 +20,7 @@ struct AdaptiveOptions {
   std::vector<std::string> features;
   // Scene specs "ID" or "ID:key=value,key=value"; empty: kPresetScenes.
   std::vector<std::string> scenes;
-  std::string size = "256x256";
+  std::string size = kDefaultSize;
   int frames = 5;
   int warmup = 1;
   int repeats = 2;  // on/off pairs, the order alternating

@@ -5,6 +5,8 @@
 #include <optional>
 #include <set>
 
+#include "harness/app/bench_files.h"
+#include "harness/app/bench_report.h"
 #include "harness/app/huge_page_malloc.h"
 #include "harness/gl/shader_capabilities.h"
 #include "harness/core/heatmap.h"
@@ -25,50 +27,6 @@ void print_params(const ParamSchema& schema) {
   for (const auto& p : schema) {
     std::printf("      %-24s default %-8s %s — %s\n", p.name.c_str(), p.default_value.c_str(), p.range_text().c_str(),
                 p.description.c_str());
-  }
-}
-
-// One line per run; `x baseline` is the run's median total over that of the
-// baseline technique's run on the same scene, parameters and size (same run,
-// same machine: the only speed comparison worth quoting).
-void print_summary(const std::vector<RunResult>& results, const std::string& baseline) {
-  std::printf("\n%-18s %-46s %-8s %10s %10s %7s %10s %9s  %s\n", "technique", "params", "status", "total ms",
-              ("x " + baseline).c_str(), "passes", "max error", "dropped", "scene | work saved");
-  for (const auto& r : results) {
-    double base = 0.0;
-    for (const auto& b : results)
-      if (b.spec.technique == baseline && b.status == RunStatus::ok && b.spec.scene == r.spec.scene &&
-          b.scene_params == r.scene_params && b.spec.camera == r.spec.camera && b.spec.width == r.spec.width &&
-          b.spec.height == r.spec.height && b.spec.scene_rect == r.spec.scene_rect)
-        base = b.median_total_ms();
-    const bool ok = r.status == RunStatus::ok;
-    char ratio[32] = "";
-    if (ok && base > 0.0) std::snprintf(ratio, sizeof ratio, "%.1f", r.median_total_ms() / base);
-    const std::string camera = (r.spec.camera == "default" ? "" : " camera " + r.spec.camera) +
-                               (r.spec.scene_rect ? "" : " scene_rect off");
-    // A scene swept over its parameters (model name=..., quads objects=...)
-    // needs them on the line to tell its rows apart.
-    bool swept = false;
-    for (const auto& o : results) swept |= o.spec.scene == r.spec.scene && o.scene_params != r.scene_params;
-    const std::string scene = swept ? r.spec.scene + " " + r.scene_params : r.spec.scene;
-    std::string saved;
-    for (const Figure& figure : r.counters.work_saved) {
-      char pair[96];
-      std::snprintf(pair, sizeof pair, " %s=%.10g", figure.name.c_str(), figure.value);
-      saved += pair;
-    }
-    if (!saved.empty()) saved = " |" + saved;
-    // Skipped and error runs measured nothing: blanks, not zeros.
-    char total[32] = "", passes[32] = "", error[32] = "", dropped[32] = "";
-    if (ok) {
-      std::snprintf(total, sizeof total, "%.2f", r.median_total_ms());
-      std::snprintf(passes, sizeof passes, "%llu", static_cast<unsigned long long>(r.counters.passes));
-      std::snprintf(dropped, sizeof dropped, "%llu", static_cast<unsigned long long>(r.counters.fragments_dropped));
-      if (r.error) std::snprintf(error, sizeof error, "%.3g", r.error->max_abs);
-    }
-    std::printf("%-18s %-46s %-8s %10s %10s %7s %10s %9s  %s %dx%d%s%s\n", r.spec.technique.c_str(),
-                r.technique_params.c_str(), to_string(r.status).c_str(), total, ratio, passes, error, dropped,
-                scene.c_str(), r.spec.width, r.spec.height, camera.c_str(), saved.c_str());
   }
 }
 
@@ -188,95 +146,149 @@ int run_render(const CommonOptions& common, const RenderOptions& options) {
   return 0;
 }
 
-int run_bench(const CommonOptions& common, const BenchOptions& options) {
-  auto context = open_context(common);
-  Harness harness(*context, builtin_techniques());
-  const std::vector<RunSpec> runs = expand_sweep(options.sweep, builtin_techniques());
-  CsvWriter csv(options.csv);  // repairs a torn end first, so only whole runs count
-  const std::set<RunKey> finished = options.resume ? csv.finished_runs() : std::set<RunKey>{};
-  std::optional<RunClaims> claims;
-  if (options.resume) claims.emplace(options.csv);
-  const RunContext ctx = run_context(harness.device());
-  std::fprintf(stderr, "oitbench bench: %zu runs on %s, clock %s -> %s%s\n", runs.size(),
-               harness.device().renderer.c_str(),
-               options.sweep.clock == "auto" ? to_string(harness.default_clock()).c_str() : options.sweep.clock.c_str(),
-               options.csv.c_str(), options.resume ? " (resuming: runs already there are not run again)" : "");
-  std::vector<RunResult> results;
-  size_t resumed = 0, elsewhere = 0;
-  for (size_t i = 0; i < runs.size(); ++i) {
-    const RunSpec& spec = runs[i];
-    std::string params;
-    for (const auto& [key, value] : spec.params) params += " " + key + "=" + value;
-    std::fprintf(stderr, "[%zu/%zu] %s%s on %s %dx%d%s%s ... ", i + 1, runs.size(), spec.technique.c_str(),
-                 params.c_str(), spec.scene.c_str(), spec.width, spec.height,
-                 spec.camera == "default" ? "" : (" camera " + spec.camera).c_str(),
-                 spec.scene_rect ? "" : " scene_rect off");
-    const auto key = options.resume ? resume_key(spec, builtin_techniques()) : std::nullopt;
-    // Claimed before it runs, then looked up again: another --resume process
-    // on this file may have run it meanwhile, or be running it now.
-    const auto claim = key && !finished.count(*key) ? claims->try_claim(*key) : std::nullopt;
-    if (key && !finished.count(*key) && !claim) {
-      std::fprintf(stderr, "being run by another bench --resume on %s, left to it\n", options.csv.c_str());
-      ++elsewhere;
-      continue;
+namespace {
+
+std::string clock_name(const BenchOptions& options, const Harness& harness) {
+  return options.sweep.clock == "auto" ? to_string(harness.default_clock()) : options.sweep.clock;
+}
+
+// One sweep of `bench`: the files it writes and what it has done so far.
+class BenchSession {
+ public:
+  BenchSession(Harness& harness, const BenchOptions& options)
+      : harness_(harness), options_(options), csv_(options.csv), context_(run_context(harness.device())) {
+    // The CSV repairs a torn end first, so only whole runs count.
+    if (options.resume) {
+      finished_ = csv_.finished_runs();
+      claims_.emplace(options.csv);
     }
-    if (key && (finished.count(*key) || csv.finished_runs().count(*key))) {
-      std::fprintf(stderr, "already in %s, not run again\n", options.csv.c_str());
-      ++resumed;
-      continue;
-    }
-    RunResult result = harness.run(spec);
-    csv.write(result, ctx);
-    if (result.status == RunStatus::ok) {
-      std::fprintf(stderr, "%.2f ms, %s%s\n", result.median_total_ms(), error_text(result).c_str(),
-                   result.noisy ? " (noisy: other processes were busy)" : "");
-      if (result.clock_disagreement && *result.clock_disagreement > 0.10) {
-        std::fprintf(stderr, "  warning: gl and wall clocks disagree by %.0f%% on total\n",
-                     *result.clock_disagreement * 100.0);
-      }
-      if (!options.images_dir.empty()) {
-        const std::string stem = options.images_dir + "/" + run_label(result);
-        write_image(result.image, stem + ".png");
-        // Where the image is wrong, and how much (scaled to this run's largest error).
-        if (result.error && result.error->max_abs > 0.0) {
-          const Image& reference = harness.reference_image(spec.scene, spec.scene_params, spec.width, spec.height,
-                                                           spec.background, spec.camera);
-          write_image(error_heatmap(result.image, reference), stem + "_error.png");
-        }
-      }
-    } else {
-      std::fprintf(stderr, "%s: %s\n", to_string(result.status).c_str(), result.message.c_str());
-    }
-    result.image = {};
-    results.push_back(std::move(result));
+    if (!options.samples.empty()) samples_.emplace(options.samples);
+    if (!options.json.empty()) json_.emplace(options.json, context_);
   }
+
+  void run_all(const std::vector<RunSpec>& runs) {
+    const Progress progress(runs.size());
+    for (size_t i = 0; i < runs.size(); ++i) {
+      const std::string start = progress.start_text(i, runs[i]);
+      std::fputs(start.c_str(), stderr);  // before the run: what is running now
+      const std::string outcome = run_one(runs[i]) + progress.timing_text(i + 1);
+      std::fprintf(stderr, "%s\n", wrap_after(start.size(), outcome).c_str());
+    }
+  }
+
+  // The summary and the totals; the exit code.
+  int report() const;
+
+ private:
+  // Each returns what happened, for the progress line.
+  std::string run_one(const RunSpec& spec);
+  std::string record(RunResult result);
+  void write_images(const RunResult& result) const;
+
+  Harness& harness_;
+  const BenchOptions& options_;
+  CsvWriter csv_;
+  RunContext context_;
+  std::set<RunKey> finished_;
+  std::optional<RunClaims> claims_;
+  std::optional<SamplesCsv> samples_;
+  std::optional<BenchJson> json_;
+  std::vector<RunResult> results_;
+  size_t resumed_ = 0, elsewhere_ = 0;
+};
+
+std::string BenchSession::run_one(const RunSpec& spec) {
+  const auto key = options_.resume ? resume_key(spec, builtin_techniques()) : std::nullopt;
+  // Claimed before it runs, then looked up again: another --resume process
+  // on this file may have run it meanwhile, or be running it now.
+  const auto claim = key && !finished_.count(*key) ? claims_->try_claim(*key) : std::nullopt;
+  if (key && !finished_.count(*key) && !claim) {
+    ++elsewhere_;
+    return "being run by another bench --resume on " + options_.csv + ", left to it";
+  }
+  if (key && (finished_.count(*key) || csv_.finished_runs().count(*key))) {
+    ++resumed_;
+    return "already in " + options_.csv + ", not run again";
+  }
+  return record(harness_.run(spec));
+}
+
+std::string BenchSession::record(RunResult result) {
+  const std::string run_id = csv_.write(result, context_);
+  if (samples_) samples_->append(result, run_id);
+  if (json_) json_->add(result, run_id);
+  std::string outcome;
+  if (result.status == RunStatus::ok) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.2f ms, ", result.median_total_ms());
+    outcome = text + error_text(result) + (result.noisy ? ", noisy" : "");
+    if (result.clock_disagreement && *result.clock_disagreement > 0.10) {
+      std::snprintf(text, sizeof text, "; warning: gl and wall clocks disagree by %.0f%% on total",
+                    *result.clock_disagreement * 100.0);
+      outcome += text;
+    }
+    write_images(result);
+  } else {
+    outcome = to_string(result.status) + ": " + result.message;
+  }
+  result.image = {};
+  results_.push_back(std::move(result));
+  return outcome;
+}
+
+void BenchSession::write_images(const RunResult& result) const {
+  if (options_.images_dir.empty()) return;
+  const RunSpec& spec = result.spec;
+  const std::string stem = options_.images_dir + "/" + run_label(result);
+  write_image(result.image, stem + ".png");
+  // Where the image is wrong, and how much (scaled to this run's largest error).
+  if (result.error && result.error->max_abs > 0.0) {
+    const Image& reference =
+        harness_.reference_image(spec.scene, spec.scene_params, spec.width, spec.height, spec.background, spec.camera);
+    write_image(error_heatmap(result.image, reference), stem + "_error.png");
+  }
+}
+
+int BenchSession::report() const {
   size_t ok = 0, skipped = 0, failed = 0;
-  for (const auto& r : results)
+  for (const auto& r : results_)
     (r.status == RunStatus::ok ? ok : r.status == RunStatus::skipped ? skipped : failed) += 1;
-  if (!results.empty()) print_summary(results, options.baseline);
-  if (resumed > 0)
-    std::printf("(%zu run%s already in %s from an earlier invocation: not in this table)\n", resumed,
-                resumed == 1 ? "" : "s", options.csv.c_str());
-  if (elsewhere > 0)
-    std::printf("(%zu run%s left to another bench --resume on %s: not in this table)\n", elsewhere,
-                elsewhere == 1 ? "" : "s", options.csv.c_str());
-  std::printf("\ndevice: %s (%s) | clock: %s | rows appended to %s\n", harness.device().renderer.c_str(),
-              platform_text(harness.device()).c_str(),
-              options.sweep.clock == "auto" ? to_string(harness.default_clock()).c_str() : options.sweep.clock.c_str(),
-              options.csv.c_str());
+  if (!results_.empty()) print_summary(results_, options_.baseline, builtin_techniques());
+  const char* csv = options_.csv.c_str();
+  if (resumed_ > 0)
+    std::printf("(%zu run%s already in %s from an earlier invocation: not in this table)\n", resumed_,
+                resumed_ == 1 ? "" : "s", csv);
+  if (elsewhere_ > 0)
+    std::printf("(%zu run%s left to another bench --resume on %s: not in this table)\n", elsewhere_,
+                elsewhere_ == 1 ? "" : "s", csv);
+  const DeviceInfo& device = harness_.device();
+  std::printf("\ndevice: %s\nplatform: %s\nclock: %s | rows appended to %s\n", device.renderer.c_str(),
+              platform_text(device).c_str(), clock_name(options_, harness_).c_str(), csv);
   std::printf("runs: %zu done (%zu ok, %zu error), %zu resumed (already in the CSV), %zu skipped\n", ok + failed, ok,
-              failed, resumed, skipped);
+              failed, resumed_, skipped);
   const ProgramCacheStats programs = ProgramCache::instance().stats();
   std::printf("GL programs: %llu compiled, %llu from the in-process binary cache%s\n",
               static_cast<unsigned long long>(programs.compiled), static_cast<unsigned long long>(programs.reused),
               ProgramCache::instance().enabled() ? "" : " (OIT_PROGRAM_CACHE=off)");
   // Every row is written; a sweep with failed runs still says so to scripts.
-  if (failed > 0) {
-    std::fprintf(stderr, "oitbench bench: %zu run%s failed (error rows in %s)\n", failed, failed == 1 ? "" : "s",
-                 options.csv.c_str());
-    return kExitRunsFailed;
-  }
-  return 0;
+  if (failed == 0) return 0;
+  std::fprintf(stderr, "oitbench bench: %zu run%s failed (error rows in %s)\n", failed, failed == 1 ? "" : "s", csv);
+  return kExitRunsFailed;
+}
+
+}  // namespace
+
+int run_bench(const CommonOptions& common, const BenchOptions& options) {
+  // Every combination is checked before a context opens or a file is touched.
+  const std::vector<RunSpec> runs = expand_sweep(options.sweep, builtin_techniques());
+  auto context = open_context(common);
+  Harness harness(*context, builtin_techniques());
+  BenchSession session(harness, options);
+  std::fprintf(stderr, "oitbench bench: %zu runs on %s, clock %s -> %s%s\n", runs.size(),
+               harness.device().renderer.c_str(), clock_name(options, harness).c_str(), options.csv.c_str(),
+               options.resume ? " (resuming: runs already there are not run again)" : "");
+  session.run_all(runs);
+  return session.report();
 }
 
 }  // namespace oit

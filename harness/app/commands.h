@@ -31,7 +31,7 @@ struct RenderOptions {
   std::vector<std::string> sets;
   std::string scene = "quads";
   std::vector<std::string> scene_sets;
-  std::string size = "256x256";
+  std::string size = kDefaultSize;
   std::string out;
   std::string background = "0,0,0";
   // One camera spec; a random:N:SEED set writes one image per viewpoint
@@ -46,7 +46,7 @@ struct StatsOptions {
   std::string scene = "quads";
   std::vector<std::string> scene_sets;
   std::string camera = "default";  // a random set prints every viewpoint
-  std::string size = "512x512";
+  std::string size = kDefaultSize;
   std::string heatmap;             // list-length heatmap PNG (one per viewpoint, _camI, for a set)
 };
 
@@ -55,9 +55,23 @@ struct BenchOptions {
   std::string csv;
   std::string images_dir;  // one PNG per run when set
   std::string baseline = "unsorted";  // the summary's speed ratios are against this technique
+  std::string samples;  // bench_files.h: every frame's stage times, when set
+  std::string json;     // bench_files.h: this invocation's runs as JSON, when set
   // Leave out every run that already has an ok or skipped row in `csv`.
   bool resume = false;
 };
+
+// `oitbench export --wide RESULTS.csv -o OUT.csv` (export_command.cpp): one
+// row per whole run: the CSV's per-run columns, then param.<name> per
+// technique parameter, scene.<name> per scene parameter, extra.<name> and
+// work_saved.<name> per figure, and <stage>.<clock>.<median|min|p05|p95|mean>_ms
+// per stage and clock; empty where a run has no such value. Incomplete
+// runs are left out and named on stderr.
+struct ExportOptions {
+  std::string wide;
+  std::string out;
+};
+int run_export(const ExportOptions& options);
 
 int run_list(const CommonOptions& common);
 // The README's technique table, generated from the registry (`oitbench list

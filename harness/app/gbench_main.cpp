@@ -1,9 +1,11 @@
 // The same runs as `oitbench bench`, reachable through Google Benchmark:
-// one benchmark per run, manual time = the stage clock's median-free per-frame
-// `total`, counters = fragments, bytes and error. Google Benchmark's own flags
-// (--benchmark_filter, --benchmark_repetitions, --benchmark_format, ...) work
-// as usual; benchmark::Initialize takes those out of argv and the sweep
-// flags (those of `oitbench bench`, without --csv) stay for CLI11.
+// one benchmark per run, manual time = the stage clock's per-frame `total`,
+// counters = fragments, bytes and error. The sweep flags are those of
+// `oitbench bench` (sweep_cli.h; not its files: --csv, --json, ...).
+// Google Benchmark's own flags work as usual (benchmark::Initialize takes
+// them out of argv before CLI11 reads the rest): --benchmark_filter,
+// --benchmark_repetitions, --benchmark_format, and --benchmark_min_time,
+// which picks the number of frames unless --frames fixes it.
 #include <benchmark/benchmark.h>
 
 #include <CLI/CLI.hpp>
@@ -12,7 +14,7 @@
 #include <cstdio>
 
 #include "harness/app/huge_page_malloc.h"
-#include "harness/app/sweep.h"
+#include "harness/app/sweep_cli.h"
 
 namespace {
 
@@ -22,11 +24,14 @@ std::string benchmark_name(const oit::RunSpec& spec) {
   name += "/scene:" + spec.scene;
   for (const auto& [key, value] : spec.scene_params) name += "/" + key + ":" + value;
   name += "/" + std::to_string(spec.width) + "x" + std::to_string(spec.height);
+  if (spec.camera != "default") name += "/camera:" + spec.camera;
   if (!spec.scene_rect) name += "/scene_rect:off";
   return name;
 }
 
-// One frame per benchmark iteration; the harness does the warm-up itself.
+// One frame per benchmark iteration: a trial of N iterations is one harness
+// run of N timed frames (after the run's warm-up), whose per-frame totals
+// are reported as the iterations' manual times.
 void run_benchmark(benchmark::State& state, oit::Harness* harness, oit::RunSpec spec) {
   spec.frames = int(state.max_iterations);
   const oit::RunResult result = harness->run(spec);
@@ -53,33 +58,41 @@ void run_benchmark(benchmark::State& state, oit::Harness* harness, oit::RunSpec 
 
 int main(int argc, char** argv) {
   oit::relaunch_with_huge_page_malloc(argv);
-  benchmark::Initialize(&argc, argv);
-  CLI::App app{"oitbench_gbench: oitbench runs as Google Benchmark benchmarks"};
+  CLI::App app{"oitbench_gbench: oitbench runs as Google Benchmark benchmarks (its --benchmark_* flags apply; "
+               "without --frames, --benchmark_min_time decides how many frames a run times)",
+               "oitbench_gbench"};
+  app.option_defaults()->always_capture_default();
   oit::SweepOptions sweep;
   std::string device = "auto";
-  sweep.sizes = {"128x128"};
-  app.add_option("--technique,-t", sweep.techniques, "technique ids or 'all'");
-  app.add_option("--scene,-s", sweep.scenes, "scene ids or files");
-  app.add_option("--set", sweep.technique_sets, "key=v1,v2");
-  app.add_option("--scene-set", sweep.scene_sets, "scene key=v1,v2");
-  app.add_option("--size", sweep.sizes, "WIDTHxHEIGHT");
-  app.add_option("--warmup", sweep.warmup, "untimed frames");
-  app.add_option("--scene-rect", sweep.scene_rects, "on, off or on,off (the harness's scene rectangle)")
-      ->delimiter(',')
-      ->check(CLI::IsMember({"on", "off"}));
-  app.add_option("--clock", sweep.clock, "auto, gl or wall")->check(CLI::IsMember({"auto", "gl", "wall"}));
+  oit::add_sweep_cli_options(&app, sweep);
   app.add_option("--device", device, "auto, gpu, software or egl:N");
+  app.get_option("--frames")
+      ->description("timed frames per run, fixed (Iterations(N)); without it --benchmark_min_time decides")
+      ->default_str("");
+  // --help: the sweep options here, then Google Benchmark's flags, which
+  // benchmark::Initialize prints before it exits.
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) == "--help") std::printf("%s\nGoogle Benchmark's flags:\n", app.help().c_str());
+  std::fflush(stdout);
+  benchmark::Initialize(&argc, argv);
   CLI11_PARSE(app, argc, argv);
+  const bool fixed_frames = app.count("--frames") > 0;
   try {
+    // Every combination is checked before a context opens.
+    const std::vector<oit::RunSpec> runs = oit::expand_sweep(sweep, oit::builtin_techniques());
     auto context = oit::create_headless_context(oit::parse_device_choice(device));
     oit::Harness harness(*context, oit::builtin_techniques());
-    for (const auto& spec : oit::expand_sweep(sweep, oit::builtin_techniques())) {
-      benchmark::RegisterBenchmark(benchmark_name(spec).c_str(), run_benchmark, &harness, spec)
-          ->UseManualTime()
-          ->Unit(benchmark::kMillisecond)
-          ->Iterations(10);
+    for (const auto& spec : runs) {
+      auto* benchmark = benchmark::RegisterBenchmark(benchmark_name(spec).c_str(), run_benchmark, &harness, spec)
+                            ->UseManualTime()
+                            ->Unit(benchmark::kMillisecond);
+      if (fixed_frames) benchmark->Iterations(sweep.frames);
     }
     benchmark::AddCustomContext("device", harness.device().renderer);
+    // Debian's libbenchmark is compiled without NDEBUG, so the library warns
+    // that it "was built as DEBUG": that concerns its own bookkeeping, which
+    // manual time leaves out (the times are the stage clock's).
+    benchmark::AddCustomContext("timing", "manual: oitbench's per-frame stage clock total");
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
   } catch (const std::exception& e) {

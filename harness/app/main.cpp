@@ -10,30 +10,25 @@
 #include "harness/app/huge_page_malloc.h"
 #include "harness/app/pareto.h"
 #include "harness/app/stress.h"
+#include "harness/app/sweep_cli.h"
 #include "harness/app/viewer/view_command.h"
 #include "harness/gl/context.h"
 
 namespace {
 
-// The options bench and pareto share (pareto's defaults differ: the help
-// names them after "repeatable").
-void add_sweep_options(CLI::App* command, oit::BenchOptions& options, const std::string& scene_default,
-                       const std::string& size_default) {
-  oit::SweepOptions& sweep = options.sweep;
-  command->add_option("--technique,-t", sweep.techniques, "technique ids or 'all' (repeatable)");
-  command->add_option("--scene,-s", sweep.scenes, "scene ids or files (repeatable" + scene_default + ")");
-  command->add_option("--scene-set", sweep.scene_sets, "scene key=v1,v2 to sweep (repeatable)");
-  command->add_option("--size", sweep.sizes, "WIDTHxHEIGHT (repeatable" + size_default + ")");
-  command->add_option("--frames", sweep.frames, "timed frames per run")->check(CLI::Range(1, 100000));
-  command->add_option("--warmup", sweep.warmup, "untimed frames first (shader compilation)")
-      ->check(CLI::Range(0, 1000));
-  command->add_option("--memory-budget", sweep.memory_budget,
-                      "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G "
-                      "(default: see `list`)");
+// The options bench and pareto share: the sweep's (sweep_cli.h) and the
+// files and the summary; --help shows each one's default (pareto's differ:
+// `size_note` says why).
+void add_bench_options(CLI::App* command, oit::BenchOptions& options, const std::string& size_note) {
+  oit::add_sweep_cli_options(command, options.sweep, size_note);
   command->add_option("--csv", options.csv, "CSV file to append to")->required();
   command->add_option("--images", options.images_dir, "directory for one PNG per run");
   command->add_flag("--resume", options.resume,
                     "leave out runs that already have an ok or skipped row in the CSV (error rows run again)");
+  command->add_option("--samples", options.samples,
+                      "CSV file to append every timed frame's stage times to (one row per run, stage, clock, frame)");
+  command->add_option("--json", options.json, "JSON file to write this invocation's runs to (samples included)");
+  command->add_option("--baseline", options.baseline, "technique whose median total the summary's ratios divide by");
 }
 
 }  // namespace
@@ -43,6 +38,8 @@ int main(int argc, char** argv) {
   CLI::App app{"oitbench: order-independent transparency techniques, timed stage by stage and compared "
                "with the exact image"};
   app.require_subcommand(1);
+  // Every option's default in --help, subcommands included (they copy this).
+  app.option_defaults()->always_capture_default();
   oit::CommonOptions common;
   app.add_option("--device", common.device,
                  "auto (GPU if present, else software; with CUDA_VISIBLE_DEVICES, as SLURM sets it, that GPU), gpu, "
@@ -70,31 +67,18 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--scene,-s", render.scene, "scene id or .gltf/.glb/.obj/.off/.ply/.stl file");
   render_cmd->add_option("--scene-set", render.scene_sets, "scene parameter key=value (repeatable)");
   render_cmd->add_option("--size", render.size, "WIDTHxHEIGHT");
-  render_cmd->add_option("--background", render.background, "r,g,b (linear, default 0,0,0)");
+  render_cmd->add_option("--background", render.background, "r,g,b (linear)");
   render_cmd->add_option("--out,-o", render.out, "output .png or .pfm")->required();
   render_cmd->add_option("--camera", render.camera,
                          "default, random:N:SEED (one image per view, _camI), random:N:SEED@I or max_list[:N:SEED]");
   render_cmd->add_option("--scene-rect", render.scene_rect,
-                         "on (default): confine the technique to the scene's projected rectangle; off: full image")
+                         "on: confine the technique to the scene's projected rectangle; off: full image")
       ->check(CLI::IsMember({"on", "off"}));
-  render_cmd->add_option("--memory-budget", render.memory_budget, "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G (default: see `list`)");
+  render_cmd->add_option("--memory-budget", render.memory_budget, "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G (default: the device's, see `list`)");
 
   oit::BenchOptions bench;
   auto* bench_cmd = app.add_subcommand("bench", "time every combination and append long-form CSV rows");
-  add_sweep_options(bench_cmd, bench, "", "");
-  bench_cmd->add_option("--set", bench.sweep.technique_sets,
-                        "key=v1,v2 or technique.key=v1,v2: parameter values to sweep (repeatable)");
-  bench_cmd->add_option("--camera", bench.sweep.cameras,
-                        "default, random:N:SEED (one run per view), random:N:SEED@I or max_list[:N:SEED] (repeatable)");
-  bench_cmd->add_option("--clock", bench.sweep.clock, "auto, gl, wall or both")
-      ->check(CLI::IsMember({"auto", "gl", "wall", "both"}));
-  bench_cmd->add_option("--background", bench.sweep.background, "r,g,b");
-  bench_cmd->add_option("--scene-rect", bench.sweep.scene_rects,
-                        "on (default), off or on,off: confine techniques to the scene's projected rectangle")
-      ->delimiter(',')
-      ->check(CLI::IsMember({"on", "off"}));
-  bench_cmd->add_option("--baseline", bench.baseline,
-                        "technique whose median total the summary divides by (default unsorted)");
+  add_bench_options(bench_cmd, bench, "");
 
   // pareto: the bench options, with each technique's quality knobs swept.
   oit::BenchOptions pareto;
@@ -104,7 +88,10 @@ int main(int argc, char** argv) {
   auto* pareto_cmd = app.add_subcommand(
       "pareto", "run time against error: bench every technique over its quality knobs (k, max_passes, ...); "
                 "plot with analysis/pareto.py");
-  add_sweep_options(pareto_cmd, pareto, "; default quads, spheres", "; default 128x128");
+  // 128x128 and 5 frames: pareto runs every technique at every value of its
+  // quality knobs, several times bench's runs; a quarter of the pixels keeps
+  // that to minutes on software GL, and the error ranking holds at that size.
+  add_bench_options(pareto_cmd, pareto, "; smaller than bench's default: pareto runs every knob value");
 
   oit::AdaptiveOptions adaptive;
   auto* adaptive_cmd = app.add_subcommand(
@@ -116,10 +103,10 @@ int main(int argc, char** argv) {
   adaptive_cmd->add_option("--scene,-s", adaptive.scenes,
                            "ID or ID:key=value,key=value (repeatable; default quads:layers=4, quads:layers=32, "
                            "model:name=engine, torus)");
-  adaptive_cmd->add_option("--size", adaptive.size, "WIDTHxHEIGHT (default 256x256)");
-  adaptive_cmd->add_option("--frames", adaptive.frames, "timed frames per run (default 5)")->check(CLI::Range(1, 100000));
-  adaptive_cmd->add_option("--warmup", adaptive.warmup, "untimed frames first (default 1)")->check(CLI::Range(0, 1000));
-  adaptive_cmd->add_option("--repeats", adaptive.repeats, "on/off pairs per feature and scene, order alternating (default 2)")
+  adaptive_cmd->add_option("--size", adaptive.size, "WIDTHxHEIGHT");
+  adaptive_cmd->add_option("--frames", adaptive.frames, "timed frames per run")->check(CLI::Range(1, 100000));
+  adaptive_cmd->add_option("--warmup", adaptive.warmup, "untimed frames first")->check(CLI::Range(0, 1000));
+  adaptive_cmd->add_option("--repeats", adaptive.repeats, "on/off pairs per feature and scene, order alternating")
       ->check(CLI::Range(1, 1000));
   adaptive_cmd->add_option("--background", adaptive.background, "r,g,b");
   adaptive_cmd->add_option("--csv", adaptive.csv, "CSV file to append every run to (the columns of bench)");
@@ -140,7 +127,9 @@ int main(int argc, char** argv) {
   order_cmd->add_option("--technique,-t", order.techniques, "technique ids or 'all' (repeatable)");
   order_cmd->add_option("--scene,-s", order.scene, "scene id or file");
   order_cmd->add_option("--scene-set", order.scene_sets, "scene parameter key=value (repeatable)");
-  order_cmd->add_option("--size", order.size, "WIDTHxHEIGHT");
+  order_cmd->add_option("--size", order.size,
+                        "WIDTHxHEIGHT (smaller than the other commands' default: every technique renders the scene "
+                        "in 2N+1 other submission orders, N = --seeds)");
   order_cmd->add_option("--seeds", order.seeds, "shuffled and objects_shuffled seeds 1..N")->check(CLI::Range(1, 100));
 
   oit::StatsOptions stats;
@@ -149,8 +138,17 @@ int main(int argc, char** argv) {
   stats_cmd->add_option("--scene,-s", stats.scene, "scene id or file");
   stats_cmd->add_option("--scene-set", stats.scene_sets, "scene parameter key=value (repeatable)");
   stats_cmd->add_option("--camera", stats.camera, "default, random:N:SEED, random:N:SEED@I or max_list[:N:SEED]");
-  stats_cmd->add_option("--size", stats.size, "WIDTHxHEIGHT (default 512x512)");
+  stats_cmd->add_option("--size", stats.size, "WIDTHxHEIGHT");
   stats_cmd->add_option("--heatmap", stats.heatmap, "list-length heatmap .png (blue 0 .. red longest)");
+
+  oit::ExportOptions export_options;
+  auto* export_cmd = app.add_subcommand(
+      "export", "a results CSV as one row per run, every parameter, figure and stage time in its own column");
+  export_cmd->add_option("--wide", export_options.wide,
+                         "results CSV to export: param.<name>, scene.<name>, extra.<name>, work_saved.<name> and "
+                         "<stage>.<clock>.<median|min|p05|p95|mean>_ms columns")
+      ->required();
+  export_cmd->add_option("--out,-o", export_options.out, "CSV file to write (replaced whole)")->required();
 
   oit::ViewOptions view;
   auto* view_cmd = oit::add_view_command(app, view);
@@ -169,6 +167,7 @@ int main(int argc, char** argv) {
     if (*pareto_cmd) return oit::run_pareto(common, pareto);
     if (*order_cmd) return oit::run_check_order(common, order);
     if (*stats_cmd) return oit::run_stats(common, stats);
+    if (*export_cmd) return oit::run_export(export_options);
     if (*view_cmd) return oit::run_view(common, view);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "oitbench: error: %s\n", e.what());

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -171,7 +172,26 @@ std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRe
       }
     }
   }
+  validate_sweep(runs, registry);
   return runs;
+}
+
+void validate_sweep(const std::vector<RunSpec>& runs, const TechniqueRegistry& registry) {
+  // Each distinct parameter set once: path parameters touch the disk.
+  std::set<std::pair<std::string, RawParams>> techniques, scenes;
+  for (size_t i = 0; i < runs.size(); ++i) {
+    const RunSpec& spec = runs[i];
+    try {
+      if (techniques.insert({spec.technique, spec.params}).second) {
+        const TechniqueDescriptor& technique = registry.get(spec.technique);
+        ParamSet(technique.params, spec.params, "technique '" + spec.technique + "'");
+      }
+      if (scenes.insert({spec.scene, spec.scene_params}).second) canonical_scene_params(spec.scene, spec.scene_params);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument("run " + std::to_string(i + 1) + " of " + std::to_string(runs.size()) +
+                                  " of the sweep: " + e.what() + " (nothing was run)");
+    }
+  }
 }
 
 std::optional<RunKey> resume_key(const RunSpec& spec, const TechniqueRegistry& registry) {

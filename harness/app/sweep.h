@@ -9,6 +9,11 @@
 
 namespace oit {
 
+// The image size of every command that renders (render, bench, stats,
+// adaptive, oitbench_gbench) unless --size says otherwise; pareto alone
+// defaults smaller (main.cpp says why).
+inline const std::string kDefaultSize = "256x256";
+
 struct SweepOptions {
   std::vector<std::string> techniques{"all"};
   std::vector<std::string> scenes{"quads"};
@@ -16,7 +21,7 @@ struct SweepOptions {
   // techniques that have it (and must exist in at least one of them).
   std::vector<std::string> technique_sets;
   std::vector<std::string> scene_sets;  // "key=v1,v2"
-  std::vector<std::string> sizes{"256x256"};
+  std::vector<std::string> sizes{kDefaultSize};
   // Camera specs (scenes/cameras.h); a random:N:SEED set becomes N runs.
   std::vector<std::string> cameras{"default"};
   // The harness's scene rectangle (RunSpec::scene_rect): "on", "off" or both.
@@ -29,7 +34,17 @@ struct SweepOptions {
   std::string memory_budget;
 };
 
+// Every combination of the options, in the sweep's order (scene, scene
+// parameters, camera, size, technique, parameters, scene rectangle). Each
+// combination's technique and scene parameters are checked first
+// (validate_sweep): a bad value anywhere throws before anything runs.
 std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRegistry& registry);
+
+// Throws std::invalid_argument naming the first run whose technique, scene,
+// parameter or value is invalid ("bench --set k=abc" fails here, not as an
+// error row hours into the sweep). A scene file that does not exist is not
+// checked: it stays an error row of its runs.
+void validate_sweep(const std::vector<RunSpec>& runs, const TechniqueRegistry& registry);
 
 // The key the run's CSV rows will carry (parameters canonical, defaults
 // filled in, as the harness writes them), for `bench --resume`; nullopt when

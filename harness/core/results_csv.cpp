@@ -165,45 +165,75 @@ std::set<RunKey> finished_runs(const std::string& path) {
   return finished_runs(read_csv_file(path, "results CSV"), path);
 }
 
-std::set<RunKey> finished_runs(const CsvContents& contents, const std::string& path,
+std::vector<CsvRun> whole_runs(const CsvContents& contents, const std::string& path,
                                std::vector<std::string>* problems) {
-  std::set<RunKey> finished;
   std::vector<std::string> found;
-  if (contents.records.empty() && !contents.torn) return finished;
+  if (contents.records.empty() && !contents.torn) return {};
   if (contents.records.empty() || contents.records.front().fields != csv_columns()) throw foreign_header(path);
-  // Rows grouped by run: a run counts once all its rows are there.
+  // Rows grouped by run (in the order of their first rows): a run counts once all its rows are there.
   struct Run {
-    size_t rows = 0, declared = 0, line = 0;
-    const CsvRecord* first = nullptr;
+    size_t declared = 0;
+    CsvRun rows;
   };
-  std::map<std::string, Run> runs;
+  std::vector<Run> runs;
+  std::map<std::string, size_t> index;
   for (size_t i = 1; i < contents.records.size(); ++i) {
     const CsvRecord& row = contents.records[i];
     if (row.fields.size() != csv_columns().size()) continue;  // field_count_problems reports it
-    Run& run = runs[row.fields[column("run_id")]];
-    if (!run.first) run = {0, declared_rows(row), row.line, &row};
-    run.rows += 1;
+    const auto [at, added] = index.emplace(row.fields[column("run_id")], runs.size());
+    if (added) runs.push_back({declared_rows(row), {}});
+    Run& run = runs[at->second];
+    run.rows.push_back(&row);
     if (declared_rows(row) != run.declared) run.declared = 0;
   }
   found = field_count_problems(contents);
   if (contents.torn) found.push_back("line " + std::to_string(contents.torn->line) + ": cut short (no final newline)");
-  for (const auto& [id, run] : runs) {
-    if (run.declared == 0 || run.rows != run.declared) {
-      found.push_back("line " + std::to_string(run.line) + ": run '" + id + "' has " + std::to_string(run.rows) +
-                      " row(s)" + (run.declared ? " of " + std::to_string(run.declared) : " without a valid run_rows"));
+  std::vector<CsvRun> whole;
+  for (const Run& run : runs) {
+    if (run.declared != 0 && run.rows.size() == run.declared) {
+      whole.push_back(run.rows);
       continue;
     }
-    const auto& f = run.first->fields;
+    found.push_back("line " + std::to_string(run.rows.front()->line) + ": run '" + run_id_of(*run.rows.front()) +
+                    "' has " + std::to_string(run.rows.size()) + " row(s)" +
+                    (run.declared ? " of " + std::to_string(run.declared) : " without a valid run_rows"));
+  }
+  if (problems) *problems = std::move(found);
+  return whole;
+}
+
+std::vector<std::pair<std::string, std::string>> csv_pairs(const std::string& text) {
+  std::vector<std::pair<std::string, std::string>> pairs;
+  std::istringstream in(text);
+  std::string word;
+  while (in >> word) {
+    const auto eq = word.find('=');
+    pairs.emplace_back(word.substr(0, eq), eq == std::string::npos ? "" : word.substr(eq + 1));
+  }
+  return pairs;
+}
+
+size_t csv_column(const std::string& name) {
+  const size_t index = column(name);
+  if (index == csv_columns().size()) throw std::logic_error("the results CSV has no column '" + name + "'");
+  return index;
+}
+
+std::set<RunKey> finished_runs(const CsvContents& contents, const std::string& path,
+                               std::vector<std::string>* problems) {
+  std::set<RunKey> finished;
+  for (const CsvRun& run : whole_runs(contents, path, problems)) {
+    const auto& f = run.front()->fields;
     if (f[column("status")] != "ok" && f[column("status")] != "skipped") continue;
     try {
       finished.insert({f[column("technique")], f[column("params")], f[column("scene")], f[column("scene_params")],
                        f[column("camera")], std::stoi(f[column("width")]), std::stoi(f[column("height")]),
                        f[column("scene_rect")] != "off"});
     } catch (const std::exception&) {
-      found.push_back("line " + std::to_string(run.line) + ": width or height is not a number");
+      if (problems)
+        problems->push_back("line " + std::to_string(run.front()->line) + ": width or height is not a number");
     }
   }
-  if (problems) *problems = std::move(found);
   return finished;
 }
 

@@ -70,6 +70,21 @@ std::string utc_timestamp();
 // torn last line or an incomplete run never counts; `problems`, when
 // given, receives "line N: ..." for each row that is not part of a whole run.
 std::set<RunKey> finished_runs(const std::string& path);
+
+// The runs a results CSV's contents hold whole, in the order of their first
+// rows: each the rows of one run_id, all run_rows of them, each of the
+// header's width. Throws like CsvWriter when the header is not ours; `problems`,
+// when given, receives "line N: ..." for each row that is not part of a whole run.
+using CsvRun = std::vector<const CsvRecord*>;
+std::vector<CsvRun> whole_runs(const CsvContents& contents, const std::string& path,
+                               std::vector<std::string>* problems = nullptr);
+// The "name=value name=value" text of the params, scene_params, extra and
+// work_saved columns as pairs, in order (no value holds a space or '=':
+// base/params.h refuses them, figures are numbers).
+std::vector<std::pair<std::string, std::string>> csv_pairs(const std::string& text);
+
+// The index of a column of csv_columns() by name; throws naming an unknown one.
+size_t csv_column(const std::string& name);
 std::set<RunKey> finished_runs(const CsvContents& contents, const std::string& path,
                                std::vector<std::string>* problems = nullptr);
 

@@ -1,0 +1,38 @@
+#pragma once
+// The sweep options of `oitbench bench` and `pareto` and of oitbench_gbench,
+// declared once so the three take the same flags with the same meaning.
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "harness/app/sweep.h"
+
+namespace oit {
+
+// `size_note` follows "repeatable" in --size's help (pareto's says why its
+// default is smaller). Defaults come from `sweep` as the caller set it.
+inline void add_sweep_cli_options(CLI::App* command, SweepOptions& sweep, const std::string& size_note = "") {
+  command->add_option("--technique,-t", sweep.techniques, "technique ids or 'all' (repeatable)");
+  command->add_option("--set", sweep.technique_sets,
+                      "key=v1,v2 or technique.key=v1,v2: parameter values to sweep (repeatable)");
+  command->add_option("--scene,-s", sweep.scenes, "scene ids or files (repeatable)");
+  command->add_option("--scene-set", sweep.scene_sets, "scene key=v1,v2 to sweep (repeatable)");
+  command->add_option("--size", sweep.sizes, "WIDTHxHEIGHT (repeatable" + size_note + ")");
+  command->add_option("--camera", sweep.cameras,
+                      "default, random:N:SEED (one run per view), random:N:SEED@I or max_list[:N:SEED] (repeatable)");
+  command->add_option("--frames", sweep.frames, "timed frames per run")->check(CLI::Range(1, 100000));
+  command->add_option("--warmup", sweep.warmup, "untimed frames first (shader compilation)")
+      ->check(CLI::Range(0, 1000));
+  command->add_option("--clock", sweep.clock, "auto, gl, wall or both")
+      ->check(CLI::IsMember({"auto", "gl", "wall", "both"}));
+  command->add_option("--background", sweep.background, "r,g,b (linear)");
+  command->add_option("--scene-rect", sweep.scene_rects,
+                      "on, off or on,off: confine techniques to the scene's projected rectangle")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"on", "off"}));
+  command->add_option("--memory-budget", sweep.memory_budget,
+                      "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G "
+                      "(default: the device's, see `list`)");
+}
+
+}  // namespace oit
