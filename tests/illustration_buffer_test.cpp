@@ -107,14 +107,18 @@ TEST(IllustrationBuffer, PrecisionExposesADegenerateContinuityMeasure) {
 }
 
 // heuristic_merge walks the depth-sorted list from the predicted depth and
-// stops once the depth term alone exceeds the best measure: exactly the
+// stops once the depth term alone exceeds the best measure (lists longer
+// than 8: 16 layers at the centre of 8 nested spheres, 12 in 6 cylinders,
+// the quads; shorter ones are scanned): exactly the
 // heuristic's links (same positions in the adjacent lists) and image, for
 // the default weights, a normal-dominated measure (w_n = 1000) and the
 // degenerate w_z = 0 (no bound: the walk covers the whole list).
 TEST(IllustrationBuffer, HeuristicMergeFindsTheHeuristicsLinks) {
   for (const auto& [scene, scene_params] :
-       {std::pair{"spheres", RawParams{}}, std::pair{"nested_spheres", RawParams{}}, std::pair{"torus", RawParams{}},
-        std::pair{"cylinders", RawParams{}}, std::pair{"quads", RawParams{{"layers", "16"}, {"objects", "4"}}}}) {
+       {std::pair{"spheres", RawParams{}}, std::pair{"nested_spheres", RawParams{{"count", "8"}}},
+        std::pair{"torus", RawParams{}}, std::pair{"cylinders", RawParams{{"count", "6"}}},
+        std::pair{"quads", RawParams{{"layers", "16"}, {"objects", "4"}}},
+        std::pair{"quads", RawParams{{"layers", "24"}, {"objects", "1"}}}}) {
     for (const RawParams& weights : {RawParams{}, RawParams{{"weight_n", "1000"}}, RawParams{{"weight_z", "0"}}}) {
       RawParams heuristic = weights, merge = weights;
       heuristic["neighbors"] = "heuristic";

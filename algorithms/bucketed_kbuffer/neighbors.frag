@@ -47,6 +47,11 @@ const float kNoCandidate = 3.0e38;
 uint own_keys[K];
 vec3 own_normals[K];
 uint own_count;
+// K as a value the compiler cannot see (u_width > 0): the merge search's
+// loops stop at the first empty slot or other shape long before K, and a
+// constant bound would let them be unrolled into K masked copies (see the
+// brute force above).
+uint slot_bound;
 
 float continuity(vec3 normal_a, float depth_a, vec3 normal_b, float depth_b) {
   float dz = depth_a - depth_b;
@@ -131,18 +136,25 @@ bool beyond_bound(float depth_a, float depth_b, float best_eps) {
 // in-order strict comparison picks, whatever order the walk visits them in.
 Candidate merge_candidate(uint i, uint nb, inout uint cursor) {
   uint own_key = own_keys[i], shape = bkb_shape(own_key);
-  while (cursor < uint(K) && bkb_z[nb + cursor] < own_key) ++cursor;
+  // The key at the cursor, kept for the upward walk (each slot read once).
+  uint key = BKB_EMPTY;
+  while (cursor < slot_bound) {
+    key = bkb_z[nb + cursor];
+    if (key >= own_key) break;
+    key = BKB_EMPTY;
+    ++cursor;
+  }
   float depth_i = bkb_depth_unit(own_key);
   vec3 normal_i = own_normals[i];
   Candidate best = Candidate(0xffu, 0u, kNoCandidate, vec3(0.0));
-  for (uint j = cursor; j < uint(K); ++j) {
-    uint key = bkb_z[nb + j];
-    if (key == BKB_EMPTY || bkb_shape(key) != shape) break;
+  for (uint j = cursor; key != BKB_EMPTY && bkb_shape(key) == shape;) {
     float depth_j = bkb_depth_unit(key);
     if (beyond_bound(depth_j, depth_i, best.eps)) break;
     vec3 normal_j = bkb_unpack_normal(bkb_normals[nb + j]);
     float eps = continuity(normal_i, depth_i, normal_j, depth_j);
     if (eps < best.eps || (eps == best.eps && j < best.slot)) best = Candidate(j, key, eps, normal_j);
+    ++j;
+    key = j < slot_bound ? bkb_z[nb + j] : BKB_EMPTY;
   }
   for (uint j = cursor; j > 0u;) {
     --j;
@@ -218,6 +230,7 @@ void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   uint base = bkb_pixel_base(pixel);
   own_count = 0u;
+  slot_bound = uint(K) + uint(min(u_width, 0));
   for (int i = 0; i < K; ++i) {
     uint key = bkb_z[base + uint(i)];
     if (key == BKB_EMPTY) break;
