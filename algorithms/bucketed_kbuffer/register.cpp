@@ -18,7 +18,8 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
                                  "slots per pixel: the k nearest fragments are kept; auto = the view's depth "
                                  "complexity, counted every frame (capped by auto_k_memory_mb)"),
       ParamSpec::choice("buckets", "auto", {"auto", "on", "off"},
-                        "neighbour query in one hashed bucket (on), over all fragments (off, brute force), "
+                        "how store (and, with neighbor_search=bucket, the neighbour query) finds a shape's "
+                        "fragments: one hashed bucket (on), all fragments (off: brute force query, hashed store), "
                         "or on unless the scene has a single object (auto), where each list is the one bucket: "
                         "no bucket pass, no hash look-ups"),
       ParamSpec::choice("neighbor_search", "merge", {"merge", "bucket"},
