@@ -113,7 +113,8 @@ def plan(catalogue, quick):
     else:
         # k = 32 covers the 32 layers, as in the paper; buckets=on even on one
         # object (the default `auto` would fall back to brute force there).
-        k = [("k", "32")]
+        # The figure times the paper's bucket query, not the default merge search.
+        k = [("k", "32")] + ([("neighbor_search", "bucket")] if "neighbor_search" in bkb else [])
         points = cross(["kbuffer"], "quads", scene_sets, ["default"], size, k)
         points += cross(["bucketed_kbuffer"], "quads", scene_sets, ["default"], size,
                         k + ([("buckets", "on")] if "buckets" in bkb else []))

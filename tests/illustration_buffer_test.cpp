@@ -106,6 +106,35 @@ TEST(IllustrationBuffer, PrecisionExposesADegenerateContinuityMeasure) {
   EXPECT_LT(p, 0.9);
 }
 
+// heuristic_merge walks the depth-sorted list from the predicted depth and
+// stops once the depth term alone exceeds the best measure (lists longer
+// than 8: 16 layers at the centre of 8 nested spheres, 12 in 6 cylinders,
+// the quads; shorter ones are scanned): exactly the
+// heuristic's links (same positions in the adjacent lists) and image, for
+// the default weights, a normal-dominated measure (w_n = 1000) and the
+// degenerate w_z = 0 (no bound: the walk covers the whole list).
+TEST(IllustrationBuffer, HeuristicMergeFindsTheHeuristicsLinks) {
+  for (const auto& [scene, scene_params] :
+       {std::pair{"spheres", RawParams{}}, std::pair{"nested_spheres", RawParams{{"count", "8"}}},
+        std::pair{"torus", RawParams{}}, std::pair{"cylinders", RawParams{{"count", "6"}}},
+        std::pair{"quads", RawParams{{"layers", "16"}, {"objects", "4"}}},
+        std::pair{"quads", RawParams{{"layers", "24"}, {"objects", "1"}}}}) {
+    for (const RawParams& weights : {RawParams{}, RawParams{{"weight_n", "1000"}}, RawParams{{"weight_z", "0"}}}) {
+      RawParams heuristic = weights, merge = weights;
+      heuristic["neighbors"] = "heuristic";
+      merge["neighbors"] = "heuristic_merge";
+      const RunResult a = test::render_once("illustration_buffer", heuristic, scene, scene_params, 64, 64);
+      const RunResult b = test::render_once("illustration_buffer", merge, scene, scene_params, 64, 64);
+      const std::string what = std::string(scene) + (weights.empty() ? "" : " " + weights.begin()->first + "=" +
+                                                                              weights.begin()->second);
+      EXPECT_GT(extra(a, "links_left"), 500.0) << what;
+      for (const char* name : {"links_left", "links_right", "links_down", "links_up", "link_checksum"})
+        EXPECT_EQ(extra(a, name), extra(b, name)) << what << ": " << name;
+      EXPECT_EQ(largest_difference(a.image, b.image), 0.0) << what;
+    }
+  }
+}
+
 // One screen-aligned quad (alpha s over black): pixels of the quad with an
 // in-image neighbour pixel outside it are silhouettes (beta = 1, fixed);
 // eq. 9 then gives beta = max(0, 1 - d * lambda_beta) within `iterations`

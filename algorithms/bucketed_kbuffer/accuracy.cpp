@@ -77,6 +77,31 @@ LinkAccuracy link_accuracy(const SlotReadback& slots, int width, int height, int
   return a;
 }
 
+uint64_t mutual_links(const SlotReadback& slots, int width, int height, int k) {
+  constexpr int kDx[4] = {-1, 1, 0, 0};  // left, right, down, up: the byte order of a link word
+  constexpr int kDy[4] = {0, 0, -1, 1};
+  constexpr int kOpposite[4] = {1, 0, 3, 2};
+  const size_t slot_count = size_t(width) * size_t(height) * size_t(k);
+  if (slots.links.size() < slot_count || slots.keys.size() < slot_count) return 0;
+  uint64_t mutual = 0;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const size_t base = (size_t(y) * size_t(width) + size_t(x)) * size_t(k);
+      for (size_t i = base; i < base + size_t(k) && slots.keys[i] != kEmptyKey; ++i) {
+        if (slots.normals[i] == 0u) continue;
+        for (int d = 0; d < 4; ++d) {
+          const uint32_t link = (slots.links[i] >> (8 * d)) & 0xffu;
+          const int nx = x + kDx[d], ny = y + kDy[d];
+          if (link >= uint32_t(k) || nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+          const size_t j = (size_t(ny) * size_t(width) + size_t(nx)) * size_t(k) + link;
+          mutual += ((slots.links[j] >> (8 * kOpposite[d])) & 0xffu) == uint32_t(i - base);
+        }
+      }
+    }
+  }
+  return mutual;
+}
+
 SlotStatistics slot_statistics(const SlotReadback& slots, int k, int shape_bits) {
   SlotStatistics s;
   // Buckets per pixel show whether the bucketed query can help at all: with

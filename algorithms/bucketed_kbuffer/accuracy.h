@@ -62,4 +62,10 @@ constexpr double kLinkFootprints = 1.5;
 // adjacent pixel holds such a fragment. Needs keys, normals, links and truth.
 LinkAccuracy link_accuracy(const SlotReadback& slots, int width, int height, int k, double footprints);
 
+// Links i -> j whose target links back (j's link in the opposite direction
+// is i): with reverse_check every link is mutual up to exact ties of eps;
+// without it a fragment may link to a candidate that prefers another.
+// Needs links (measure_accuracy); 0 without them.
+uint64_t mutual_links(const SlotReadback& slots, int width, int height, int k);
+
 }  // namespace oit::bkb

@@ -39,8 +39,9 @@ constexpr int kMaxK = 64;  // the parameter's maximum: the worst case k=auto is 
 struct KPrograms {
   Program fill, sort, bucket, store, compose, stylize;
   // Built when a frame needs them: the single-bucket sort and store, and the
-  // neighbour search per Search (hashed buckets, brute force, single bucket).
-  Program sort_single_bucket, store_single_bucket, neighbors[3];
+  // neighbour search per Search (hashed buckets, brute force, single bucket)
+  // and the merge search (neighbor_search=merge, any Search).
+  Program sort_single_bucket, store_single_bucket, neighbors[3], neighbors_merge;
 };
 
 // How a frame finds a shape's fragments; the values are bkb_common.glsl's
@@ -62,6 +63,8 @@ class BucketedKBuffer final : public Technique {
             bkb::opacity_transfer_texels(params.choice("opacity_transfer"), params.path("opacity_transfer_file"))),
         identity_(color_texels_.empty() && opacity_texels_.empty()),
         measure_(params.boolean("measure_accuracy")),
+        merge_search_(params.choice("neighbor_search") == "merge"),
+        reverse_check_(params.boolean("reverse_check")),
         curvature_scale_(params.real("curvature_scale")) {
     const std::string& buckets = params.choice("buckets");
     mode_ = buckets == "on" ? BucketMode::on : buckets == "off" ? BucketMode::off : BucketMode::automatic;
@@ -212,6 +215,7 @@ class BucketedKBuffer final : public Technique {
     }
     if (measure_) {
       c.extra.push_back({"link_checksum", double(s.link_checksum)});
+      c.extra.push_back({"neighbor_mutual_links", double(bkb::mutual_links(r, width_, height_, int(k)))});
       r.truth = read_uints(truth_, slots * 4);
       const bkb::LinkAccuracy links = bkb::link_accuracy(r, width_, height_, int(k), bkb::kLinkFootprints);
       c.extra.push_back({"neighbor_precision", links.precision, Combine::mean});
@@ -278,6 +282,12 @@ class BucketedKBuffer final : public Technique {
   ShaderDefines search_defines(int k, Search search) const {
     ShaderDefines d = store_defines(k);
     d.push_back({"BUCKETS", std::to_string(int(search))});
+    return d;
+  }
+  ShaderDefines neighbor_defines(int k, Search search) const {
+    ShaderDefines d = search_defines(k, search);
+    d.push_back({"SEARCH_MERGE", merge_search_ ? "1" : "0"});
+    d.push_back({"REVERSE_CHECK", reverse_check_ ? "1" : "0"});
     return d;
   }
 
@@ -347,11 +357,14 @@ class BucketedKBuffer final : public Technique {
     return glGetProgramResourceIndex(program, GL_UNIFORM, name) != GL_INVALID_INDEX;
   }
 
+  // The merge search reads whole sorted lists, so one program serves every
+  // Search (built with the brute force's BUCKETS, which it ignores).
   GLuint neighbors_program() {
-    Program& program = programs_->neighbors[int(search_)];
+    const Search search = merge_search_ ? Search::brute_force : search_;
+    Program& program = merge_search_ ? programs_->neighbors_merge : programs_->neighbors[int(search)];
     if (!program)
       program = build_fullscreen_program("algorithms/bucketed_kbuffer/neighbors.frag",
-                                         search_defines(programs_k_, search_));
+                                         neighbor_defines(programs_k_, search));
     return program.id();
   }
 
@@ -419,6 +432,7 @@ class BucketedKBuffer final : public Technique {
   int depth_bits_;
   std::vector<float> color_texels_, opacity_texels_;  // empty: identity (built-in choice, no file)
   bool identity_, measure_;
+  bool merge_search_, reverse_check_;
   double curvature_scale_;
   BucketMode mode_ = BucketMode::automatic;
   std::map<int, KPrograms> programs_by_k_;

@@ -13,7 +13,10 @@
 // BKB_BUCKETS_SINGLE (one-object scenes) visits every fragment with neither
 // hash look-up nor shape test, since all share the shape. All three visit
 // candidates in the same order with the same strict comparison, so they find
-// the same links.
+// the same links. SEARCH_MERGE=1 (neighbor_search=merge) replaces all three
+// by a walk of both sorted lists (see merge_candidate): the same links again,
+// whatever BUCKETS says. REVERSE_CHECK=0 (reverse_check=false) skips the
+// reverse check: every best candidate is linked, mutual or not.
 //
 // Why the brute force is slower than buckets=on on a one-object scene on
 // llvmpipe, although both visit the same slots: its candidate loop has the
@@ -44,6 +47,11 @@ const float kNoCandidate = 3.0e38;
 uint own_keys[K];
 vec3 own_normals[K];
 uint own_count;
+// K as a value the compiler cannot see (u_width > 0): the merge search's
+// loops stop at the first empty slot or other shape long before K, and a
+// constant bound would let them be unrolled into K masked copies (see the
+// brute force above).
+uint slot_bound;
 
 float continuity(vec3 normal_a, float depth_a, vec3 normal_b, float depth_b) {
   float dz = depth_a - depth_b;
@@ -76,21 +84,22 @@ uint neighbour_base(ivec2 q) {
   return q.x < 0 || q.y < 0 || q.x >= u_width || q.y >= u_height ? BKB_EMPTY : bkb_pixel_base(q);
 }
 
-// The linked neighbour of own fragment i among the slots `range` of the
-// adjacent pixel at `nb`: its slot (0xff when missing), normal (x, y) and
-// view-space (X, Y). Called once per direction (no dynamically indexed
-// local arrays for the four directions).
-uint find_neighbour(uint i, uvec2 own_range, uint nb, uvec2 range, Ray ray, out vec2 normal_xy,
-                    out vec2 position_xy) {
-  normal_xy = vec2(0.0);
-  position_xy = vec2(0.0);
-  if (nb == BKB_EMPTY) return 0xffu;
+// The best candidate of one search: slot (0xff when none), key, eps, normal.
+struct Candidate {
+  uint slot, key;
+  float eps;
+  vec3 normal;
+};
+
+// The best candidate for own fragment i among the slots `range` of the
+// adjacent pixel at `nb` (bucket or brute-force search): the first slot of
+// the smallest eps, visiting slots in increasing order with a strict
+// comparison.
+Candidate range_candidate(uint i, uint nb, uvec2 range) {
   uint shape = bkb_shape(own_keys[i]);
   float depth_i = bkb_depth_unit(own_keys[i]);
   vec3 normal_i = own_normals[i];
-  uint best = 0xffu, best_key = 0u;
-  float best_eps = kNoCandidate;
-  vec3 best_normal = vec3(0.0);
+  Candidate best = Candidate(0xffu, 0u, kNoCandidate, vec3(0.0));
   for (uint j = range.x; j <= range.y; ++j) {
     uint key = bkb_z[nb + j];
 #if BUCKETS == BKB_BUCKETS_NONE
@@ -101,32 +110,127 @@ uint find_neighbour(uint i, uvec2 own_range, uint nb, uvec2 range, Ray ray, out 
 #if BUCKETS == BKB_BUCKETS_NONE
     if (bkb_shape(key) != shape) eps = kNoCandidate;
 #endif
-    if (eps < best_eps) {
-      best_eps = eps;
-      best = j;
-      best_key = key;
-      best_normal = normal_j;
-    }
+    if (eps < best.eps) best = Candidate(j, key, eps, normal_j);
   }
-  if (best == 0xffu) return 0xffu;
-  // Reverse check: no other fragment of this pixel is closer to the candidate.
-  float best_depth = bkb_depth_unit(best_key);
-  for (uint i2 = own_range.x; i2 <= own_range.y; ++i2) {
-    float eps = continuity(own_normals[i2], bkb_depth_unit(own_keys[i2]), best_normal, best_depth);
-#if BUCKETS == BKB_BUCKETS_NONE
-    if (bkb_shape(own_keys[i2]) != shape) eps = kNoCandidate;
-#endif
-    if (eps < best_eps) return 0xffu;
-  }
-  normal_xy = best_normal.xy;
-  position_xy = (ray.origin + ray.direction * bkb_view_depth(best_key)).xy;
   return best;
+}
+
+// Merge search. eps = eps_n + dz^2 >= dz^2, so once a fragment's squared
+// depth difference exceeds the best eps so far, no fragment farther along a
+// depth-sorted list can win. kBoundSlack covers the one way eps can fall
+// below dz^2: a dot product of two unpacked unit normals a few ulps above 1
+// (|eps_n| <= ~1e-6); it only lets the walk visit a little more.
+const float kBoundSlack = 1.0e-5;
+bool beyond_bound(float depth_a, float depth_b, float best_eps) {
+  float dz = depth_a - depth_b;
+  return dz * dz > best_eps + kBoundSlack;
+}
+
+// The same candidate as range_candidate, found by walking the sorted lists
+// together. Keys are shape-major, so a shape's fragments are consecutive and
+// depth-ordered, and own keys increase with i: `cursor` (the adjacent list's
+// first key >= own key i, BKB_EMPTY being above every key) only moves
+// forward over the pixel's fragments, O(K) per pixel pair. From there the
+// walk goes up (deeper) and down (nearer) within the shape until the bound
+// stops it. Candidates are compared by (eps, slot), which is what the
+// in-order strict comparison picks, whatever order the walk visits them in.
+Candidate merge_candidate(uint i, uint nb, inout uint cursor) {
+  uint own_key = own_keys[i], shape = bkb_shape(own_key);
+  // The key at the cursor, kept for the upward walk (each slot read once).
+  uint key = BKB_EMPTY;
+  while (cursor < slot_bound) {
+    key = bkb_z[nb + cursor];
+    if (key >= own_key) break;
+    key = BKB_EMPTY;
+    ++cursor;
+  }
+  float depth_i = bkb_depth_unit(own_key);
+  vec3 normal_i = own_normals[i];
+  Candidate best = Candidate(0xffu, 0u, kNoCandidate, vec3(0.0));
+  for (uint j = cursor; key != BKB_EMPTY && bkb_shape(key) == shape;) {
+    float depth_j = bkb_depth_unit(key);
+    if (beyond_bound(depth_j, depth_i, best.eps)) break;
+    vec3 normal_j = bkb_unpack_normal(bkb_normals[nb + j]);
+    float eps = continuity(normal_i, depth_i, normal_j, depth_j);
+    if (eps < best.eps || (eps == best.eps && j < best.slot)) best = Candidate(j, key, eps, normal_j);
+    ++j;
+    key = j < slot_bound ? bkb_z[nb + j] : BKB_EMPTY;
+  }
+  for (uint j = cursor; j > 0u;) {
+    --j;
+    uint key = bkb_z[nb + j];
+    if (bkb_shape(key) != shape) break;
+    float depth_j = bkb_depth_unit(key);
+    if (beyond_bound(depth_j, depth_i, best.eps)) break;
+    vec3 normal_j = bkb_unpack_normal(bkb_normals[nb + j]);
+    float eps = continuity(normal_i, depth_i, normal_j, depth_j);
+    if (eps < best.eps || (eps == best.eps && j < best.slot)) best = Candidate(j, key, eps, normal_j);
+  }
+  return best;
+}
+
+// Reverse check (carnecky2013 Algorithm 2): false when another fragment of
+// this pixel of the same shape is strictly closer to the candidate.
+bool reverse_check(uint i, uvec2 own_range, Candidate best) {
+  float best_depth = bkb_depth_unit(best.key);
+#if SEARCH_MERGE
+  // Only own fragments within the bound can be closer; they are the
+  // consecutive run of the shape around i (i itself included, as below).
+  uint shape = bkb_shape(own_keys[i]);
+  for (uint i2 = i; i2 < own_count; ++i2) {
+    if (bkb_shape(own_keys[i2]) != shape) break;
+    float depth_i2 = bkb_depth_unit(own_keys[i2]);
+    if (beyond_bound(depth_i2, best_depth, best.eps)) break;
+    if (continuity(own_normals[i2], depth_i2, best.normal, best_depth) < best.eps) return false;
+  }
+  for (uint i2 = i; i2 > 0u;) {
+    --i2;
+    if (bkb_shape(own_keys[i2]) != shape) break;
+    float depth_i2 = bkb_depth_unit(own_keys[i2]);
+    if (beyond_bound(depth_i2, best_depth, best.eps)) break;
+    if (continuity(own_normals[i2], depth_i2, best.normal, best_depth) < best.eps) return false;
+  }
+#else
+  for (uint i2 = own_range.x; i2 <= own_range.y; ++i2) {
+    float eps = continuity(own_normals[i2], bkb_depth_unit(own_keys[i2]), best.normal, best_depth);
+#if BUCKETS == BKB_BUCKETS_NONE
+    if (bkb_shape(own_keys[i2]) != bkb_shape(own_keys[i])) eps = kNoCandidate;
+#endif
+    if (eps < best.eps) return false;
+  }
+#endif
+  return true;
+}
+
+// The linked neighbour of own fragment i in the adjacent pixel at `nb`
+// (BKB_EMPTY: outside the image): its slot (0xff when missing), normal
+// (x, y) and view-space (X, Y). Called once per direction (no dynamically
+// indexed local arrays for the four directions). `range`: the slots the
+// bucket/brute-force search visits; `cursor`: the merge search's position.
+uint find_neighbour(uint i, uvec2 own_range, uint nb, uvec2 range, inout uint cursor, Ray ray,
+                    out vec2 normal_xy, out vec2 position_xy) {
+  normal_xy = vec2(0.0);
+  position_xy = vec2(0.0);
+  if (nb == BKB_EMPTY) return 0xffu;
+#if SEARCH_MERGE
+  Candidate best = merge_candidate(i, nb, cursor);
+#else
+  Candidate best = range_candidate(i, nb, range);
+#endif
+  if (best.slot == 0xffu) return 0xffu;
+#if REVERSE_CHECK
+  if (!reverse_check(i, own_range, best)) return 0xffu;
+#endif
+  normal_xy = best.normal.xy;
+  position_xy = (ray.origin + ray.direction * bkb_view_depth(best.key)).xy;
+  return best.slot;
 }
 
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   uint base = bkb_pixel_base(pixel);
   own_count = 0u;
+  slot_bound = uint(K) + uint(min(u_width, 0));
   for (int i = 0; i < K; ++i) {
     uint key = bkb_z[base + uint(i)];
     if (key == BKB_EMPTY) break;
@@ -145,8 +249,9 @@ void main() {
   // (the other paths overwrite the ranges below).
   uvec2 all_slots = uvec2(0u, uint(K) - 1u);
   uvec2 range_left = all_slots, range_right = all_slots, range_down = all_slots, range_up = all_slots;
+  uint cursor_left = 0u, cursor_right = 0u, cursor_down = 0u, cursor_up = 0u;  // merge search only
   for (uint i = 0u; i < own_count; ++i) {
-#if BUCKETS == BKB_BUCKETS_SINGLE
+#if BUCKETS == BKB_BUCKETS_SINGLE && !SEARCH_MERGE
     if (i == 0u) {
       // One bucket per pixel: the adjacent pixels' whole lists, found once
       // and only by pixels that kept a fragment.
@@ -156,7 +261,7 @@ void main() {
       range_up = base_up == BKB_EMPTY ? uvec2(1u, 0u) : bkb_whole_list(base_up);
     }
 #endif
-#if BUCKETS == BKB_BUCKETS_HASHED
+#if BUCKETS == BKB_BUCKETS_HASHED && !SEARCH_MERGE
     uint shape = bkb_shape(own_keys[i]);
     if (i == 0u || shape != bkb_shape(own_keys[i - 1u])) {
       // First fragment of one of this pixel's buckets: its range follows
@@ -173,10 +278,11 @@ void main() {
 #endif
     vec2 normal_left, normal_right, normal_down, normal_up;
     vec2 position_left, position_right, position_down, position_up;
-    uint left = find_neighbour(i, own_range, base_left, range_left, ray_left, normal_left, position_left);
-    uint right = find_neighbour(i, own_range, base_right, range_right, ray_right, normal_right, position_right);
-    uint down = find_neighbour(i, own_range, base_down, range_down, ray_down, normal_down, position_down);
-    uint up = find_neighbour(i, own_range, base_up, range_up, ray_up, normal_up, position_up);
+    uint left = find_neighbour(i, own_range, base_left, range_left, cursor_left, ray_left, normal_left, position_left);
+    uint right =
+        find_neighbour(i, own_range, base_right, range_right, cursor_right, ray_right, normal_right, position_right);
+    uint down = find_neighbour(i, own_range, base_down, range_down, cursor_down, ray_down, normal_down, position_down);
+    uint up = find_neighbour(i, own_range, base_up, range_up, cursor_up, ray_up, normal_up, position_up);
     uint found = (left != 0xffu ? 1u : 0u) | (right != 0xffu ? 2u : 0u) | (down != 0xffu ? 4u : 0u) |
                  (up != 0xffu ? 8u : 0u);
     float kappa = -1.0;

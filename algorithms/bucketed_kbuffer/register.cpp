@@ -18,9 +18,18 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
                                  "slots per pixel: the k nearest fragments are kept; auto = the view's depth "
                                  "complexity, counted every frame (capped by auto_k_memory_mb)"),
       ParamSpec::choice("buckets", "auto", {"auto", "on", "off"},
-                        "neighbour query in one hashed bucket (on), over all fragments (off, brute force), "
+                        "how store (and, with neighbor_search=bucket, the neighbour query) finds a shape's "
+                        "fragments: one hashed bucket (on), all fragments (off: brute force query, hashed store), "
                         "or on unless the scene has a single object (auto), where each list is the one bucket: "
                         "no bucket pass, no hash look-ups"),
+      ParamSpec::choice("neighbor_search", "merge", {"merge", "bucket"},
+                        "neighbour query: walk the two sorted lists from the depth-nearest fragment of the "
+                        "shape until the depth difference alone exceeds the best score (merge), or scan the "
+                        "bucket or list that buckets selects (bucket); both find the same links"),
+      ParamSpec::boolean("reverse_check", true,
+                         "keep a link only if no other fragment of the pixel is closer to the candidate "
+                         "(carnecky2013 Algorithm 2, murray2016 Figure 5); false links every best candidate, "
+                         "mutual or not"),
       ParamSpec::choice("color_transfer", "mean_curvature_shading",
                         {"mean_curvature_shading", "curved_bright", "identity"},
                         "1D colour transfer function of kappa: murray2016 Figure 6(a), 6(b), or colour unchanged"),
@@ -50,6 +59,11 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
                           "on a one-object scene skips the bucket pass (no hash tables) and searches each whole "
                           "list as the single bucket, without hash look-ups or shape tests",
                           {{"buckets", "auto"}}, {{"buckets", "on"}}},
+                         {"neighbor_merge",
+                          "walks both sorted lists from the depth-nearest fragment and stops where the depth "
+                          "difference alone exceeds the best score, instead of scoring every fragment of the "
+                          "bucket (and of its own bucket for the reverse check); the same links",
+                          {{"neighbor_search", "merge"}}, {{"neighbor_search", "bucket"}}},
                          {"k_auto", "sizes k from the view's depth complexity (a counting pass) instead of the "
                                     "worst-case constant 64",
                           {{"k", "auto"}}, {{"k", "64"}}}};

@@ -28,6 +28,24 @@ float wrapped_distance(float a, float b) {
   return std::min(d, 1.0f - d);
 }
 
+uint32_t link_checksum(int width, const std::vector<uint32_t>& first, const std::vector<uint32_t>& count,
+                       const std::vector<SortedRecord>& sorted) {
+  uint32_t hash = 2166136261u;
+  for (size_t pixel = 0; pixel < first.size(); ++pixel) {
+    for (uint32_t s = first[pixel]; s < first[pixel] + count[pixel] && s < sorted.size(); ++s) {
+      for (int d = 0; d < 4; ++d) {
+        uint32_t link = sorted[s].links[d];
+        if (link != kNoNeighbor && link != kOffImage) {
+          const int64_t other = int64_t(pixel) + kDx[d] + int64_t(kDy[d]) * width;
+          link -= other >= 0 && size_t(other) < first.size() ? first[size_t(other)] : 0u;
+        }
+        for (int byte = 0; byte < 4; ++byte) hash = (hash ^ ((link >> (8 * byte)) & 0xffu)) * 16777619u;
+      }
+    }
+  }
+  return hash;
+}
+
 }  // namespace
 
 NeighborStatistics neighbor_statistics(int width, int height, const std::vector<uint32_t>& first,
@@ -65,6 +83,7 @@ NeighborStatistics neighbor_statistics(int width, int height, const std::vector<
     }
     stats.silhouette_fragments += silhouette;
   }
+  stats.link_checksum = link_checksum(width, first, count, sorted);
   if (stats.measured) {
     uint64_t links = 0;
     for (uint64_t n : stats.links) links += n;

@@ -59,6 +59,10 @@ struct NeighborStatistics {
   uint64_t true_neighbors = 0;        // (fragment, direction) pairs that have one
   double precision = 0.0;
   double recall = 0.0;
+  // FNV-1a over every link as the position in the adjacent pixel's list
+  // (or kNoNeighbor / kOffImage), pixels in image order and fragments in
+  // list order: equal for equal links, whatever ranges the sort allocated.
+  uint32_t link_checksum = 0;
 };
 
 // `first`/`count`: each pixel's range in `sorted`. `truth` may be empty

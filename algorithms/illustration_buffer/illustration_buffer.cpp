@@ -21,6 +21,7 @@ Settings settings_from(const ParamSet& p) {
   Settings s;
   s.neighbors = pick<NeighborSearch>("neighbors", p.choice("neighbors"),
                                      {{"heuristic", NeighborSearch::heuristic},
+                                      {"heuristic_merge", NeighborSearch::heuristic_merge},
                                       {"triangle_index", NeighborSearch::triangle_index}});
   s.modulation = pick<Modulation>("modulation", p.choice("modulation"),
                                   {{"none", Modulation::none},
@@ -54,9 +55,10 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
   d.display_name = "Illustration buffer (linked lists + geodesic neighbours, non-local opacity)";
   d.paper = "Carnecky et al. 2013 (IEEE TVCG 19(5)); Pastyrik & Cmolik 2016 (CESCG)";
   d.params = {
-      ParamSpec::choice("neighbors", "triangle_index", {"heuristic", "triangle_index"},
-                        "neighbour search: carnecky2013 Algorithm 2 (continuity measure eq. 1-3, mutual check) or "
-                        "pastyrik2016 Algorithm 3 (triangles sharing a vertex index)"),
+      ParamSpec::choice("neighbors", "triangle_index", {"heuristic", "heuristic_merge", "triangle_index"},
+                        "neighbour search: carnecky2013 Algorithm 2 (continuity measure eq. 1-3, mutual check), "
+                        "the same links found by a walk from the predicted depth in the depth-sorted list "
+                        "(heuristic_merge), or pastyrik2016 Algorithm 3 (triangles sharing a vertex index)"),
       ParamSpec::choice("modulation", "silhouette_halo", {"none", "silhouette", "halo", "silhouette_halo"},
                         "opacity modulation (carnecky2013 section 5): none = plain alpha blending (no neighbour "
                         "search, no stylize), silhouette = beta field, halo = gamma field, or both"),

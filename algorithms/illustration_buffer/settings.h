@@ -7,7 +7,9 @@
 
 namespace oit::illustration_buffer {
 
-enum class NeighborSearch { heuristic, triangle_index };
+// heuristic_merge: the heuristic's candidate found by a walk of the
+// depth-sorted list (the same links, fewer candidates scored).
+enum class NeighborSearch { heuristic, heuristic_merge, triangle_index };
 // Which of carnecky2013's fields modulate the opacity: none (plain alpha
 // blending; no neighbour search, no stylize), beta (silhouette), gamma
 // (halo) or both.
@@ -29,6 +31,7 @@ struct Settings {
   bool measure_accuracy = true;
   double accuracy_footprints = 1.5;
 
+  bool heuristic() const { return neighbors != NeighborSearch::triangle_index; }
   bool uses_beta() const { return modulation == Modulation::silhouette || modulation == Modulation::silhouette_halo; }
   bool uses_gamma() const { return modulation == Modulation::halo || modulation == Modulation::silhouette_halo; }
 };

@@ -65,9 +65,10 @@ class IllustrationBuffer final : public Technique {
     compose_ = build_fullscreen_program("algorithms/illustration_buffer/compose.frag",
                                         modulated() ? ShaderDefines{{"IB_MODULATE", "1"}} : ShaderDefines{});
     if (!modulated()) return;
-    const bool heuristic = s_.neighbors == NeighborSearch::heuristic;
-    neighbors_ = build_compute_program("algorithms/illustration_buffer/neighbors.comp",
-                                       {{heuristic ? "IB_HEURISTIC" : "IB_TRIANGLE_INDEX", "1"}});
+    neighbors_ = build_compute_program(
+        "algorithms/illustration_buffer/neighbors.comp",
+        {{s_.heuristic() ? "IB_HEURISTIC" : "IB_TRIANGLE_INDEX", "1"},
+         {"IB_MERGE", s_.neighbors == NeighborSearch::heuristic_merge ? "1" : "0"}});
     set(neighbors_.id(), "u_weight_z", s_.weight_z);
     set(neighbors_.id(), "u_weight_n", s_.weight_n);
     stylize_init_ = build_compute_program("algorithms/illustration_buffer/stylize_init.comp");
@@ -248,7 +249,7 @@ class IllustrationBuffer final : public Technique {
     const std::string hash = scene.content_hash();
     if (hash == scene_hash_) return;
     scene_hash_ = hash;
-    if (s_.neighbors == NeighborSearch::heuristic) {
+    if (s_.heuristic()) {
       const float radius = scene.bounds().radius;
       set(neighbors_.id(), "u_inverse_radius", radius > 0.0f ? 1.0f / radius : 1.0f);
       return;
@@ -344,6 +345,7 @@ void IllustrationBuffer::append_neighbor_statistics(TechniqueCounters& c) const 
   const char* names[4] = {"links_left", "links_right", "links_down", "links_up"};
   for (int d = 0; d < 4; ++d) c.extra.push_back({names[d], double(stats.links[size_t(d)])});
   c.extra.push_back({"silhouette_fragments", double(stats.silhouette_fragments)});
+  c.extra.push_back({"link_checksum", double(stats.link_checksum)});
   if (stats.measured) {
     c.extra.push_back({"neighbor_precision", stats.precision, Combine::mean});
     c.extra.push_back({"neighbor_recall", stats.recall, Combine::mean});
