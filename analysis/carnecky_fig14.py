@@ -48,7 +48,7 @@ def scaling_figure(runs, key, x_column, x_label, what, paper):
     x = rows.groupby("point")[x_column].mean()
     table = common.stage_table(rows, "point")
     order = x.sort_values().index
-    fig, ax = plt.subplots(figsize=(7, 4.5))
+    fig, ax = plt.subplots(figsize=(8.5, 4.8))
     common.stacked_stages(ax, x.loc[order].to_numpy(), table.loc[order], passes(table))
     if "total" in table:
         ax.plot(x.loc[order].to_numpy(), table.loc[order, "total"].to_numpy(), color="black", marker="o",
@@ -61,8 +61,8 @@ def scaling_figure(runs, key, x_column, x_label, what, paper):
     figure_notes.paper_box(ax, paper)
     views = rows.groupby("point")["camera"].nunique().max()
     iterations = sorted({common.tokens(p).get("iterations", "?") for p in rows["params"]})
-    ax.set_title(common.title(rows, f"{what} ({rows['scene'].iloc[0]}, mean over {views} camera view(s), "
-                                    f"iterations={','.join(iterations)}{figure_notes.noisy_note(rows)})"),
+    ax.set_title(common.title(rows, f"{what}\n{rows['scene'].iloc[0]}, mean over {views} camera view(s), "
+                                    f"iterations={','.join(iterations)}{figure_notes.noisy_note(rows)}"),
                  fontsize=8)
     fig.tight_layout()
     return fig

@@ -1,25 +1,31 @@
-"""Run the sweeps behind the papers' timing plots, then draw every plot.
+"""Run the sweeps behind the papers' figures, then draw every plot.
 
 Usage (from the repository root, after `bash setup.sh build`):
-    /usr/bin/python3 -m analysis.reproduce [--quick] [--out results/<date>] [--only NAME ...]
-        [--oitbench build/harness/oitbench] [--dry-run | --list-commands | --plots-only]
+    /usr/bin/python3 -m analysis.reproduce [--quick | --full] [--out results/<date>] [--only NAME ...]
+        [--frames N] [--warmup N] [--rerun-noisy] [--oitbench build/harness/oitbench]
+        [--dry-run | --list-commands | --plots-only]
 
-One CSV per sweep under --out (murray_fig10.csv, carnecky_fig14.csv,
-carnecky_fig15.csv, models.csv, layers.csv), heatmaps under --out/heatmaps,
-the PNG plots next to them. Resumable: before starting a bench the driver
-reads the sweep's CSV and leaves out every run (technique, its swept
-parameters, scene, swept scene parameters, camera, width, height) that the CSV
-already holds whole (all its rows) with status ok or skipped; a run that failed
-with an error, or was cut short, is tried again. Interrupt it at any point and start it again with the same --out.
+One CSV per sweep under --out (murray_fig10, carnecky_fig14, carnecky_fig15,
+models, pastyrik_fig7, murray_models, layers), heatmaps under --out/heatmaps,
+the carnecky2013 Figs. 9-13 renders under --out/images, the PNG plots next
+to them. Resumable: before starting a bench the driver reads the sweep's CSV
+and leaves out every run (technique, its swept parameters, scene, swept scene
+parameters, camera, width, height) that the CSV already holds whole (all its
+rows) with status ok or skipped; a run that failed with an error, or was cut
+short, is tried again; with --rerun-noisy a run flagged `noisy` is run once
+more (the plots then keep the quiet repeat). Interrupt it at any point and
+start it again with the same --out.
 
---list-commands prints the sweeps as JSON (bench and stats invocations, plot
-modules) for other drivers: workflow/Snakefile runs them as cluster jobs.
---plots-only draws from the CSVs already in --out; a CSV holding several
-(device, platform) pairs is drawn once per pair (file names get a suffix).
+--list-commands prints the sweeps as JSON (bench, stats and render
+invocations, plot modules) for other drivers: workflow/Snakefile runs the
+benches as cluster jobs. --plots-only draws from the CSVs already in --out;
+a CSV holding several (device, platform) pairs is drawn once per pair (file
+names get a suffix).
 
---quick: small sizes, 1 warm-up + 3 timed frames, a few models: minutes on 2
-cores with software GL. Without it the sweeps are sized for a real GPU (the
-papers' resolutions and tessellations).
+--quick: small sizes, 1 warm-up + 3 timed frames, a few models: software GL
+on 2 cores. --full (the default): the papers' resolutions and parameters
+(PAPER below; 3 warm-up + 20 timed frames), sized for a GPU; --frames and
+--warmup shorten the runs without changing the sizes.
 """
 import argparse
 import datetime
@@ -157,24 +163,29 @@ def murray_fig10(catalogue, quick, warmup, frames):
     return Sweep("murray_fig10", points, [("murray_fig10", {})], warmup, frames)
 
 
-def carnecky_sweeps(quick, warmup, frames):
+def carnecky_sweeps(catalogue, quick, warmup, frames, views=None):
     """carnecky2013 Figs. 14 and 15: the toroid under random cameras, its
     stages with ONE diffusion iteration (the paper's solve pass is one
-    iteration) and its own neighbour search (Algorithm 2)."""
+    iteration) and its own neighbour search (Algorithm 2); without the
+    accuracy bookkeeping (surface id and uv per fragment), which the paper's
+    buffer does not hold. `views`: random views per point instead of the
+    mode's (3 quick; 32 and 16 full)."""
     ib = [("iterations", "1"), ("neighbors", "heuristic")]
+    if catalogue.is_switch("illustration_buffer", "measure_accuracy"):
+        ib.append(("measure_accuracy", "false"))
     sides = [128, 192, 256, 384, 512] if quick else [128, 256, 512, 1024, 2048]
-    views = random_views(3, 1) if quick else random_views(32, 1)
-    fig14 = Sweep("carnecky_fig14", cross(["illustration_buffer"], "torus", [[]], views, [(s, s) for s in sides], ib),
+    views14 = random_views(views or (3 if quick else 32), 1)
+    fig14 = Sweep("carnecky_fig14", cross(["illustration_buffer"], "torus", [[]], views14, [(s, s) for s in sides], ib),
                   [("carnecky_fig14", {})], warmup, frames)
     # slices x stacks x 2 triangles: 64 .. 65k (quick), 256 .. 1M (full; the
     # paper's axis ends at 500k).
     tessellations = [(8, 4), (16, 8), (32, 16), (64, 32), (128, 64), (256, 128)] if quick else \
         [(16, 8), (64, 32), (128, 64), (256, 128), (512, 256), (512, 512), (1024, 512)]
     side = 256 if quick else 1024
-    views = random_views(3, 1) if quick else random_views(16, 1)
+    views15 = random_views(views or (3 if quick else 16), 1)
     fig15 = Sweep("carnecky_fig15",
                   cross(["illustration_buffer"], "torus", [[("slices", str(a)), ("stacks", str(b))]
-                                                           for a, b in tessellations], views, [(side, side)], ib),
+                                                           for a, b in tessellations], views15, [(side, side)], ib),
                   [("carnecky_fig15", {})], warmup, frames)
     return [fig14, fig15]
 
@@ -266,7 +277,7 @@ def carnecky_images(catalogue, quick):
             for name, caption, t, tp, (scene, sp) in grid]
 
 
-def plan(catalogue, quick):
+def plan(catalogue, quick, views=None):
     """The sweeps and the plots each feeds. Quick: small enough for software
     GL on 2 cores; full: the papers' sizes and parameters (PAPER; fragments
     grow with the square of the resolution: 2048^2 may not fit every device,
@@ -279,7 +290,7 @@ def plan(catalogue, quick):
                    [("pastyrik_fig8", {}), ("pastyrik_fig9", {}), ("pastyrik_fig10", {"heatmaps": True}),
                     ("oit_comparison", {}), ("pastyrik_memory", {}), ("peeling_stages", {})], warmup, frames)
     images = carnecky_images(catalogue, quick)
-    return ([murray_fig10(catalogue, quick, warmup, frames)] + carnecky_sweeps(quick, warmup, frames)
+    return ([murray_fig10(catalogue, quick, warmup, frames)] + carnecky_sweeps(catalogue, quick, warmup, frames, views)
             + [models, pastyrik_fig7(catalogue, scenes, (side, side), warmup, frames),
                murray_models(catalogue, scenes, quick, warmup, frames),
                layers_sweep(catalogue, quick, warmup, frames),
@@ -569,6 +580,9 @@ def main(argv=None):
                         help="timed frames per run instead of the mode's (3 quick, 20 full): the papers' sizes "
                              "with fewer frames on a slow device")
     parser.add_argument("--warmup", type=int, default=None, help="untimed frames per run instead of the mode's")
+    parser.add_argument("--views", type=int, default=None,
+                        help="random views per point of carnecky2013 Figs. 14/15 instead of the mode's (3 quick, 32 "
+                             "and 16 full)")
     parser.add_argument("--rerun-noisy", action="store_true",
                         help="run again every run whose rows are flagged noisy (at most twice in all)")
     parser.add_argument("--dry-run", action="store_true", help="print the invocations a run would start, run none")
@@ -583,7 +597,7 @@ def main(argv=None):
     if not os.access(args.oitbench, os.X_OK):
         sys.exit(f"reproduce: {args.oitbench} is not an executable (build first: bash setup.sh build)")
     env = oitbench_environment(args.oitbench)
-    sweeps = plan(catalogue_of(args.oitbench, env), args.quick)
+    sweeps = plan(catalogue_of(args.oitbench, env), args.quick, args.views)
     for sweep in sweeps:
         if sweep.points:
             sweep.frames = args.frames if args.frames is not None else sweep.frames

@@ -184,6 +184,14 @@ class PlanTest(unittest.TestCase):
         self.assertTrue(any(450_000 <= t <= 600_000 for t in triangles), triangles)
         self.assertGreaterEqual(len({p.camera for p in fig15.points}), 16)
 
+    def test_views_override_and_accuracy_bookkeeping_off_where_listed(self):
+        text = ("Techniques:\n  illustration_buffer  IB [approximate]\n"
+                "      measure_accuracy         default true     true or false — bookkeeping\n")
+        fig14, fig15 = reproduce.carnecky_sweeps(reproduce.Catalogue(text), False, 3, 20, views=2)
+        self.assertEqual(sorted({p.camera for p in fig14.points}), ["random:2:1@0", "random:2:1@1"])
+        self.assertEqual({dict(p.tparams)["measure_accuracy"] for p in fig15.points}, {"false"})
+        self.assertEqual({(p.width, p.height) for p in fig15.points}, {(1024, 1024)})
+
     def test_models_at_600_in_two_positions_with_a_cad_file(self):
         sweep = self.full["models"]
         self.assertEqual(self.sizes(sweep), [(600, 600)])
