@@ -22,7 +22,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from analysis import common  # noqa: E402
 from analysis.results_io import save_figure  # noqa: E402
 
-FIGURES = {"fig09": "Fig. 9: diffusion settings (torus)", "fig10": "Fig. 10: constant vs ours (engine)",
+FIGURES = {"fig09": "Fig. 9: diffusion settings (torus)", "fig10": "Fig. 10: constant vs ours (spheres)",
            "fig11": "Fig. 11: transparency assignments (nested spheres)",
            "fig12": "Fig. 12: flow-like surface (concentric cylinders)", "fig13": "Fig. 13: jet engine"}
 

@@ -253,16 +253,18 @@ def carnecky_images(catalogue, quick):
     ib, modes = "illustration_buffer", catalogue.choices("illustration_buffer", "modulation")
     extra_modes = [m for m in modes if re.search(r"angle|normal", m)]
     torus = ("torus", ())
-    engine = ("model", (("name", "engine"),)) if "engine" in catalogue.models else torus
+    # A random view frames the whole bounding sphere: the engine's own camera crops it.
+    engine = ("model", (("name", "engine"),), "random:8:2@0") if "engine" in catalogue.models else torus
     flow = ("cylinders", ())
+    close = ("spheres", ())
     grid = [
         ("fig09_iter1", "1 iteration", ib, [("iterations", "1")], torus),
         ("fig09_iter20", "20 iterations", ib, [("iterations", "20")], torus),
         ("fig09_iter50", "50 iterations", ib, [("iterations", "50")], torus),
         ("fig09_exponential", "20 it., exponential p=3", ib, [("profile", "exponential")], torus),
         ("fig09_power", "20 it., power p=0.3", ib, [("profile", "power")], torus),
-        ("fig10_constant", "constant transparency", ib, [("modulation", "none")], engine),
-        ("fig10_ours", "illustration buffer", ib, [], engine),
+        ("fig10_constant", "constant transparency", ib, [("modulation", "none")], close),
+        ("fig10_ours", "illustration buffer", ib, [], close),
         ("fig11_constant", "(b) constant", ib, [("modulation", "none")], ("nested_spheres", ())),
         ("fig11_ours", "(e) silhouettes + halos", ib, [], ("nested_spheres", ())),
         ("fig12_constant", "flow surface, constant", ib, [("modulation", "none")], flow),
@@ -273,8 +275,8 @@ def carnecky_images(catalogue, quick):
     grid += [(f"fig11_{m}", f"{m} transparency", ib, [("modulation", m)], ("nested_spheres", ())) for m in extra_modes]
     grid += [(f"fig13_{m}", f"(b) engine, {m}", ib, [("modulation", m)], engine)
              for m in extra_modes if "normal" in m]
-    return [Render(name, caption, t, tuple(tp), scene, sp, "default", side, side)
-            for name, caption, t, tp, (scene, sp) in grid]
+    return [Render(name, caption, t, tuple(tp), where[0], where[1], where[2] if len(where) > 2 else "default", side,
+                   side) for name, caption, t, tp, where in grid]
 
 
 def plan(catalogue, quick, views=None):
