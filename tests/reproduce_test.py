@@ -297,6 +297,60 @@ class NoisyTest(unittest.TestCase):
         self.assertEqual(figure_notes.noisy_note(kept), ", 1 of 2 runs noisy (other load > 25%)")
 
 
+class CommittedReproductionTest(unittest.TestCase):
+    """results/reference/reproduce: its README compares every figure with the
+    paper's numbers, and its CSVs hold the runs the README describes."""
+    FOLDER = os.path.join(os.path.dirname(HERE), "results", "reference", "reproduce")
+
+    @classmethod
+    def setUpClass(cls):
+        with open(os.path.join(cls.FOLDER, "README.md")) as f:
+            cls.readme = f.read()
+
+    def section(self, heading):
+        start = self.readme.index(heading)
+        end = self.readme.find("\n## ", start + 1)
+        return self.readme[start:end if end > 0 else None]
+
+    def test_one_table_per_figure_with_the_papers_numbers(self):
+        expected = {"murray2016 Fig. 10": ["~10 ms", "a fifth", "> 5 buckets"],
+                    "carnecky2013 Fig. 14": ["20x", "~15 fps", "linear"],
+                    "carnecky2013 Fig. 15": ["8.94", "non-zero intercept"],
+                    "pastyrik2016 Figs. 8-10": ["Suspension 2", "FindNeighbours"],
+                    "pastyrik2016 Fig. 7": ["dynamic", "no performance difference"],
+                    "pastyrik2016 section 4.3": ["208", "~397 MB"],
+                    "pastyrik2016 Figs. 11-14": ["much slower", "linked lists"],
+                    "murray2016 Figs. 1, 8, 9": ["64 / 24 = 2.67", "120 / 45 = 2.67", "20 / 10 = 2.0", "50 / 20 = 2.5"]}
+        for heading, numbers in expected.items():
+            text = self.section("## " + heading)
+            self.assertRegex(text, r"\| (quantity|figure) \| paper", heading)
+            for number in numbers:
+                self.assertIn(number, text, heading)
+
+    def test_the_corrected_explanations(self):
+        self.assertIn("favours **dual** peeling", self.readme)
+        self.assertIn("one** diffusion iteration", self.readme)
+        self.assertNotIn("unlike the paper, the neighbour stage dominates everything", self.readme)
+        with open(os.path.join(os.path.dirname(HERE), "results", "reference", "MEASURED.md")) as f:
+            self.assertNotIn("which favours the single-layer peel", f.read())
+
+    def test_every_plot_the_readme_names_is_committed(self):
+        import re
+        for png in set(re.findall(r"`((?:full/)?[a-z0-9_]+\.png)`", self.readme)):
+            self.assertTrue(os.path.exists(os.path.join(self.FOLDER, png)), png)
+
+    def test_the_committed_runs_are_the_ones_described(self):
+        fig14 = [r for r in rows_of(self.FOLDER, "carnecky_fig14") if r["stage"] == "total"]
+        self.assertTrue(fig14 and all(reproduce.tokens(r["params"])["iterations"] == "1" for r in fig14))
+        full14 = [r for r in rows_of(os.path.join(self.FOLDER, "full"), "carnecky_fig14") if r["stage"] == "total"]
+        self.assertEqual(sorted({int(r["width"]) for r in full14}), [128, 256, 512, 1024, 2048])
+        murray = [r for r in rows_of(os.path.join(self.FOLDER, "full"), "murray_fig10") if r["stage"] == "total"]
+        self.assertEqual({(r["width"], reproduce.tokens(r["params"])["k"]) for r in murray}, {("512", "32")})
+        self.assertEqual(len(murray), 18)
+        cameras = {r["camera"] for r in rows_of(self.FOLDER, "models")}
+        self.assertEqual(cameras, {"default", "max_list:16:1"})
+
+
 class FinishedTest(unittest.TestCase):
     def point(self, tparams=(), camera="default"):
         return reproduce.Point("bucketed_kbuffer", tparams, "quads", (("objects", "4"),), camera, 64, 64)
