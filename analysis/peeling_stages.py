@@ -38,7 +38,7 @@ def peel_table(runs):
 def draw(runs, args=None):
     rows, total, peel, passes = peel_table(runs)
     order = list(total.mean(axis=1).sort_values().index)
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(8.5, 7), sharex=True)
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(max(8.5, 0.5 * len(order)), 7.5), sharex=True)
     positions = np.arange(len(order))
     for i, technique in enumerate([t for t in PEELINGS if t in total]):
         offset = (i - 0.5) * 0.4
@@ -48,10 +48,13 @@ def draw(runs, args=None):
             bottom.bar(positions + offset, per_pass, 0.4, label=technique)
             for x, n in zip(positions + offset, passes.reindex(order)[technique]):
                 if np.isfinite(n):
-                    top.text(x, 0, f"{int(n)}", ha="center", va="bottom", fontsize=5, rotation=90)
+                    # x in data, y in axes units: the foot of the bar on a log axis.
+                    top.text(x, 0.01, f"{int(n)}", ha="center", va="bottom", fontsize=5, rotation=90,
+                             transform=top.get_xaxis_transform())
     top.set_yscale("log")
     top.set_ylabel("total time per frame (ms, log)\n(bar foot: geometry passes)")
-    bottom.set_ylabel("peel stage per geometry pass (ms)")
+    bottom.set_yscale("log")
+    bottom.set_ylabel("peel stage per geometry pass (ms, log)")
     bottom.set_xticks(positions, order, rotation=30, ha="right")
     bottom.set_xlabel("model (camera position)")
     for ax in (top, bottom):
