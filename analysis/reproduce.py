@@ -6,7 +6,7 @@ Usage (from the repository root, after `bash setup.sh build`):
         [--dry-run | --list-commands | --plots-only]
 
 One CSV per sweep under --out (murray_fig10, carnecky_fig14, carnecky_fig15,
-models, pastyrik_fig7, murray_models, layers), heatmaps under --out/heatmaps,
+models, pastyrik_fig7, murray_models, psi_scenes, layers), heatmaps under --out/heatmaps,
 the carnecky2013 Figs. 9-13 renders under --out/images, the PNG plots next
 to them. Resumable: before starting a bench the driver reads the sweep's CSV
 and leaves out every run (technique, its swept parameters, scene, swept scene
@@ -67,6 +67,7 @@ PAPER = {
     "models": "600x600, two positions per model: general and longest list (pastyrik2016 section 4)",
     "pastyrik_fig7": "600x600, sort variants inside the illustration buffer (pastyrik2016 Fig. 7)",
     "murray_models": "1000x1000, 16 layers: OIT k-buffer against stylised bucketed k-buffer (murray2016 Figs. 1, 8, 9)",
+    "psi_scenes": "600x600: synthetic scenes of Psi 0..1, illustration buffer and linked lists (pastyrik2016 section 5)",
     "layers": "no paper figure: 4..64 layers at 512^2",
     "carnecky_images": "carnecky2013 Figs. 9-13 at 512^2 (Fig. 12(b): 512x512, 20 iterations)",
 }
@@ -229,6 +230,22 @@ def murray_models(catalogue, scenes, quick, warmup, frames):
     return Sweep("murray_models", points, [("murray_fps_ratio", {})], warmup, frames)
 
 
+# Synthetic scenes whose complexity coverage Psi spans 0..1 at similar
+# fragment counts: pastyrik2016 finds that Psi drives the illustration
+# buffer's time (its FindNeighbours stage) and no other technique's.
+PSI_SCENES = [("quads", (("layers", "8"), ("objects", "8"))), ("nested_spheres", (("count", "4"),)),
+              ("cylinders", ()), ("torus", ()), ("spheres", ()), ("particles", ()), ("random_quads", ())]
+
+
+def psi_scenes(catalogue, quick, warmup, frames):
+    techniques = [t for t in ("illustration_buffer", "linked_list") if t in catalogue.techniques]
+    side = 256 if quick else 600
+    points = [p for scene, sparams in PSI_SCENES for p in cross(techniques, scene, [sparams], ["default"],
+                                                                   [(side, side)])]
+    return Sweep("psi_scenes", points, [("pastyrik_psi", {})], warmup, frames,
+                 "" if techniques else "neither illustration_buffer nor linked_list is in this build")
+
+
 def layers_sweep(catalogue, quick, warmup, frames):
     """Time per fragment against depth complexity; the k-buffers at k=auto
     (k = the view's depth complexity: no fragment dropped) where they accept it."""
@@ -295,6 +312,7 @@ def plan(catalogue, quick, views=None):
     return ([murray_fig10(catalogue, quick, warmup, frames)] + carnecky_sweeps(catalogue, quick, warmup, frames, views)
             + [models, pastyrik_fig7(catalogue, scenes, (side, side), warmup, frames),
                murray_models(catalogue, scenes, quick, warmup, frames),
+               psi_scenes(catalogue, quick, warmup, frames),
                layers_sweep(catalogue, quick, warmup, frames),
                Sweep("carnecky_images", [], [("carnecky_images", {"images": True})], 0, 0,
                      "" if images else "illustration_buffer is not in this build", images)])

@@ -82,7 +82,7 @@ class ReproduceTest(unittest.TestCase):
         self.assertEqual(len(first), len([c for c in started if c[1] == "bench"]))
         for png in ("murray_fig10", "carnecky_fig14", "carnecky_fig15", "pastyrik_fig8", "pastyrik_fig9",
                     "pastyrik_fig10", "oit_comparison", "time_per_fragment", "pastyrik_fig7", "pastyrik_memory",
-                    "peeling_stages", "murray_fps_ratio", "carnecky_images"):
+                    "peeling_stages", "murray_fps_ratio", "carnecky_images", "pastyrik_psi"):
             self.assertTrue(os.path.exists(os.path.join(self.out, f"{png}.png")), png)
         started, printed = self.reproduce()
         self.assertEqual(started, [])
@@ -114,7 +114,7 @@ class ReproduceTest(unittest.TestCase):
         listed = json.loads(printed)
         sweeps = {s["name"]: s for s in listed["sweeps"]}
         self.assertEqual(list(sweeps), ["murray_fig10", "carnecky_fig14", "carnecky_fig15", "models", "pastyrik_fig7",
-                                        "murray_models", "layers", "carnecky_images"])
+                                        "murray_models", "psi_scenes", "layers", "carnecky_images"])
         # The same invocations as a dry run, without the binary and --csv.
         self.assertEqual(sorted(map(tuple, (b for s in listed["sweeps"] for b in s["benches"]))),
                          sorted(tuple(c[1:c.index("--csv")]) for c in dry if c[1] == "bench"))
@@ -204,6 +204,12 @@ class PlanTest(unittest.TestCase):
         self.assertEqual(self.sizes(sweep), [(1000, 1000)])
         self.assertEqual({(p.technique, p.tparams) for p in sweep.points},
                          {("kbuffer", (("k", "16"),)), ("bucketed_kbuffer", (("k", "16"),))})
+
+    def test_psi_scenes_time_both_techniques_at_600(self):
+        sweep = self.full["psi_scenes"]
+        self.assertEqual(self.sizes(sweep), [(600, 600)])
+        self.assertEqual({p.technique for p in sweep.points}, {"illustration_buffer", "linked_list"})
+        self.assertIn(("quads", (("layers", "8"), ("objects", "8"))), {(p.scene, p.sparams) for p in sweep.points})
 
     def test_fig7_sweeps_the_sort_choices_the_build_lists(self):
         sweep = self.full["pastyrik_fig7"]  # the fake's illustration_buffer has no sort: linked_list's
