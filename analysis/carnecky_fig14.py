@@ -4,22 +4,42 @@ A resolution sweep of one surface (the paper: a toroid, 128^2 .. 2048^2)
 under a random camera set: each point is one resolution, its x the number of
 fragments and its stage times averaged over the views (fragments differ per
 view, so they are averaged too). Stacked areas are cumulative, as the paper's
-lines are; the paper finds every stage linear in the fragment count.
+lines are, named by the paper's passes: fill, sort, connect (our neighbors),
+solve (our stylize, or init + diffuse: ONE diffusion iteration in the
+sweep, as the paper's solve pass) and compose. The paper finds every pass
+linear in the fragment count.
 """
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from analysis import common  # noqa: E402
+from analysis import common, figure_notes  # noqa: E402
 
 TECHNIQUE = "illustration_buffer"
+# Our stage -> the paper's pass (carnecky2013 section 7). stylize may come
+# split into init (the fields' first values) and diffuse (the iterations).
+PAPER_PASSES = [("clear", ["clear"]), ("fill", ["fill"]), ("sort", ["sort"]), ("connect (neighbors)", ["neighbors"]),
+                ("solve (stylize, 1 iteration)", ["stylize", "init", "diffuse"]), ("compose", ["compose"])]
+PAPER_FIG14 = ["carnecky2013 (GeForce 470, 1000 random views):",
+               "every pass linear in the fragments; solve = one",
+               "diffusion iteration (10-50 in practice)"]
+PAPER_FIG15 = ["carnecky2013 (GeForce 470, 1024^2):",
+               "fill grows linearly with a non-zero intercept;",
+               "all other passes independent of the geometry"]
 
 
-def scaling_figure(runs, key, x_column, x_label, what):
+def passes(table):
+    """PAPER_PASSES, then any stage of the CSV outside them (before compose)."""
+    grouped = {s for _, members in PAPER_PASSES for s in members}
+    others = [s for s in table.columns if s not in grouped and s != "total"]
+    return PAPER_PASSES[:-1] + [(s, [s]) for s in others] + PAPER_PASSES[-1:]
+
+
+def scaling_figure(runs, key, x_column, x_label, what, paper):
     """Shared by Fig. 14 and 15: group the technique's rows by `key` (the swept
     quantity), x = mean of `x_column` over each group's views."""
-    rows = common.select(runs, TECHNIQUE)
+    rows = figure_notes.quiet_runs(common.select(runs, TECHNIQUE))
     if rows.empty:
         raise common.NoData(f"no {TECHNIQUE} rows")
     if x_column not in rows:
@@ -28,8 +48,8 @@ def scaling_figure(runs, key, x_column, x_label, what):
     x = rows.groupby("point")[x_column].mean()
     table = common.stage_table(rows, "point")
     order = x.sort_values().index
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    common.stacked_stages(ax, x.loc[order].to_numpy(), table.loc[order])
+    fig, ax = plt.subplots(figsize=(8.5, 4.8))
+    common.stacked_stages(ax, x.loc[order].to_numpy(), table.loc[order], passes(table))
     if "total" in table:
         ax.plot(x.loc[order].to_numpy(), table.loc[order, "total"].to_numpy(), color="black", marker="o",
                 markersize=3, linewidth=1, label="total")
@@ -38,8 +58,11 @@ def scaling_figure(runs, key, x_column, x_label, what):
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
     ax.legend(fontsize=7, loc="upper left")
+    figure_notes.paper_box(ax, paper)
     views = rows.groupby("point")["camera"].nunique().max()
-    ax.set_title(common.title(rows, f"{what} ({rows['scene'].iloc[0]}, mean over {views} camera view(s))"),
+    iterations = sorted({common.tokens(p).get("iterations", "?") for p in rows["params"]})
+    ax.set_title(common.title(rows, f"{what}\n{rows['scene'].iloc[0]}, mean over {views} camera view(s), "
+                                    f"iterations={','.join(iterations)}{figure_notes.noisy_note(rows)}"),
                  fontsize=8)
     fig.tight_layout()
     return fig
@@ -47,7 +70,7 @@ def scaling_figure(runs, key, x_column, x_label, what):
 
 def draw(runs, args=None):
     return scaling_figure(runs, lambda r: r["width"] * r["height"], "fragments", "number of fragments",
-                          "carnecky2013 Fig. 14: illustration buffer vs fragments (resolution sweep)")
+                          "carnecky2013 Fig. 14: illustration buffer vs fragments (resolution sweep)", PAPER_FIG14)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 """pastyrik2016 section 5: every OIT technique's total time per model, grouped bars.
 
-Groups are models (ordered by the mean total over techniques), one bar per
+Groups are models, each camera position apart (ordered by the mean total over techniques), one bar per
 technique (hatch and order say which). The paper's colouring: each
 technique's time range over the models is cut into thirds, the fastest third
 green, the middle blue, the slowest red, so a bar's colour says how a model
@@ -14,6 +14,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from analysis import common  # noqa: E402
+from analysis.pastyrik_fig8 import model_rows  # noqa: E402
 
 THIRD_COLOURS = ["tab:green", "tab:blue", "tab:red"]
 HATCHES = ["", "//", "\\\\", "xx", "..", "oo", "--", "++", "**", "OO"]
@@ -30,11 +31,12 @@ def thirds(times):
 
 
 def draw(runs, args=None):
-    rows = common.select(runs, scene="model")
+    rows = model_rows(runs, None)
     rows = rows[(rows["stage"] == "total") & (rows["technique"] != "reference")]
     if rows.empty:
         raise common.NoData("no total rows on the model scene")
-    rows = rows.assign(model=rows["scene_params"].map(lambda p: common.tokens(p).get("name", p)))
+    # Both camera positions of a model are groups of their own.
+    rows = rows.assign(model=[m if v == "general" else f"{m} ({v})" for m, v in zip(rows["model"], rows["view"])])
     table = rows.pivot_table(index="model", columns="technique", values="median_ms", aggfunc="mean")
     techniques = [t for t in PAPER_ORDER if t in table] + sorted(t for t in table if t not in PAPER_ORDER)
     table = table.loc[table.mean(axis=1).sort_values().index, techniques]

@@ -23,6 +23,8 @@ def heatmap_path(directory, model):
 
 def draw(runs, args):
     rows = model_rows(runs)
+    # The heatmaps are of the default camera: its runs give order and counts.
+    rows = rows[rows["view"] == "general"] if (rows["view"] == "general").any() else rows
     order = [m for m in models_by_total(rows) if os.path.exists(heatmap_path(args.heatmaps, m))]
     if not order:
         raise common.NoData(f"no heatmap_<model>.png in {args.heatmaps} for the models of the CSV")

@@ -1,25 +1,31 @@
-"""Run the sweeps behind the papers' timing plots, then draw every plot.
+"""Run the sweeps behind the papers' figures, then draw every plot.
 
 Usage (from the repository root, after `bash setup.sh build`):
-    /usr/bin/python3 -m analysis.reproduce [--quick] [--out results/<date>] [--only NAME ...]
-        [--oitbench build/harness/oitbench] [--dry-run | --list-commands | --plots-only]
+    /usr/bin/python3 -m analysis.reproduce [--quick | --full] [--out results/<date>] [--only NAME ...]
+        [--frames N] [--warmup N] [--rerun-noisy] [--oitbench build/harness/oitbench]
+        [--dry-run | --list-commands | --plots-only]
 
-One CSV per sweep under --out (murray_fig10.csv, carnecky_fig14.csv,
-carnecky_fig15.csv, models.csv, layers.csv), heatmaps under --out/heatmaps,
-the PNG plots next to them. Resumable: before starting a bench the driver
-reads the sweep's CSV and leaves out every run (technique, its swept
-parameters, scene, swept scene parameters, camera, width, height) that the CSV
-already holds whole (all its rows) with status ok or skipped; a run that failed
-with an error, or was cut short, is tried again. Interrupt it at any point and start it again with the same --out.
+One CSV per sweep under --out (murray_fig10, carnecky_fig14, carnecky_fig15,
+models, pastyrik_fig7, murray_models, psi_scenes, layers), heatmaps under --out/heatmaps,
+the carnecky2013 Figs. 9-13 renders under --out/images, the PNG plots next
+to them. Resumable: before starting a bench the driver reads the sweep's CSV
+and leaves out every run (technique, its swept parameters, scene, swept scene
+parameters, camera, width, height) that the CSV already holds whole (all its
+rows) with status ok or skipped; a run that failed with an error, or was cut
+short, is tried again; with --rerun-noisy a run flagged `noisy` is run once
+more (the plots then keep the quiet repeat). Interrupt it at any point and
+start it again with the same --out.
 
---list-commands prints the sweeps as JSON (bench and stats invocations, plot
-modules) for other drivers: workflow/Snakefile runs them as cluster jobs.
---plots-only draws from the CSVs already in --out; a CSV holding several
-(device, platform) pairs is drawn once per pair (file names get a suffix).
+--list-commands prints the sweeps as JSON (bench, stats and render
+invocations, plot modules) for other drivers: workflow/Snakefile runs the
+benches as cluster jobs. --plots-only draws from the CSVs already in --out;
+a CSV holding several (device, platform) pairs is drawn once per pair (file
+names get a suffix).
 
---quick: small sizes, 1 warm-up + 3 timed frames, a few models: minutes on 2
-cores with software GL. Without it the sweeps are sized for a real GPU (the
-papers' resolutions and tessellations).
+--quick: small sizes, 1 warm-up + 3 timed frames, a few models: software GL
+on 2 cores. --full (the default): the papers' resolutions and parameters
+(PAPER below; 3 warm-up + 20 timed frames), sized for a GPU; --frames and
+--warmup shorten the runs without changing the sizes.
 """
 import argparse
 import datetime
@@ -36,19 +42,45 @@ from analysis.results_io import read_rows, save_figure
 # A run: technique parameters and scene parameters are tuples of (key, value)
 # holding only what the sweep sets; everything else stays at its default.
 Point = namedtuple("Point", "technique tparams scene sparams camera width height")
+# One image of `oitbench render` for the stylised-image grids (carnecky2013
+# Figs. 9-13): written to <out>/images/<name>.png; `caption` goes under it.
+Render = namedtuple("Render", "name caption technique tparams scene sparams camera width height")
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DEFAULT_OITBENCH = os.path.join(REPO, "build", "harness", "oitbench")
 COMPARISON = ["depth_peeling", "dual_depth_peeling", "linked_list", "illustration_buffer"]
 QUICK_MODELS = ["wuson", "elephant", "dragon", "bones", "bunny", "engine", "armadillo"]
+# CAD-like meshes of assimp-testmodels loaded as file scenes beside the
+# `model` scene's catalogue (pastyrik2016 timed CAD scenes: GPU, Suspension,
+# engines): regr01 is a building's floor plan in 275 parts. Left out where
+# the file is not installed.
+CAD_FILES = ["/usr/share/assimp/models/OBJ/regr01.obj"]
+# pastyrik2016 section 4: "each model is tested in two positions - one
+# general and one where the length of linked list is maximum possible".
+MODEL_CAMERAS = ["default", "max_list:16:1"]
+# The papers' sizes and parameters (--full): carnecky2013 section 7,
+# murray2016 section 6, pastyrik2016 section 4.
+PAPER = {
+    "murray_fig10": "512x512, 32 layers, k = 32, 1..32 objects (murray2016 section 6)",
+    "carnecky_fig14": "toroid, 128^2..2048^2, one diffusion iteration, random cameras (carnecky2013 section 7)",
+    "carnecky_fig15": "toroid up to 500k triangles at 1024^2, one diffusion iteration (carnecky2013 section 7)",
+    "models": "600x600, two positions per model: general and longest list (pastyrik2016 section 4)",
+    "pastyrik_fig7": "600x600, sort variants inside the illustration buffer (pastyrik2016 Fig. 7)",
+    "murray_models": "1000x1000, 16 layers: OIT k-buffer against stylised bucketed k-buffer (murray2016 Figs. 1, 8, 9)",
+    "psi_scenes": "600x600: synthetic scenes of Psi 0..1, illustration buffer and linked lists (pastyrik2016 section 5)",
+    "layers": "no paper figure: 4..64 layers at 512^2",
+    "carnecky_images": "carnecky2013 Figs. 9-13 at 512^2 (Fig. 12(b): 512x512, 20 iterations)",
+}
 
 
 class Catalogue:
     """What `oitbench list` says this build has: technique ids (with their
-    parameter defaults, and which is the reference) and model names."""
+    parameter defaults and descriptions, and which is the reference) and
+    model names."""
 
     def __init__(self, text):
         self.techniques = OrderedDict()  # id -> {param: default}
+        self.descriptions = {}  # id -> {param: description (its allowed values first)}
         self.reference = set()
         self.models = []
         section, current, scene = None, None, None
@@ -61,13 +93,15 @@ class Catalogue:
                 current = line.split()[0]
                 if section == "techniques":
                     self.techniques[current] = {}
+                    self.descriptions[current] = {}
                     if ", reference]" in line:
                         self.reference.add(current)
                 else:
                     scene = current
-            elif section and (m := re.match(r"^ {6}(\S+)\s+default (\S+)\s+(.*)", line)):
+            elif section and (m := re.match(r"^ {6}(\S+)\s+default (\S*)\s+(.*)", line)):
                 if section == "techniques" and current in self.techniques:
                     self.techniques[current][m.group(1)] = m.group(2)
+                    self.descriptions[current][m.group(1)] = m.group(3)
                 elif section == "scenes" and scene == "model" and m.group(1) == "name":
                     choices = re.search(r"one of \{([^}]*)\}", m.group(3))
                     if choices:
@@ -78,11 +112,24 @@ class Catalogue:
         ids = [t for t in self.techniques if t not in self.reference]
         return [t for t in COMPARISON if t in ids] + [t for t in ids if t not in COMPARISON]
 
+    def choices(self, technique, param):
+        """The values `one of {...}` allows for a parameter ([] when it is not
+        a choice or not there)."""
+        found = re.search(r"one of \{([^}]*)\}", self.descriptions.get(technique, {}).get(param, ""))
+        return [c.strip() for c in found.group(1).split(",")] if found else []
+
+    def accepts_auto(self, technique, param):
+        return "or auto" in self.descriptions.get(technique, {}).get(param, "")
+
+    def is_switch(self, technique, param):
+        return self.descriptions.get(technique, {}).get(param, "").startswith("true or false")
+
 
 class Sweep:
-    def __init__(self, name, points, plots, warmup, frames, skip_reason=""):
+    def __init__(self, name, points, plots, warmup, frames, skip_reason="", renders=()):
         self.name, self.points, self.plots = name, points, plots
         self.warmup, self.frames, self.skip_reason = warmup, frames, skip_reason
+        self.renders = list(renders)
 
 
 def cross(techniques, scene, scene_sets, cameras, sizes, tparams=()):
@@ -95,75 +142,195 @@ def random_views(count, seed):
     return [f"random:{count}:{seed}@{i}" for i in range(count)]
 
 
-def plan(catalogue, quick):
-    """The sweeps and the plots each feeds. Quick: small enough for software
-    GL on 2 cores; full: the papers' sizes (fragments grow with the square of
-    the resolution: 2048^2 may not fit every device, its run becomes an error
-    row and the plot stops where the device stopped)."""
-    warmup, frames = (1, 3) if quick else (3, 20)
-    sweeps = []
-
+def murray_fig10(catalogue, quick, warmup, frames):
+    """murray2016 Fig. 10: 32 stacked quads, 1..32 objects, k = 32, 512^2."""
     objects = [1, 2, 4, 8, 16, 32]
     size = [(64, 64)] if quick else [(512, 512)]
     scene_sets = [[("layers", "32"), ("objects", str(n))] for n in objects]
     bkb = catalogue.techniques.get("bucketed_kbuffer")
-    points, skip = [], ""
     if bkb is None:
-        skip = "bucketed_kbuffer is not in this build (`oitbench list`): murray2016 Fig. 10 left out"
-    else:
-        # k = 32 covers the 32 layers, as in the paper; buckets=on even on one
-        # object (the default `auto` would fall back to brute force there).
-        # The figure times the paper's bucket query, not the default merge search.
-        k = [("k", "32")] + ([("neighbor_search", "bucket")] if "neighbor_search" in bkb else [])
-        points = cross(["kbuffer"], "quads", scene_sets, ["default"], size, k)
-        points += cross(["bucketed_kbuffer"], "quads", scene_sets, ["default"], size,
-                        k + ([("buckets", "on")] if "buckets" in bkb else []))
-        if "buckets" in bkb:
-            points += cross(["bucketed_kbuffer"], "quads", scene_sets, ["default"], size, k + [("buckets", "off")])
-    sweeps.append(Sweep("murray_fig10", points, [("murray_fig10", {})], warmup, frames, skip))
+        return Sweep("murray_fig10", [], [("murray_fig10", {})], warmup, frames,
+                     "bucketed_kbuffer is not in this build (`oitbench list`): murray2016 Fig. 10 left out")
+    # k = 32 covers the 32 layers, as in the paper; buckets=on even on one
+    # object (the default `auto` would fall back to brute force there). The
+    # paper's neighbour search ends with a reverse check (its Fig. 5): where
+    # the build has that switch, it is on. The figure times the paper's
+    # bucket query, not the default merge search.
+    k = [("k", "32")] + [(p, "true") for p in bkb if "reverse" in p and catalogue.is_switch("bucketed_kbuffer", p)]
+    k += [("neighbor_search", "bucket")] if "neighbor_search" in bkb else []
+    points = cross(["kbuffer"], "quads", scene_sets, ["default"], size, [("k", "32")])
+    points += cross(["bucketed_kbuffer"], "quads", scene_sets, ["default"], size,
+                    k + ([("buckets", "on")] if "buckets" in bkb else []))
+    if "buckets" in bkb:
+        points += cross(["bucketed_kbuffer"], "quads", scene_sets, ["default"], size, k + [("buckets", "off")])
+    return Sweep("murray_fig10", points, [("murray_fig10", {})], warmup, frames)
 
-    # carnecky2013 timed its own neighbour search (Algorithm 2), not pastyrik2016's triangle indices.
-    heuristic = [("neighbors", "heuristic")]
+
+def carnecky_sweeps(catalogue, quick, warmup, frames, views=None):
+    """carnecky2013 Figs. 14 and 15: the toroid under random cameras, its
+    stages with ONE diffusion iteration (the paper's solve pass is one
+    iteration) and its own neighbour search (Algorithm 2); without the
+    accuracy bookkeeping (surface id and uv per fragment), which the paper's
+    buffer does not hold. `views`: random views per point instead of the
+    mode's (3 quick; 32 and 16 full)."""
+    ib = [("iterations", "1"), ("neighbors", "heuristic")]
+    if catalogue.is_switch("illustration_buffer", "measure_accuracy"):
+        ib.append(("measure_accuracy", "false"))
     sides = [128, 192, 256, 384, 512] if quick else [128, 256, 512, 1024, 2048]
-    views = random_views(3, 1) if quick else random_views(8, 1)
-    sweeps.append(Sweep("carnecky_fig14",
-                        cross(["illustration_buffer"], "torus", [[]], views, [(s, s) for s in sides], heuristic),
-                        [("carnecky_fig14", {})], warmup, frames))
-
+    views14 = random_views(views or (3 if quick else 32), 1)
+    fig14 = Sweep("carnecky_fig14", cross(["illustration_buffer"], "torus", [[]], views14, [(s, s) for s in sides], ib),
+                  [("carnecky_fig14", {})], warmup, frames)
+    # slices x stacks x 2 triangles: 64 .. 65k (quick), 256 .. 1M (full; the
+    # paper's axis ends at 500k).
     tessellations = [(8, 4), (16, 8), (32, 16), (64, 32), (128, 64), (256, 128)] if quick else \
-        [(16, 8), (32, 16), (64, 32), (128, 64), (256, 128), (512, 256), (1024, 512)]
+        [(16, 8), (64, 32), (128, 64), (256, 128), (512, 256), (512, 512), (1024, 512)]
     side = 256 if quick else 1024
-    sweeps.append(Sweep("carnecky_fig15",
-                        cross(["illustration_buffer"], "torus",
-                              [[("slices", str(a)), ("stacks", str(b))] for a, b in tessellations], views,
-                              [(side, side)], heuristic),
-                        [("carnecky_fig15", {})], warmup, frames))
+    views15 = random_views(views or (3 if quick else 16), 1)
+    fig15 = Sweep("carnecky_fig15",
+                  cross(["illustration_buffer"], "torus", [[("slices", str(a)), ("stacks", str(b))]
+                                                           for a, b in tessellations], views15, [(side, side)], ib),
+                  [("carnecky_fig15", {})], warmup, frames)
+    return [fig14, fig15]
 
-    models = [m for m in QUICK_MODELS if m in catalogue.models] if quick else catalogue.models
-    side = 256 if quick else 600  # pastyrik2016 section 4.3 quotes 600x600
-    sweeps.append(Sweep("models",
-                        cross(catalogue.timed(), "model", [[("name", m)] for m in models], ["default"],
-                              [(side, side)]),
-                        [("pastyrik_fig8", {}), ("pastyrik_fig9", {}), ("pastyrik_fig10", {"heatmaps": True}),
-                         ("oit_comparison", {})], warmup, frames))
 
+def model_scenes(catalogue, quick):
+    """(scene, scene parameters) of every model the pastyrik2016 sweeps time:
+    the `model` catalogue (a quick subset) and the CAD files installed."""
+    names = [m for m in QUICK_MODELS if m in catalogue.models] if quick else catalogue.models
+    return ([("model", (("name", m),)) for m in names]
+            + [(path, ()) for path in CAD_FILES if os.path.exists(path)])
+
+
+def model_points(techniques, scenes, cameras, size, tparams=()):
+    return [p for scene, sparams in scenes for p in cross(techniques, scene, [sparams], cameras, [size], tparams)]
+
+
+def pastyrik_fig7(catalogue, scenes, size, warmup, frames):
+    """pastyrik2016 Fig. 7: the sort variants inside the illustration buffer
+    (`sort` choices where the build has them); else the same sorts in the
+    linked lists the buffer is built on (linked_list `sort`)."""
+    for technique in ("illustration_buffer", "linked_list"):
+        variants = catalogue.choices(technique, "sort")
+        if variants:
+            points = [p for v in variants
+                      for p in model_points([technique], scenes, MODEL_CAMERAS, size, [("sort", v)])]
+            return Sweep("pastyrik_fig7", points, [("pastyrik_fig7", {})], warmup, frames)
+    return Sweep("pastyrik_fig7", [], [("pastyrik_fig7", {})], warmup, frames,
+                 "neither illustration_buffer nor linked_list has a `sort` choice in this build")
+
+
+def murray_models(catalogue, scenes, quick, warmup, frames):
+    """murray2016 Figs. 1, 8, 9: frame rate of OIT (dual-pass k-buffer,
+    constant transparency) against mean curvature transparency (bucketed
+    k-buffer), 16 layers, 1000x1000."""
+    if "bucketed_kbuffer" not in catalogue.techniques or "kbuffer" not in catalogue.techniques:
+        return Sweep("murray_models", [], [("murray_fps_ratio", {})], warmup, frames,
+                     "kbuffer or bucketed_kbuffer is not in this build: murray2016 Figs. 1/8/9 left out")
+    size = (256, 256) if quick else (1000, 1000)
+    points = [p for t in ("kbuffer", "bucketed_kbuffer") for p in model_points([t], scenes, ["default"], size,
+                                                                             [("k", "16")])]
+    return Sweep("murray_models", points, [("murray_fps_ratio", {})], warmup, frames)
+
+
+# Synthetic scenes whose complexity coverage Psi spans 0..1 at similar
+# fragment counts: pastyrik2016 finds that Psi drives the illustration
+# buffer's time (its FindNeighbours stage) and no other technique's.
+PSI_SCENES = [("quads", (("layers", "8"), ("objects", "8"))), ("nested_spheres", (("count", "4"),)),
+              ("cylinders", ()), ("torus", ()), ("spheres", ()), ("particles", ()), ("random_quads", ())]
+
+
+def psi_scenes(catalogue, quick, warmup, frames):
+    techniques = [t for t in ("illustration_buffer", "linked_list") if t in catalogue.techniques]
+    side = 256 if quick else 600
+    points = [p for scene, sparams in PSI_SCENES for p in cross(techniques, scene, [sparams], ["default"],
+                                                                   [(side, side)])]
+    return Sweep("psi_scenes", points, [("pastyrik_psi", {})], warmup, frames,
+                 "" if techniques else "neither illustration_buffer nor linked_list is in this build")
+
+
+def layers_sweep(catalogue, quick, warmup, frames):
+    """Time per fragment against depth complexity; the k-buffers at k=auto
+    (k = the view's depth complexity: no fragment dropped) where they accept it."""
     layers = [4, 8, 16, 32, 64]
     side = 128 if quick else 512
-    sweeps.append(Sweep("layers",
-                        cross(catalogue.timed(), "quads", [[("layers", str(n))] for n in layers], ["default"],
-                              [(side, side)]),
-                        [("time_per_fragment", {})], warmup, frames))
-    return sweeps
+    sets = [[("layers", str(n))] for n in layers]
+    auto = [t for t in catalogue.timed() if catalogue.accepts_auto(t, "k")]
+    points = cross([t for t in catalogue.timed() if t not in auto], "quads", sets, ["default"], [(side, side)])
+    for t in auto:
+        points += cross([t], "quads", sets, ["default"], [(side, side)], [("k", "auto")])
+    return Sweep("layers", points, [("time_per_fragment", {})], warmup, frames)
+
+
+def carnecky_images(catalogue, quick):
+    """carnecky2013 Figs. 9-13 as renders of comparable scenes: diffusion
+    settings (Fig. 9), constant transparency against the method (Figs. 10,
+    12, 13) and the transparency assignments of Fig. 11 this build offers
+    (angle / normal variation modes where `modulation` lists them)."""
+    if "illustration_buffer" not in catalogue.techniques:
+        return []
+    side = 256 if quick else 512
+    ib, modes = "illustration_buffer", catalogue.choices("illustration_buffer", "modulation")
+    extra_modes = [m for m in modes if re.search(r"angle|normal", m)]
+    torus = ("torus", ())
+    # A random view frames the whole bounding sphere: the engine's own camera crops it.
+    engine = ("model", (("name", "engine"),), "random:8:2@0") if "engine" in catalogue.models else torus
+    flow = ("cylinders", ())
+    close = ("spheres", ())
+    grid = [
+        ("fig09_iter1", "1 iteration", ib, [("iterations", "1")], torus),
+        ("fig09_iter20", "20 iterations", ib, [("iterations", "20")], torus),
+        ("fig09_iter50", "50 iterations", ib, [("iterations", "50")], torus),
+        ("fig09_exponential", "20 it., exponential p=3", ib, [("profile", "exponential")], torus),
+        ("fig09_power", "20 it., power p=0.3", ib, [("profile", "power")], torus),
+        ("fig10_constant", "constant transparency", ib, [("modulation", "none")], close),
+        ("fig10_ours", "illustration buffer", ib, [], close),
+        ("fig11_constant", "(b) constant", ib, [("modulation", "none")], ("nested_spheres", ())),
+        ("fig11_ours", "(e) silhouettes + halos", ib, [], ("nested_spheres", ())),
+        ("fig12_constant", "flow surface, constant", ib, [("modulation", "none")], flow),
+        ("fig12_ours", "flow surface, ours", ib, [], flow),
+        ("fig13_constant", "(a) engine, constant", ib, [("modulation", "none")], engine),
+        ("fig13_ours", "(c) engine, ours", ib, [], engine),
+    ]
+    grid += [(f"fig11_{m}", f"{m} transparency", ib, [("modulation", m)], ("nested_spheres", ())) for m in extra_modes]
+    grid += [(f"fig13_{m}", f"(b) engine, {m}", ib, [("modulation", m)], engine)
+             for m in extra_modes if "normal" in m]
+    return [Render(name, caption, t, tuple(tp), where[0], where[1], where[2] if len(where) > 2 else "default", side,
+                   side) for name, caption, t, tp, where in grid]
+
+
+def plan(catalogue, quick, views=None):
+    """The sweeps and the plots each feeds. Quick: small enough for software
+    GL on 2 cores; full: the papers' sizes and parameters (PAPER; fragments
+    grow with the square of the resolution: 2048^2 may not fit every device,
+    its run becomes an error row and the plot stops where the device
+    stopped)."""
+    warmup, frames = (1, 3) if quick else (3, 20)
+    scenes = model_scenes(catalogue, quick)
+    side = 256 if quick else 600  # pastyrik2016 section 4 quotes 600x600
+    models = Sweep("models", model_points(catalogue.timed(), scenes, MODEL_CAMERAS, (side, side)),
+                   [("pastyrik_fig8", {}), ("pastyrik_fig9", {}), ("pastyrik_fig10", {"heatmaps": True}),
+                    ("oit_comparison", {}), ("pastyrik_memory", {}), ("peeling_stages", {})], warmup, frames)
+    images = carnecky_images(catalogue, quick)
+    return ([murray_fig10(catalogue, quick, warmup, frames)] + carnecky_sweeps(catalogue, quick, warmup, frames, views)
+            + [models, pastyrik_fig7(catalogue, scenes, (side, side), warmup, frames),
+               murray_models(catalogue, scenes, quick, warmup, frames),
+               psi_scenes(catalogue, quick, warmup, frames),
+               layers_sweep(catalogue, quick, warmup, frames),
+               Sweep("carnecky_images", [], [("carnecky_images", {"images": True})], 0, 0,
+                     "" if images else "illustration_buffer is not in this build", images)])
 
 
 def tokens(text):
     return dict(item.partition("=")[::2] for item in text.split())
 
 
-def finished(point, rows):
+def finished(point, rows, rerun_noisy=False):
     """Whether the CSV rows already hold this run (ok or skipped; an error is retried).
     The key of `oitbench bench --resume`; filtering here as well means a group
-    whose runs are all finished starts no process (context, scene, reference)."""
+    whose runs are all finished starts no process (context, scene, reference).
+    With rerun_noisy a run flagged `noisy` (other processes took over a
+    quarter of the cores) counts only once it has been tried twice."""
+    noisy = set()
     for row in rows:
         if (row.get("status") in ("ok", "skipped") and row.get("technique") == point.technique
                 and row.get("scene") == point.scene and row.get("camera") == point.camera
@@ -171,8 +338,10 @@ def finished(point, rows):
             params, scene_params = tokens(row.get("params", "")), tokens(row.get("scene_params", ""))
             if all(params.get(k) == v for k, v in point.tparams) and \
                     all(scene_params.get(k) == v for k, v in point.sparams):
-                return True
-    return False
+                if not rerun_noisy or row.get("noisy") != "true":
+                    return True
+                noisy.add(row.get("run_id"))
+    return len(noisy) >= 2
 
 
 def batches(points):
@@ -219,7 +388,7 @@ def run_sweep(sweep, args, env):
     """Runs what the sweep's CSV lacks; returns the bench commands started."""
     csv_path = os.path.join(args.out, f"{sweep.name}.csv")
     rows = read_rows(csv_path)
-    missing = [p for p in sweep.points if not finished(p, rows)]
+    missing = [p for p in sweep.points if not finished(p, rows, args.rerun_noisy)]
     todo = batches(missing)
     print(f"== {sweep.name}: {len(sweep.points)} runs, {len(sweep.points) - len(missing)} already in {csv_path}, "
           f"{len(todo)} bench invocation(s) to go", flush=True)
@@ -240,11 +409,22 @@ def run_sweep(sweep, args, env):
     return started
 
 
+def model_label(scene, sparams):
+    """A model's name: the `model` scene's name parameter, a file scene's stem
+    (the plots' `model_rows` names them the same way)."""
+    name = dict(sparams).get("name")
+    return name if name else os.path.splitext(os.path.basename(scene))[0]
+
+
+def scene_arguments(scene, sparams):
+    return ["--scene", scene] + [a for k, v in sparams for a in ("--scene-set", f"{k}={v}")]
+
+
 def heatmap_arguments(sweep):
     """(model, `oitbench stats` arguments without the binary and --heatmap)
-    per model of the models sweep (pastyrik2016 Fig. 10)."""
-    seen = OrderedDict((dict(p.sparams)["name"], p) for p in sweep.points)
-    return [(model, ["stats", "--scene", p.scene, "--scene-set", f"name={model}", "--size", f"{p.width}x{p.height}"])
+    per model of the models sweep (pastyrik2016 Fig. 10), default camera."""
+    seen = OrderedDict((model_label(p.scene, p.sparams), p) for p in sweep.points)
+    return [(model, ["stats"] + scene_arguments(p.scene, p.sparams) + ["--size", f"{p.width}x{p.height}"])
             for model, p in seen.items()]
 
 
@@ -270,6 +450,40 @@ def model_heatmaps(sweep, args, env):
     return started
 
 
+def render_arguments(render):
+    """`oitbench render` arguments of one image, without the binary and -o."""
+    command = ["render", "--technique", render.technique]
+    for key, value in render.tparams:
+        command += ["--set", f"{key}={value}"]
+    return command + scene_arguments(render.scene, render.sparams) + [
+        "--size", f"{render.width}x{render.height}", "--camera", render.camera, "--background", "1,1,1"]
+
+
+def run_renders(sweep, args, env):
+    """The sweep's images not yet in <out>/images (resumable like the benches)."""
+    directory = os.path.join(args.out, "images")
+    os.makedirs(directory, exist_ok=True)
+    started = []
+    for render in sweep.renders:
+        png = os.path.join(directory, f"{render.name}.png")
+        if os.path.exists(png):
+            continue
+        command = [args.oitbench] + render_arguments(render) + ["-o", png]
+        started.append(command)
+        print(f"[images] {render.name}: {render.caption}", flush=True)
+        if args.dry_run:
+            print("  would run: " + " ".join(command), flush=True)
+            continue
+        result = subprocess.run(command, stdout=subprocess.DEVNULL, env=env)
+        if result.returncode != 0:
+            print(f"  render failed (exit status {result.returncode})", flush=True)
+    # The captions travel with the images: the grid plot reads them.
+    if not args.dry_run:
+        with open(os.path.join(directory, "captions.json"), "w") as f:
+            json.dump({r.name: r.caption for r in sweep.renders}, f, indent=1)
+    return started
+
+
 def device_groups(runs):
     """The rows of each (device, platform), with a file-name suffix: none when
     the CSV holds one, else a slug of both. Times are only comparable within
@@ -279,6 +493,30 @@ def device_groups(runs):
         return [("", groups[0][1])]
     return [("_" + re.sub(r"[^A-Za-z0-9]+", "-", f"{device} {platform}").strip("-")[:80], part)
             for (device, platform), part in groups]
+
+
+def draw_images(sweep, args):
+    """The image grids of a render-only sweep."""
+    import importlib
+
+    import matplotlib.pyplot as plt
+
+    from analysis import common
+
+    drawn = []
+    for module_name, _ in sweep.plots:
+        module = importlib.import_module(f"analysis.{module_name}")
+        out = os.path.join(args.out, f"{module_name}.png")
+        try:
+            fig = module.draw_directory(os.path.join(args.out, "images"))
+        except (common.NoData, FileNotFoundError) as e:
+            print(f"  {module_name}: not drawn: {e}", flush=True)
+            continue
+        save_figure(fig, out, dpi=90)
+        plt.close(fig)
+        drawn.append(out)
+        print(f"  wrote {out}", flush=True)
+    return drawn
 
 
 def draw_plots(sweep, args):
@@ -291,6 +529,8 @@ def draw_plots(sweep, args):
 
     from analysis import common
 
+    if sweep.renders:
+        return draw_images(sweep, args)
     csv_path = os.path.join(args.out, f"{sweep.name}.csv")
     try:
         groups = device_groups(common.load(csv_path))
@@ -318,10 +558,18 @@ def draw_plots(sweep, args):
 def plan_as_data(sweeps):
     """The sweeps as plain data (what --list-commands prints as JSON): per
     sweep its bench invocations and `stats` heatmap invocations as argument
-    lists without the binary, --csv and --heatmap, and its plot modules."""
-    return [{"name": s.name, "skipped": s.skip_reason, "runs": len(s.points),
+    lists without the binary, --csv and --heatmap, its `render` invocations
+    (without -o; the image name beside them), and its plot modules. A sweep
+    of renders only is marked skipped for the workflow, which runs benches:
+    `analysis.reproduce --only carnecky_images` draws it."""
+    return [{"name": s.name,
+             "skipped": s.skip_reason or ("renders only: run by analysis.reproduce" if s.renders and not s.points
+                                          else ""),
+             "runs": len(s.points),
              "benches": [bench_arguments(b, s.warmup, s.frames) for b in batches(s.points)],
              "heatmaps": [{"model": m, "arguments": a} for m, a in heatmap_arguments(s)] if s.name == "models" else [],
+             "renders": [{"name": r.name, "arguments": render_arguments(r)} for r in s.renders],
+             "paper": PAPER.get(s.name, ""),
              "plots": [module for module, _ in s.plots]}
             for s in sweeps]
 
@@ -343,10 +591,22 @@ def catalogue_of(oitbench, env):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="small sizes, 1 warm-up + 3 frames (software GL)")
+    size = parser.add_mutually_exclusive_group()
+    size.add_argument("--quick", action="store_true", help="small sizes, 1 warm-up + 3 frames (software GL)")
+    size.add_argument("--full", action="store_true",
+                      help="the papers' resolutions and parameters (the default; named for clarity)")
     parser.add_argument("--out", default=os.path.join("results", datetime.date.today().isoformat()))
     parser.add_argument("--oitbench", default=DEFAULT_OITBENCH)
     parser.add_argument("--only", nargs="+", default=None, help="sweep names to run (default: all)")
+    parser.add_argument("--frames", type=int, default=None,
+                        help="timed frames per run instead of the mode's (3 quick, 20 full): the papers' sizes "
+                             "with fewer frames on a slow device")
+    parser.add_argument("--warmup", type=int, default=None, help="untimed frames per run instead of the mode's")
+    parser.add_argument("--views", type=int, default=None,
+                        help="random views per point of carnecky2013 Figs. 14/15 instead of the mode's (3 quick, 32 "
+                             "and 16 full)")
+    parser.add_argument("--rerun-noisy", action="store_true",
+                        help="run again every run whose rows are flagged noisy (at most twice in all)")
     parser.add_argument("--dry-run", action="store_true", help="print the invocations a run would start, run none")
     parser.add_argument("--no-plots", action="store_true")
     parser.add_argument("--plots-only", action="store_true",
@@ -359,7 +619,11 @@ def main(argv=None):
     if not os.access(args.oitbench, os.X_OK):
         sys.exit(f"reproduce: {args.oitbench} is not an executable (build first: bash setup.sh build)")
     env = oitbench_environment(args.oitbench)
-    sweeps = plan(catalogue_of(args.oitbench, env), args.quick)
+    sweeps = plan(catalogue_of(args.oitbench, env), args.quick, args.views)
+    for sweep in sweeps:
+        if sweep.points:
+            sweep.frames = args.frames if args.frames is not None else sweep.frames
+            sweep.warmup = args.warmup if args.warmup is not None else sweep.warmup
     if args.only:
         unknown = set(args.only) - {s.name for s in sweeps}
         if unknown:
@@ -380,9 +644,14 @@ def main(argv=None):
         if sweep.skip_reason:
             print(f"== {sweep.name}: skipped: {sweep.skip_reason}", flush=True)
             continue
-        started += run_sweep(sweep, args, env)
+        begin = time.monotonic()
+        started += run_sweep(sweep, args, env) if sweep.points else []
         if sweep.name == "models":
             started += model_heatmaps(sweep, args, env)
+        if sweep.renders:
+            started += run_renders(sweep, args, env)
+        if not args.dry_run:
+            print(f"== {sweep.name}: {time.monotonic() - begin:.0f} s", flush=True)
         if not args.dry_run and not args.no_plots:
             drawn += draw_plots(sweep, args)
     print(f"reproduce: {len(started)} invocation(s) {'listed' if args.dry_run else 'run'}, "

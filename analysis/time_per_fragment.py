@@ -4,12 +4,16 @@ Stacked quads with a growing number of layers (`--scene quads --scene-set
 layers=4,..,64`): every pixel holds exactly `layers` fragments, so the total
 time divided by the fragment count shows how each technique's cost per
 fragment grows with list length (sorting, peeling passes, k-buffer
-overflow).
+overflow). The k-buffers run at k=auto (k = the view's depth complexity,
+nothing dropped); a run that still dropped fragments (a fixed k below the
+layers) is drawn with an x and named in the legend.
 """
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+import pandas as pd  # noqa: E402
 
 from analysis import common  # noqa: E402
 
@@ -25,9 +29,16 @@ def draw(runs, args=None):
     several = rows.groupby("technique")["params"].nunique()
     rows["label"] = [label if several[t] > 1 else t for label, t in zip(rows["label"], rows["technique"])]
     fig, ax = plt.subplots(figsize=(8.5, 4.8))
+    dropped = pd.to_numeric(rows.get("fragments_dropped", pd.Series(0, index=rows.index)), errors="coerce").fillna(0)
+    rows = rows.assign(dropped=dropped > 0)
     for label, series in rows.groupby("label"):
         line = series.groupby("max_depth_complexity")["ns_per_fragment"].mean().sort_index()
-        ax.plot(line.index, line.to_numpy(), marker="o", markersize=3, label=label)
+        drops = series.groupby("max_depth_complexity")["dropped"].any().sort_index()
+        suffix = " (x: fragments dropped)" if drops.any() else ""
+        (drawn,) = ax.plot(line.index, line.to_numpy(), marker="o", markersize=3, label=label + suffix)
+        if drops.any():
+            ax.plot(line.index[drops.to_numpy()], line.to_numpy()[drops.to_numpy()], linestyle="", marker="x",
+                    markersize=8, color=drawn.get_color())
     ax.set_xscale("log", base=2)
     ax.set_yscale("log")
     ax.set_xlabel("depth complexity (fragments per pixel, longest list)")

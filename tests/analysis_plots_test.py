@@ -125,7 +125,9 @@ class CarneckyTest(PlotTest):
     def test_fig14_fragments_on_x_averaged_over_views(self):
         rows = [r for r in self.rows() if r["scene_params"].startswith("slices=16") or r["technique"] != "illustration_buffer"]
         ax = self.draw(carnecky_fig14, rows).axes[0]
-        self.assertEqual([c.get_label() for c in ax.collections], self.STAGES)
+        # The paper's pass names: connect = our neighbour search, solve = stylize (one iteration in the sweep).
+        self.assertEqual([c.get_label() for c in ax.collections],
+                         ["clear", "fill", "sort", "connect (neighbors)", "solve (stylize, 1 iteration)", "compose"])
         total = [line for line in ax.get_lines() if line.get_label() == "total"][0]
         np.testing.assert_allclose(total.get_xdata(), [2000 * 128, 2000 * 256])  # mean over the two views
         np.testing.assert_allclose(total.get_ydata(), [100.5, 200.5])
@@ -174,10 +176,14 @@ class PastyrikTest(PlotTest):
 
     def test_fig9_log_axis_and_psi_on_a_second_axis(self):
         fig = self.draw(pastyrik_fig9, self.rows())
-        ax, psi_ax = fig.axes
+        ax, time_ax, psi_ax = fig.axes  # counts, time on its own axis below, Psi twin of the counts
         self.assertEqual(ax.get_yscale(), "log")
         lines = {line.get_label(): line for line in ax.get_lines()}
-        self.assertEqual(list(lines), ["vertices", "fragments", "max list length", "total time (ms)"])
+        self.assertEqual(list(lines), ["vertices", "fragments", "max list length"])
+        self.assertEqual(time_ax.get_yscale(), "linear")
+        times = {line.get_label(): line for line in time_ax.get_lines()}
+        np.testing.assert_allclose(times["total time (ms)"].get_ydata(), [10, 20, 30])
+        np.testing.assert_allclose(times["neighbour stage time (ms)"].get_ydata(), [3, 6, 9])
         np.testing.assert_allclose(lines["vertices"].get_ydata(), [50, 100, 150])
         np.testing.assert_allclose(lines["max list length"].get_ydata(), [10, 20, 30])
         (psi,) = psi_ax.get_lines()

@@ -5,7 +5,8 @@ arguments ask for and logs each invocation, `stats` writes a tiny heatmap PNG.
 FAKE_OITBENCH_LOG: file receiving one line per invocation.
 FAKE_OITBENCH_NO_BKB=1: list without bucketed_kbuffer.
 FAKE_OITBENCH_DIE_AT=N: the N-th bench invocation (counted in the log) writes
-its rows for the first technique only and exits 1, as an interrupted run."""
+its rows for the first technique only and exits 1, as an interrupted run.
+`render` writes a tiny PNG; a mesh file path is a scene without parameters."""
 import argparse
 import os
 import struct
@@ -20,7 +21,7 @@ TECHNIQUES = {
     "depth_peeling": ({"max_passes": "64"}, ["peel", "compose"], "[exact]"),
     "linked_list": ({"sort": "insertion"}, ["clear", "fill", "sort", "compose"], "[exact]"),
     "kbuffer": ({"k": "8"}, ["clear", "fill", "compose"], "[approximate]"),
-    "illustration_buffer": ({"neighbors": "heuristic"},
+    "illustration_buffer": ({"neighbors": "heuristic", "modulation": "silhouette_halo", "iterations": "20"},
                             ["clear", "fill", "sort", "neighbors", "stylize", "compose"], "[exact]"),
     "bucketed_kbuffer": ({"buckets": "on", "k": "8"},
                          ["clear", "fill", "bucket", "neighbors", "stylize", "compose"], "[approximate]"),
@@ -28,6 +29,10 @@ TECHNIQUES = {
 SCENE_DEFAULTS = {"quads": {"layers": "32", "objects": "32", "seed": "1"}, "torus": {"slices": "64", "stacks": "32"},
                   "model": {"name": "bunny", "alpha": "0.4"}}
 MODELS = ["engine", "bunny", "wuson", "elephant", "bones"]
+# What `list` prints as a parameter's allowed values (default: a plain range).
+ALLOWED = {("linked_list", "sort"): "one of {insertion, selection, network}",
+           ("kbuffer", "k"): "integer in [1, 64] or auto",
+           ("illustration_buffer", "modulation"): "one of {none, silhouette_halo}"}
 
 
 def techniques():
@@ -51,7 +56,7 @@ def run_list():
     for t, (params, stages, kind) in techniques().items():
         print(f"  {t:<20} {t} {kind}\n      paper: none\n      stages: {', '.join(stages)}")
         for key, value in params.items():
-            print(f"      {key:<24} default {value:<8} anything — a parameter")
+            print(f"      {key:<24} default {value:<8} {ALLOWED.get((t, key), 'anything')} — a parameter")
     print("\nScenes (or a .gltf/.glb/.obj/.off/.ply/.stl file path):")
     for scene, params in SCENE_DEFAULTS.items():
         print(f"  {scene:<20} a scene")
@@ -70,33 +75,38 @@ def run_bench(args, count):
             owner, _, key = name.rpartition(".")
             if owner == technique:
                 params[key] = value
-        scene_params = dict(SCENE_DEFAULTS[args.scene])
+        scene_params = dict(SCENE_DEFAULTS.get(args.scene, {}))
         scene_params.update(dict(s.split("=", 1) for s in args.scene_set))
         width, height = (int(v) for v in args.size.split("x"))
         layers = int(scene_params.get("layers", 4))
         common = dict(params=" ".join(f"{k}={v}" for k, v in params.items()), scene=args.scene,
                       scene_params=" ".join(f"{k}={v}" for k, v in scene_params.items()), camera=args.camera,
                       width=width, height=height, fragments=width * height * layers, max_depth_complexity=layers,
-                      psi=0.5, extra="scene_triangles=128 scene_vertices=66")
+                      psi=0.5, extra="scene_triangles=128 scene_vertices=66",
+                      bytes_allocated=width * height * (layers + 1) * 16, passes=2)
         stages = known[technique][1]
         for stage in stages:
             rows.append(analysis_fixtures.row(technique, stage, 1.0, **common))
         rows.append(analysis_fixtures.row(technique, "total", len(stages) + 0.5, **common))
-        if count == int(os.environ.get("FAKE_OITBENCH_DIE_AT", "0")) and n == 0:
+        if n == 0 and os.environ.get("FAKE_OITBENCH_DIE_AT") and count == int(os.environ["FAKE_OITBENCH_DIE_AT"]):
             analysis_fixtures.write_csv(args.csv, rows, append=True)
             sys.exit(1)
     analysis_fixtures.write_csv(args.csv, rows, append=True)
 
 
-def run_stats(args):
+def write_png(path):
     # A 2x2 RGB PNG: signature, IHDR, one IDAT, IEND.
     def chunk(kind, data):
         return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
     raw = b"".join(b"\x00" + bytes([255, 0, 0, 0, 0, 255]) for _ in range(2))
     png = (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 2, 2, 8, 2, 0, 0, 0))
            + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
-    with open(args.heatmap, "wb") as f:
+    with open(path, "wb") as f:
         f.write(png)
+
+
+def run_stats(args):
+    write_png(args.heatmap)
     print("fragments 4")
 
 
@@ -116,11 +126,18 @@ def main():
     for option in ("--scene", "--size", "--heatmap"):
         stats.add_argument(option)
     stats.add_argument("--scene-set", action="append", default=[])
+    render = sub.add_parser("render")
+    for option in ("--technique", "--scene", "--size", "--camera", "--background", "-o"):
+        render.add_argument(option)
+    render.add_argument("--set", action="append", default=[])
+    render.add_argument("--scene-set", action="append", default=[])
     args = parser.parse_args()
     if args.command == "list":
         run_list()
     elif args.command == "bench":
         run_bench(args, count)
+    elif args.command == "render":
+        write_png(args.o)
     else:
         run_stats(args)
 

@@ -2,7 +2,10 @@
 """analysis.reproduce against a fake oitbench (tests/fake_oitbench.py): it
 starts one bench per missing run group, a second run repeats nothing, an
 interrupted run is completed without repeating its finished rows, and a build
-without bucketed_kbuffer leaves murray2016 Fig. 10 out with a message."""
+without bucketed_kbuffer leaves murray2016 Fig. 10 out with a message; the
+--full plan holds the papers' sizes and parameters; the new figures' plots
+draw what their rows say; the reproduction README's tables quote the
+papers' numbers."""
 import contextlib
 import csv
 import io
@@ -34,8 +37,14 @@ class ReproduceTest(unittest.TestCase):
         self.log = os.path.join(self.tmp.name, "calls.log")
         self.env = mock.patch.dict(os.environ, {"FAKE_OITBENCH_LOG": self.log})
         self.env.start()
+        # One CAD-like mesh file beside the catalogue's models, whatever this machine has installed.
+        self.cad = os.path.join(self.tmp.name, "cad_part.obj")
+        open(self.cad, "w").close()
+        self.cad_files = mock.patch.object(reproduce, "CAD_FILES", [self.cad])
+        self.cad_files.start()
 
     def tearDown(self):
+        self.cad_files.stop()
         self.env.stop()
         self.tmp.cleanup()
 
@@ -64,7 +73,7 @@ class ReproduceTest(unittest.TestCase):
         self.assertEqual(sorted(c[c.index("--camera") + 1] for c in fig14), ["random:3:1@0"] * 5 + ["random:3:1@1"] * 5 + ["random:3:1@2"] * 5)
         self.assertTrue(all(c[c.index("--warmup") + 1] == "1" and c[c.index("--frames") + 1] == "3" for c in benches))
         # Techniques without parameters share one process per scene point; the reference is never timed.
-        models = [c for c in benches if c[c.index("--csv") + 1].endswith("models.csv")]
+        models = [c for c in benches if os.path.basename(c[c.index("--csv") + 1]) == "models.csv"]
         self.assertTrue(all(c.count("--technique") > 1 and "reference" not in c for c in models))
 
     def test_second_run_repeats_nothing_and_draws_every_plot(self):
@@ -72,7 +81,8 @@ class ReproduceTest(unittest.TestCase):
         first = self.bench_calls()
         self.assertEqual(len(first), len([c for c in started if c[1] == "bench"]))
         for png in ("murray_fig10", "carnecky_fig14", "carnecky_fig15", "pastyrik_fig8", "pastyrik_fig9",
-                    "pastyrik_fig10", "oit_comparison", "time_per_fragment"):
+                    "pastyrik_fig10", "oit_comparison", "time_per_fragment", "pastyrik_fig7", "pastyrik_memory",
+                    "peeling_stages", "murray_fps_ratio", "carnecky_images", "pastyrik_psi"):
             self.assertTrue(os.path.exists(os.path.join(self.out, f"{png}.png")), png)
         started, printed = self.reproduce()
         self.assertEqual(started, [])
@@ -103,12 +113,18 @@ class ReproduceTest(unittest.TestCase):
         _, printed = self.reproduce("--list-commands")
         listed = json.loads(printed)
         sweeps = {s["name"]: s for s in listed["sweeps"]}
-        self.assertEqual(list(sweeps), ["murray_fig10", "carnecky_fig14", "carnecky_fig15", "models", "layers"])
+        self.assertEqual(list(sweeps), ["murray_fig10", "carnecky_fig14", "carnecky_fig15", "models", "pastyrik_fig7",
+                                        "murray_models", "psi_scenes", "layers", "carnecky_images"])
         # The same invocations as a dry run, without the binary and --csv.
         self.assertEqual(sorted(map(tuple, (b for s in listed["sweeps"] for b in s["benches"]))),
                          sorted(tuple(c[1:c.index("--csv")]) for c in dry if c[1] == "bench"))
         self.assertEqual([h["model"] for h in sweeps["models"]["heatmaps"]],
-                         ["wuson", "elephant", "bones", "bunny", "engine"])
+                         ["wuson", "elephant", "bones", "bunny", "engine", "cad_part"])
+        self.assertEqual(sweeps["models"]["heatmaps"][-1]["arguments"][:3], ["stats", "--scene", self.cad])
+        # The image grid is no bench: the workflow is told to leave it to analysis.reproduce.
+        self.assertEqual(sweeps["carnecky_images"]["benches"], [])
+        self.assertIn("renders only", sweeps["carnecky_images"]["skipped"])
+        self.assertIn(["--set", "modulation=none"], [r["arguments"][3:5] for r in sweeps["carnecky_images"]["renders"]])
         self.assertEqual(sweeps["layers"]["plots"], ["time_per_fragment"])
 
     def test_plots_only_draws_each_device_of_a_merged_csv_apart(self):
@@ -132,6 +148,213 @@ class ReproduceTest(unittest.TestCase):
         self.assertIn("murray_fig10: skipped: bucketed_kbuffer is not in this build", printed)
         self.assertFalse(any("murray_fig10.csv" in " ".join(c) for c in started))
         self.assertTrue(any("carnecky_fig14.csv" in " ".join(c) for c in started))
+
+
+class PlanTest(unittest.TestCase):
+    """The plans `oitbench list` of the fake build gives: --full at the papers' sizes and parameters."""
+
+    @classmethod
+    def setUpClass(cls):
+        import subprocess
+        listing = subprocess.run([FAKE, "list"], capture_output=True, text=True, check=True).stdout
+        cls.catalogue = reproduce.Catalogue(listing)
+        with mock.patch.object(reproduce, "CAD_FILES", [FAKE]):  # an existing file stands for a CAD mesh
+            cls.full = {s.name: s for s in reproduce.plan(cls.catalogue, quick=False)}
+            cls.quick = {s.name: s for s in reproduce.plan(cls.catalogue, quick=True)}
+
+    def sizes(self, sweep):
+        return sorted({(p.width, p.height) for p in sweep.points})
+
+    def test_murray_fig10_at_512_with_32_layers_and_k_32(self):
+        sweep = self.full["murray_fig10"]
+        self.assertEqual(self.sizes(sweep), [(512, 512)])
+        self.assertEqual({dict(p.sparams)["layers"] for p in sweep.points}, {"32"})
+        self.assertEqual(sorted({int(dict(p.sparams)["objects"]) for p in sweep.points}), [1, 2, 4, 8, 16, 32])
+        self.assertEqual({dict(p.tparams)["k"] for p in sweep.points}, {"32"})
+        self.assertEqual(sorted({dict(p.tparams).get("buckets", "-") for p in sweep.points}), ["-", "off", "on"])
+
+    def test_carnecky_one_iteration_tens_of_views_2048_and_500k_triangles(self):
+        fig14, fig15 = self.full["carnecky_fig14"], self.full["carnecky_fig15"]
+        for sweep in (fig14, fig15):
+            self.assertEqual({p.tparams for p in sweep.points}, {(("iterations", "1"), ("neighbors", "heuristic"))})
+        self.assertEqual(self.sizes(fig14), [(s, s) for s in (128, 256, 512, 1024, 2048)])
+        self.assertGreaterEqual(len({p.camera for p in fig14.points}), 30)
+        self.assertEqual(self.sizes(fig15), [(1024, 1024)])
+        triangles = sorted({2 * int(dict(p.sparams)["slices"]) * int(dict(p.sparams)["stacks"]) for p in fig15.points})
+        self.assertTrue(any(450_000 <= t <= 600_000 for t in triangles), triangles)
+        self.assertGreaterEqual(len({p.camera for p in fig15.points}), 16)
+
+    def test_views_override_and_accuracy_bookkeeping_off_where_listed(self):
+        text = ("Techniques:\n  illustration_buffer  IB [approximate]\n"
+                "      measure_accuracy         default true     true or false — bookkeeping\n")
+        fig14, fig15 = reproduce.carnecky_sweeps(reproduce.Catalogue(text), False, 3, 20, views=2)
+        self.assertEqual(sorted({p.camera for p in fig14.points}), ["random:2:1@0", "random:2:1@1"])
+        self.assertEqual({dict(p.tparams)["measure_accuracy"] for p in fig15.points}, {"false"})
+        self.assertEqual({(p.width, p.height) for p in fig15.points}, {(1024, 1024)})
+
+    def test_models_at_600_in_two_positions_with_a_cad_file(self):
+        sweep = self.full["models"]
+        self.assertEqual(self.sizes(sweep), [(600, 600)])
+        self.assertEqual(sorted({p.camera for p in sweep.points}), ["default", "max_list:16:1"])
+        self.assertEqual(sorted({p.scene for p in sweep.points}), sorted(["model", FAKE]))
+        self.assertEqual(len({p.sparams for p in sweep.points if p.scene == "model"}), 5)  # every catalogue model
+
+    def test_murray_models_at_1000_with_16_layers(self):
+        sweep = self.full["murray_models"]
+        self.assertEqual(self.sizes(sweep), [(1000, 1000)])
+        self.assertEqual({(p.technique, p.tparams) for p in sweep.points},
+                         {("kbuffer", (("k", "16"),)), ("bucketed_kbuffer", (("k", "16"),))})
+
+    def test_psi_scenes_time_both_techniques_at_600(self):
+        sweep = self.full["psi_scenes"]
+        self.assertEqual(self.sizes(sweep), [(600, 600)])
+        self.assertEqual({p.technique for p in sweep.points}, {"illustration_buffer", "linked_list"})
+        self.assertIn(("quads", (("layers", "8"), ("objects", "8"))), {(p.scene, p.sparams) for p in sweep.points})
+
+    def test_fig7_sweeps_the_sort_choices_the_build_lists(self):
+        sweep = self.full["pastyrik_fig7"]  # the fake's illustration_buffer has no sort: linked_list's
+        self.assertEqual(sorted({dict(p.tparams)["sort"] for p in sweep.points}), ["insertion", "network", "selection"])
+        self.assertEqual({p.technique for p in sweep.points}, {"linked_list"})
+
+    def test_k_buffers_run_at_k_auto_where_the_build_accepts_it(self):
+        kbuffer = [p for p in self.full["layers"].points if p.technique == "kbuffer"]
+        self.assertEqual({p.tparams for p in kbuffer}, {(("k", "auto"),)})
+        self.assertTrue(all(p.tparams == () for p in self.full["layers"].points if p.technique != "kbuffer"))
+
+    def test_images_take_the_modes_list_offers_and_the_quick_plan_stays_small(self):
+        names = [r.name for r in self.full["carnecky_images"].renders]
+        self.assertIn("fig13_constant", names)
+        self.assertFalse(any("angle" in n for n in names))  # the fake lists no angle mode
+        self.assertEqual({(p.width, p.height) for p in self.quick["carnecky_fig14"].points},
+                         {(s, s) for s in (128, 192, 256, 384, 512)})
+        self.assertEqual(self.sizes(self.quick["murray_fig10"]), [(64, 64)])
+
+    def test_angle_and_normal_modes_join_fig11_and_fig13_when_listed(self):
+        catalogue = reproduce.Catalogue(self.catalogue_text_with_modes())
+        names = [r.name for r in reproduce.carnecky_images(catalogue, quick=True)]
+        self.assertIn("fig11_angle", names)
+        self.assertIn("fig11_normal_variation", names)
+        self.assertIn("fig13_normal_variation", names)
+        self.assertNotIn("fig13_angle", names)
+
+    def catalogue_text_with_modes(self):
+        return ("Techniques:\n  illustration_buffer  IB [approximate]\n"
+                "      modulation               default silhouette_halo one of {none, angle, normal_variation, "
+                "silhouette_halo} — modes\n")
+
+
+class QuickRowsTest(unittest.TestCase):
+    """What a quick run against the fake build leaves in the CSVs."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        out = os.path.join(cls.tmp.name, "out")
+        with mock.patch.object(reproduce, "CAD_FILES", []), contextlib.redirect_stdout(io.StringIO()):
+            reproduce.main(["--quick", "--out", out, "--oitbench", FAKE, "--no-plots"])
+        cls.rows = {name: rows_of(out, name) for name in ("carnecky_fig14", "models", "layers", "pastyrik_fig7",
+                                                          "murray_models")}
+        cls.out = out
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_fig14_rows_hold_one_iteration_and_three_views_per_size(self):
+        rows = [r for r in self.rows["carnecky_fig14"] if r["stage"] == "total"]
+        self.assertEqual(len(rows), 15)
+        self.assertTrue(all(reproduce.tokens(r["params"])["iterations"] == "1" for r in rows))
+
+    def test_models_rows_in_both_positions(self):
+        totals = Counter((reproduce.tokens(r["scene_params"])["name"], r["camera"])
+                         for r in self.rows["models"] if r["stage"] == "total" and r["technique"] == "linked_list")
+        self.assertEqual(totals[("engine", "default")], 1, totals)
+        self.assertEqual(totals[("engine", "max_list:16:1")], 1)
+        self.assertEqual(len(totals), 10)
+
+    def test_layers_kbuffer_rows_at_k_auto_and_images_rendered(self):
+        ks = {reproduce.tokens(r["params"])["k"] for r in self.rows["layers"] if r["technique"] == "kbuffer"}
+        self.assertEqual(ks, {"auto"})
+        with open(os.path.join(self.out, "images", "captions.json")) as f:
+            captions = json.load(f)
+        self.assertEqual(captions["fig09_iter50"], "50 iterations")
+        self.assertTrue(all(os.path.exists(os.path.join(self.out, "images", f"{n}.png")) for n in captions))
+
+
+class NoisyTest(unittest.TestCase):
+    def row(self, run_id, noisy):
+        return {"technique": "kbuffer", "params": "k=32", "scene": "quads", "scene_params": "layers=32", "camera":
+                "default", "width": "64", "height": "64", "status": "ok", "noisy": noisy, "run_id": run_id}
+
+    def test_a_noisy_run_is_run_again_until_quiet_or_tried_twice(self):
+        point = reproduce.Point("kbuffer", (("k", "32"),), "quads", (), "default", 64, 64)
+        self.assertTrue(reproduce.finished(point, [self.row("a", "true")]))  # without --rerun-noisy
+        self.assertFalse(reproduce.finished(point, [self.row("a", "true")], rerun_noisy=True))
+        self.assertTrue(reproduce.finished(point, [self.row("a", "true"), self.row("b", "true")], rerun_noisy=True))
+        self.assertTrue(reproduce.finished(point, [self.row("a", "true"), self.row("b", "false")], rerun_noisy=True))
+
+    def test_plots_drop_a_noisy_run_that_has_a_quiet_repeat_and_count_the_rest(self):
+        import pandas as pd
+        from analysis import figure_notes
+        rows = pd.DataFrame([dict(self.row("a", "true"), median_ms=9.0), dict(self.row("b", "false"), median_ms=1.0),
+                             dict(self.row("c", "true"), median_ms=5.0, camera="random:2:1@1")])
+        kept = figure_notes.quiet_runs(rows)
+        self.assertEqual(sorted(kept["run_id"]), ["b", "c"])
+        self.assertEqual(figure_notes.noisy_note(kept), ", 1 of 2 runs noisy (other load > 25%)")
+
+
+class CommittedReproductionTest(unittest.TestCase):
+    """results/reference/reproduce: its README compares every figure with the
+    paper's numbers, and its CSVs hold the runs the README describes."""
+    FOLDER = os.path.join(os.path.dirname(HERE), "results", "reference", "reproduce")
+
+    @classmethod
+    def setUpClass(cls):
+        with open(os.path.join(cls.FOLDER, "README.md")) as f:
+            cls.readme = f.read()
+
+    def section(self, heading):
+        start = self.readme.index(heading)
+        end = self.readme.find("\n## ", start + 1)
+        return self.readme[start:end if end > 0 else None]
+
+    def test_one_table_per_figure_with_the_papers_numbers(self):
+        expected = {"murray2016 Fig. 10": ["~10 ms", "a fifth", "> 5 buckets"],
+                    "carnecky2013 Fig. 14": ["20x", "~15 fps", "linear"],
+                    "carnecky2013 Fig. 15": ["8.94", "non-zero intercept"],
+                    "pastyrik2016 Figs. 8-10": ["Suspension 2", "FindNeighbours"],
+                    "pastyrik2016 Fig. 7": ["dynamic", "no performance difference"],
+                    "pastyrik2016 section 4.3": ["208", "~397 MB"],
+                    "pastyrik2016 Figs. 11-14": ["much slower", "linked lists"],
+                    "murray2016 Figs. 1, 8, 9": ["64 / 24 = 2.67", "120 / 45 = 2.67", "20 / 10 = 2.0", "50 / 20 = 2.5"]}
+        for heading, numbers in expected.items():
+            text = self.section("## " + heading)
+            self.assertRegex(text, r"\| (quantity|figure) \| paper", heading)
+            for number in numbers:
+                self.assertIn(number, text, heading)
+
+    def test_the_corrected_explanations(self):
+        self.assertIn("favours **dual** peeling", self.readme)
+        self.assertIn("one** diffusion iteration", self.readme)
+        self.assertNotIn("unlike the paper, the neighbour stage dominates everything", self.readme)
+        with open(os.path.join(os.path.dirname(HERE), "results", "reference", "MEASURED.md")) as f:
+            self.assertNotIn("which favours the single-layer peel", f.read())
+
+    def test_every_plot_the_readme_names_is_committed(self):
+        import re
+        for png in set(re.findall(r"`((?:full/)?[a-z0-9_]+\.png)`", self.readme)):
+            self.assertTrue(os.path.exists(os.path.join(self.FOLDER, png)), png)
+
+    def test_the_committed_runs_are_the_ones_described(self):
+        fig14 = [r for r in rows_of(self.FOLDER, "carnecky_fig14") if r["stage"] == "total"]
+        self.assertTrue(fig14 and all(reproduce.tokens(r["params"])["iterations"] == "1" for r in fig14))
+        full14 = [r for r in rows_of(os.path.join(self.FOLDER, "full"), "carnecky_fig14") if r["stage"] == "total"]
+        self.assertEqual(sorted({int(r["width"]) for r in full14}), [128, 256, 512, 1024, 2048])
+        murray = [r for r in rows_of(os.path.join(self.FOLDER, "full"), "murray_fig10") if r["stage"] == "total"]
+        self.assertEqual({(r["width"], reproduce.tokens(r["params"])["k"]) for r in murray}, {("512", "32")})
+        self.assertEqual(len(murray), 18)
+        cameras = {r["camera"] for r in rows_of(self.FOLDER, "models")}
+        self.assertEqual(cameras, {"default", "max_list:16:1"})
 
 
 class FinishedTest(unittest.TestCase):

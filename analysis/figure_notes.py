@@ -1,0 +1,38 @@
+"""What the papers' figures add to a plot beyond the data: the paper's own
+numbers beside ours, and which runs were measured on a busy machine."""
+import pandas as pd
+
+# Columns that tell one run configuration from another (camera and size
+# included): the runs of one key are repeats of one measurement.
+RUN_KEY = ["technique", "params", "scene", "scene_params", "camera", "width", "height"]
+
+
+def quiet_runs(rows):
+    """`rows` without the noisy runs of a configuration that also has a quiet
+    run (`analysis.reproduce --rerun-noisy` ran it again): a configuration
+    measured only on a busy machine keeps its noisy rows (and the plot says
+    so, noisy_note)."""
+    if "noisy" not in rows or rows.empty:
+        return rows
+    noisy = rows["noisy"].astype(str) == "true"
+    quiet_keys = set(map(tuple, rows.loc[~noisy, RUN_KEY].astype(str).to_numpy()))
+    keys = pd.Series(list(map(tuple, rows[RUN_KEY].astype(str).to_numpy())), index=rows.index)
+    return rows[~(noisy & keys.isin(quiet_keys))]
+
+
+def noisy_note(rows):
+    """'' or ', N of M runs noisy (other processes > 25% of the cores)'."""
+    if "noisy" not in rows or rows.empty:
+        return ""
+    runs = rows.drop_duplicates(subset=RUN_KEY + (["run_id"] if "run_id" in rows else []))
+    noisy = int((runs["noisy"].astype(str) == "true").sum())
+    return f", {noisy} of {len(runs)} runs noisy (other load > 25%)" if noisy else ""
+
+
+def paper_box(ax, lines, loc="lower right"):
+    """The paper's claims as a small text box inside the axes."""
+    corners = {"lower right": (0.98, 0.02, "right", "bottom"), "upper right": (0.98, 0.98, "right", "top"),
+               "upper left": (0.02, 0.98, "left", "top"), "lower left": (0.02, 0.02, "left", "bottom")}
+    x, y, ha, va = corners[loc]
+    ax.text(x, y, "\n".join(lines), transform=ax.transAxes, ha=ha, va=va, fontsize=6,
+            bbox=dict(boxstyle="round", facecolor="lightyellow", alpha=0.9))

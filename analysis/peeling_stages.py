@@ -1,0 +1,70 @@
+"""pastyrik2016 Figures 11-14: depth peeling against dual depth peeling, from stage times.
+
+Per model and camera position: the total time of both peelings (top) and
+the time per geometry pass (`peel` stage / `passes`, bottom). Dual depth
+peeling needs about half the geometry passes (ceil(d/2) + 2 against d + 2)
+but each of its passes blends two layers into several float targets with
+MAX blending. Which wins depends on what a pass costs: where the vertex work
+dominates (the paper's GTX 660 on large CAD models) half the passes is the
+gain; where the per-pixel work dominates, the heavier dual pass eats it.
+"""
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from analysis import common, figure_notes  # noqa: E402
+from analysis.pastyrik_fig8 import model_rows  # noqa: E402
+
+PEELINGS = ["depth_peeling", "dual_depth_peeling"]
+PAPER = ["pastyrik2016 (GTX 660): dual depth peeling 'much slower'",
+         "than depth peeling on its models (Figs. 11-14)"]
+
+
+def peel_table(runs):
+    """model x (technique, quantity): total ms, peel ms, passes."""
+    rows = model_rows(runs, None)
+    rows = rows[rows["technique"].isin(PEELINGS)]
+    if rows.empty:
+        raise common.NoData("no depth_peeling or dual_depth_peeling rows on the models")
+    rows = rows.assign(model=[m if v == "general" else f"{m} ({v})" for m, v in zip(rows["model"], rows["view"])])
+    total = rows[rows["stage"] == "total"].pivot_table(index="model", columns="technique", values="median_ms")
+    peel = rows[rows["stage"] == "peel"].pivot_table(index="model", columns="technique", values="median_ms")
+    passes = rows[rows["stage"] == "total"].pivot_table(index="model", columns="technique", values="passes")
+    return rows, total, peel, passes
+
+
+def draw(runs, args=None):
+    rows, total, peel, passes = peel_table(runs)
+    order = list(total.mean(axis=1).sort_values().index)
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(max(8.5, 0.5 * len(order)), 7.5), sharex=True)
+    positions = np.arange(len(order))
+    for i, technique in enumerate([t for t in PEELINGS if t in total]):
+        offset = (i - 0.5) * 0.4
+        top.bar(positions + offset, total.loc[order, technique], 0.4, label=technique)
+        if technique in peel and technique in passes:
+            per_pass = peel.reindex(order)[technique] / passes.reindex(order)[technique]
+            bottom.bar(positions + offset, per_pass, 0.4, label=technique)
+            for x, n in zip(positions + offset, passes.reindex(order)[technique]):
+                if np.isfinite(n):
+                    # x in data, y in axes units: the foot of the bar on a log axis.
+                    top.text(x, 0.01, f"{int(n)}", ha="center", va="bottom", fontsize=5, rotation=90,
+                             transform=top.get_xaxis_transform())
+    top.set_yscale("log")
+    top.set_ylabel("total time per frame (ms, log)\n(bar foot: geometry passes)")
+    bottom.set_yscale("log")
+    bottom.set_ylabel("peel stage per geometry pass (ms, log)")
+    bottom.set_xticks(positions, order, rotation=30, ha="right")
+    bottom.set_xlabel("model (camera position)")
+    for ax in (top, bottom):
+        ax.legend(fontsize=7, loc="upper left")
+    figure_notes.paper_box(top, PAPER, loc="upper right")
+    top.set_title(common.title(rows, "pastyrik2016 Figs. 11-14: depth peeling vs dual depth peeling"
+                                     + figure_notes.noisy_note(rows)), fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+if __name__ == "__main__":
+    common.cli(__doc__.splitlines()[0], draw)
