@@ -106,6 +106,28 @@ void main() {
     node = ib_next[node];
   }
 #else
+  if (length <= uint(IB_ARRAY)) {
+    // The whole list fits (always, unless it is truncated): gather it, then
+    // copy each fragment to its rank, the number of fragments before it in
+    // (depth, triangle) order, ties in list order. Every array index here is
+    // a loop counter, the same in all lanes, so llvmpipe reads the array as
+    // vectors, where the insertion below moves a per-lane hole (a gather and
+    // a scatter per step): about 3x faster at 32 layers.
+    uint node = ib_head[pixel];
+    for (uint k = 0u; k < length; ++k) {
+      items[k] = sort_key(node);
+      node = texelFetch(ib_next_view, int(node)).x;
+    }
+    const uint first = atomicAdd(ib_allocated, length);
+    ib_head[pixel] = first;
+    for (uint i = 0u; i < length; ++i) {
+      uint rank = 0u;
+      for (uint j = 0u; j < length; ++j)
+        rank += precedes(items[j], items[i]) || (j < i && items[j].xy == items[i].xy) ? 1u : 0u;
+      copy_record(first + rank, items[i].z, pixel);
+    }
+    return;
+  }
   uint cursor = ib_head[pixel];
   uint kept = 0u;
   int hole = -1;  // where `pending` goes; -1: nothing being inserted

@@ -66,16 +66,17 @@ void main() {
   if (update(s)) ib_enqueue_around(ib_sorted_key(s).w);
 }
 #elif defined(IB_WORKLIST)
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 13) readonly buffer IbWorkIn {
-  uvec4 ib_in_header;  // groups x, y, z, count
-  uint ib_work_in[];
-};
+// The step's list (header: groups x, y, z, count; then pixels) and the
+// sorted ranges, read as buffer textures (gathers on llvmpipe, views.glsl).
+layout(binding = 4) uniform usamplerBuffer ib_work_view;
+layout(binding = 5) uniform usamplerBuffer ib_head_view;
+layout(binding = 6) uniform usamplerBuffer ib_count_view;
 
 void main() {
-  const uint stride = gl_NumWorkGroups.x * 64u;
-  for (uint e = gl_GlobalInvocationID.x; e < ib_in_header.w; e += stride) {
-    const uint pixel = ib_work_in[e];
-    const uint first = ib_head[pixel], end = first + ib_count[pixel];
+  const uint stride = gl_NumWorkGroups.x * 64u, count = texelFetch(ib_work_view, 3).x;
+  for (uint e = gl_GlobalInvocationID.x; e < count; e += stride) {
+    const uint pixel = texelFetch(ib_work_view, int(4u + e)).x;
+    const uint first = texelFetch(ib_head_view, int(pixel)).x, end = first + texelFetch(ib_count_view, int(pixel)).x;
     bool changed = false;
     for (uint s = first; s < end; ++s) changed = update(s) || changed;
     ib_pixel_updates[pixel] += end - first;

@@ -36,6 +36,7 @@ enum : GLuint {
 constexpr GLsizeiptr kWorklistHeaderBytes = 16;
 // Texture units of views.glsl.
 constexpr GLuint kSearchUnit = 0, kTrianglesUnit = 1, kFieldsUnit = 2, kShadeUnit = 3;
+constexpr GLuint kWorkUnit = 4, kHeadUnit = 5, kCountUnit = 6;  // the listed steps' views (stylize_diffuse.comp)
 constexpr GLuint kFragmentUnit = 0, kNextUnit = 1;  // the sort's views (sort.comp)
 constexpr uint32_t kSmallestArray = 8;
 // Keeps both field ranges inside fragData for any storage-offset alignment up to 4 KiB.
@@ -120,7 +121,13 @@ class IllustrationBuffer final : public Technique {
     if (tracks_convergence(s_)) {
       stamps_ = make_buffer(GLsizeiptr(width) * height * 4);
       pixel_updates_ = make_buffer(GLsizeiptr(width) * height * 4);
-      for (Buffer& list : worklists_) list = make_buffer(kWorklistHeaderBytes + GLsizeiptr(width) * height * 4);
+      const GLsizeiptr list_bytes = kWorklistHeaderBytes + GLsizeiptr(width) * height * 4;
+      for (int i = 0; i < 2; ++i) {
+        worklists_[i] = make_buffer(list_bytes);
+        worklist_views_[i] = make_buffer_texture(worklists_[i], GL_R32UI, 0, list_bytes);
+      }
+      head_view_ = make_buffer_texture(head_, GL_R32UI, 0, GLsizeiptr(width) * height * 4);
+      count_view_ = make_buffer_texture(count_, GL_R32UI, 0, GLsizeiptr(width) * height * 4);
     }
     for (GLuint program : programs()) {
       set(program, "u_width", width);
@@ -176,7 +183,8 @@ class IllustrationBuffer final : public Technique {
     glUseProgram(compose_.id());
     frame.set_shared_uniforms(compose_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    for (GLuint unit : {kSearchUnit, kTrianglesUnit, kFieldsUnit, kShadeUnit}) glBindTextureUnit(unit, 0);
+    for (GLuint unit : {kSearchUnit, kTrianglesUnit, kFieldsUnit, kShadeUnit, kWorkUnit, kHeadUnit, kCountUnit})
+      glBindTextureUnit(unit, 0);
   }
 
   TechniqueCounters counters() const override {
@@ -263,6 +271,9 @@ class IllustrationBuffer final : public Technique {
     reset_worklist(out);  // read by the step before last
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWorkIn, in.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWorkOut, out.id());
+    glBindTextureUnit(kWorkUnit, worklist_views_[step % 2].id());
+    glBindTextureUnit(kHeadUnit, head_view_.id());
+    glBindTextureUnit(kCountUnit, count_view_.id());
     glUseProgram(diffuse_listed_.id());
     set(diffuse_listed_.id(), "u_next_step", step + 1);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.id());
@@ -390,6 +401,7 @@ class IllustrationBuffer final : public Technique {
   std::map<uint32_t, Program> sorts_;  // by local array size
   Buffer counters_, head_, count_, next_, data_, data2_, data3_, truth_, triangles_;
   Buffer stamps_, worklists_[2], pixel_updates_;  // skip_converged (worklist.glsl)
+  Texture worklist_views_[2], head_view_, count_view_;
   Texture fragment_view_, next_view_, search_view_, shade_view_, triangles_view_, fields_view_[2];  // read-only views (views.glsl)
   Framebuffer no_attachments_;
   const Scene* scene_seen_ = nullptr;
