@@ -72,7 +72,12 @@ layout(binding = 4) uniform usamplerBuffer ib_work_view;
 layout(binding = 5) uniform usamplerBuffer ib_head_view;
 layout(binding = 6) uniform usamplerBuffer ib_count_view;
 
+// The list of the step after next (read by the step before): emptied here,
+// so that no host upload sits between the dispatches.
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 14) writeonly buffer IbWorkNext { uvec4 ib_next_header; };
+
 void main() {
+  if (gl_GlobalInvocationID.x == 0u) ib_next_header = uvec4(1u, 1u, 1u, 0u);
   const uint stride = gl_NumWorkGroups.x * 64u, count = texelFetch(ib_work_view, 3).x;
   for (uint e = gl_GlobalInvocationID.x; e < count; e += stride) {
     const uint pixel = texelFetch(ib_work_view, int(4u + e)).x;

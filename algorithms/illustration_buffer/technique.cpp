@@ -30,7 +30,7 @@ constexpr GLsizeiptr kCounterBytes = 20;  // produced, longest, dropped, truncat
 constexpr GLuint kBinding = OIT_FIRST_TECHNIQUE_BINDING;
 enum : GLuint {
   kHead = kBinding, kCount, kNext, kData, kData2, kCounters, kTruth, kTriangles, kFieldsIn, kFieldsOut, kData3,
-  kStamps, kWorkOut, kWorkIn, kPixelUpdates  // worklist.glsl
+  kStamps, kWorkOut, kPixelUpdates, kWorkNext  // worklist.glsl, stylize_diffuse.comp
 };
 // A worklist (worklist.glsl): indirect-dispatch arguments and count, then one entry per pixel.
 constexpr GLsizeiptr kWorklistHeaderBytes = 16;
@@ -59,8 +59,8 @@ uint64_t bytes_per_fragment(const Settings& s) {
 bool tracks_convergence(const Settings& s) { return s.diffused() && s.skip_converged; }
 
 // Per pixel: head and count, plus (when the diffusion skips converged
-// fragments) a stamp, an entry in each of two worklists and an update count.
-uint64_t bytes_per_pixel(const Settings& s) { return tracks_convergence(s) ? 24 : 8; }
+// fragments) a stamp, an entry in each of three worklists and an update count.
+uint64_t bytes_per_pixel(const Settings& s) { return tracks_convergence(s) ? 28 : 8; }
 
 ShaderDefines fill_defines(const Settings& s) {
   ShaderDefines defines;
@@ -122,7 +122,7 @@ class IllustrationBuffer final : public Technique {
       stamps_ = make_buffer(GLsizeiptr(width) * height * 4);
       pixel_updates_ = make_buffer(GLsizeiptr(width) * height * 4);
       const GLsizeiptr list_bytes = kWorklistHeaderBytes + GLsizeiptr(width) * height * 4;
-      for (int i = 0; i < 2; ++i) {
+      for (int i = 0; i < 3; ++i) {
         worklists_[i] = make_buffer(list_bytes);
         worklist_views_[i] = make_buffer_texture(worklists_[i], GL_R32UI, 0, list_bytes);
       }
@@ -192,7 +192,7 @@ class IllustrationBuffer final : public Technique {
     const uint64_t per_fragment = bytes_per_fragment(s_);
     c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * bytes_per_pixel(s_) + pool_.capacity() * per_fragment +
                         kCounterBytes + triangle_rows_ * 16 +
-                        (tracks_convergence(s_) ? 2 * kWorklistHeaderBytes : 0);
+                        (tracks_convergence(s_) ? 3 * kWorklistHeaderBytes : 0);
     c.fragments_stored = stored_;
     c.fragments_dropped = dropped_;
     c.passes = passes_;
@@ -247,31 +247,31 @@ class IllustrationBuffer final : public Technique {
     }
   }
 
-  // No pixel queued for any step yet (stamps 0); list 0 receives step 2's.
+  // No pixel queued for any step yet (stamps 0); list 2 receives step 2's,
+  // list 0 step 3's (step k reads list k % 3 and empties list (k + 2) % 3).
   void start_worklists() const {
     fill_buffer_u32(stamps_, 0);
     fill_buffer_u32(pixel_updates_, 0);
+    reset_worklist(worklists_[2]);
     reset_worklist(worklists_[0]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStamps, stamps_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPixelUpdates, pixel_updates_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWorkOut, worklists_[0].id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWorkOut, worklists_[2].id());
   }
 
   static void reset_worklist(const Buffer& list) {
-    const GLuint header[4] = {0, 1, 1, 0};  // groups x, y, z; count
+    const GLuint header[4] = {1, 1, 1, 0};  // groups x, y, z (one at least, worklist.glsl); count
     glNamedBufferSubData(list.id(), 0, sizeof(header), header);
   }
 
-  // Step `step` (>= 2) over the pixels queued for it (list step % 2),
-  // queueing the next step's pixels in the other list.
+  // Step `step` (>= 2) over the pixels queued for it (list step % 3),
+  // queueing the next step's pixels in list (step + 1) % 3 (emptied by the
+  // step before) and emptying list (step + 2) % 3 for the step after.
   void run_queued(uint32_t step) const {
-    const Buffer& in = worklists_[step % 2];
-    const Buffer& out = worklists_[(step + 1) % 2];
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    reset_worklist(out);  // read by the step before last
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWorkIn, in.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWorkOut, out.id());
-    glBindTextureUnit(kWorkUnit, worklist_views_[step % 2].id());
+    const Buffer& in = worklists_[step % 3];
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWorkOut, worklists_[(step + 1) % 3].id());
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kWorkNext, worklists_[(step + 2) % 3].id(), 0, kWorklistHeaderBytes);
+    glBindTextureUnit(kWorkUnit, worklist_views_[step % 3].id());
     glBindTextureUnit(kHeadUnit, head_view_.id());
     glBindTextureUnit(kCountUnit, count_view_.id());
     glUseProgram(diffuse_listed_.id());
@@ -400,8 +400,8 @@ class IllustrationBuffer final : public Technique {
   Program fill_, compose_, neighbors_, stylize_init_, stylize_diffuse_, diffuse_listed_;
   std::map<uint32_t, Program> sorts_;  // by local array size
   Buffer counters_, head_, count_, next_, data_, data2_, data3_, truth_, triangles_;
-  Buffer stamps_, worklists_[2], pixel_updates_;  // skip_converged (worklist.glsl)
-  Texture worklist_views_[2], head_view_, count_view_;
+  Buffer stamps_, worklists_[3], pixel_updates_;  // skip_converged (worklist.glsl)
+  Texture worklist_views_[3], head_view_, count_view_;
   Texture fragment_view_, next_view_, search_view_, shade_view_, triangles_view_, fields_view_[2];  // read-only views (views.glsl)
   Framebuffer no_attachments_;
   const Scene* scene_seen_ = nullptr;

@@ -6,8 +6,10 @@
 // The step that sees a change queues those pixels for the next step; every
 // other fragment would compute exactly the value it has.
 //
-// A worklist starts with its indirect-dispatch arguments (x grows by one
-// group per 64 entries, at most 65535; the shader strides over the rest)
+// A worklist starts with its indirect-dispatch arguments (x: one group, and
+// one more per 64 entries beyond the first 64, at most 65535; the shader
+// strides over the rest; an empty list still runs its one group, which
+// empties the list after next)
 // and its count, then the queued pixel indices. ib_stamp[p] is the last
 // step p was queued for, so a pixel enters a list once. (A list per step
 // keeps the dispatches small: on llvmpipe every workgroup has a fixed cost,
@@ -19,7 +21,7 @@ layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 12) coherent buffer IbWor
 };
 // Fragment updates computed per pixel (one invocation per pixel and step: a
 // plain add), summed on the host for the counters.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 14) buffer IbPixelUpdates { uint ib_pixel_updates[]; };
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 13) buffer IbPixelUpdates { uint ib_pixel_updates[]; };
 // The step the pixels queued now are for (2 = the second diffusion step).
 layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 16) uniform uint u_next_step;
 
@@ -29,7 +31,7 @@ void ib_enqueue(int x, int y) {
   // A plain read first: most queued pixels are seen by several fragments.
   if (ib_stamp[q] >= u_next_step || atomicMax(ib_stamp[q], u_next_step) >= u_next_step) return;
   const uint at = atomicAdd(ib_out_count, 1u);
-  if (at % 64u == 0u && at / 64u < 65535u) atomicAdd(ib_out_groups_x, 1u);
+  if (at % 64u == 0u && at > 0u && at / 64u < 65535u) atomicAdd(ib_out_groups_x, 1u);
   ib_work_out[at] = q;
 }
 
