@@ -491,12 +491,19 @@ TEST(IllustrationBuffer, DynamicSortGivesTheArraySortsImage) {
                                    {"quads", {{"layers", "12"}}, {{"max_per_pixel", "5"}, {"modulation", "none"}}},
                                    {"torus", {}, {{"neighbors", "heuristic"}}}};
   for (const Case& c : cases) {
-    RawParams array = c.params, dynamic = c.params;
+    RawParams array = c.params, dynamic = c.params, automatic = c.params;
     array["sort"] = "array";
     dynamic["sort"] = "dynamic";
+    automatic["sort"] = "auto";
     const RunResult a = test::render_once("illustration_buffer", array, c.scene, c.scene_params, 48, 48);
     const RunResult d = test::render_once("illustration_buffer", dynamic, c.scene, c.scene_params, 48, 48);
+    const RunResult x = test::render_once("illustration_buffer", automatic, c.scene, c.scene_params, 48, 48);
     EXPECT_EQ(largest_difference(a.image, d.image), 0.0) << c.scene;
+    EXPECT_EQ(largest_difference(a.image, x.image), 0.0) << c.scene;
+    EXPECT_EQ(extra(a, "dynamic_sort"), 0.0) << c.scene;
+    EXPECT_EQ(extra(d, "dynamic_sort"), 1.0) << c.scene;
+    // auto: the dynamic sort for lists of at most 4 fragments (the torus), else the array.
+    EXPECT_EQ(extra(x, "dynamic_sort"), x.max_depth_complexity <= 4 ? 1.0 : 0.0) << c.scene;
     EXPECT_EQ(a.counters.fragments_stored, d.counters.fragments_stored) << c.scene;
     EXPECT_EQ(a.counters.fragments_dropped, d.counters.fragments_dropped) << c.scene;
     EXPECT_EQ(extra(a, "lists_truncated"), extra(d, "lists_truncated")) << c.scene;

@@ -33,7 +33,8 @@ Settings settings_from(const ParamSet& p) {
   s.iterations = int(p.integer("iterations"));
   s.skip_converged = p.boolean("skip_converged");
   s.diffusion_tolerance = float(p.real("diffusion_tolerance"));
-  s.sort = pick<SortMethod>("sort", p.choice("sort"), {{"array", SortMethod::array}, {"dynamic", SortMethod::dynamic}});
+  s.sort = pick<SortMethod>("sort", p.choice("sort"),
+                            {{"auto", SortMethod::automatic}, {"array", SortMethod::array}, {"dynamic", SortMethod::dynamic}});
   s.normal_variation_scale = float(p.real("normal_variation_scale"));
   s.lambda_alpha = float(p.real("lambda_alpha"));
   s.lambda_beta = float(p.real("lambda_beta"));
@@ -88,9 +89,10 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
       ParamSpec::real("weight_n", 1.0, 0.0, 1000.0, "w_n of the continuity measure (eq. 3; heuristic)"),
       ParamSpec::boolean("weld_vertices", true,
                          "triangle_index: vertices at bitwise-equal positions count as one index (closes UV seams)"),
-      ParamSpec::choice("sort", "array", {"array", "dynamic"},
-                        "array = insertion sort in a local array (carnecky2013 4.3); dynamic = insertion sort of "
-                        "the linked list in the buffers (pastyrik2016 Algorithm 2); the same records either way"),
+      ParamSpec::choice("sort", "auto", {"auto", "array", "dynamic"},
+                        "array = rank sort in a local array (carnecky2013 4.3); dynamic = insertion sort of the "
+                        "linked list in the buffers (pastyrik2016 Algorithm 2); auto = dynamic when the frame's "
+                        "longest list has at most 4 fragments, else array; the same records either way"),
       ParamSpec::real("normal_variation_scale", 10.0, 0.0, 1000.0,
                       "modulation=normal_variation: opacity = min(1, scale * |grad n|), grad n the view normal's "
                       "change per pixel (dFdx, dFdy)"),

@@ -14,9 +14,10 @@ enum class NeighborSearch { heuristic, triangle_index };
 // (opacity from the angle between normal and view ray, or from the
 // normal's screen-space variation; no neighbour search, no stylize).
 enum class Modulation { none, silhouette, halo, silhouette_halo, angle, normal_variation };
-// The sort: insertion into a local array (carnecky2013 section 4.3), or
-// pastyrik2016's Algorithm 2, insertion sort of the linked list in place.
-enum class SortMethod { array, dynamic };
+// The sort: ranks in a local array (carnecky2013 section 4.3), or
+// pastyrik2016's Algorithm 2, insertion sort of the linked list in place, or
+// per frame the faster of the two on llvmpipe for the frame's longest list.
+enum class SortMethod { automatic, array, dynamic };
 enum class Profile { none, exponential, power };  // eq. 10 / eq. 11
 
 struct Settings {
@@ -33,7 +34,7 @@ struct Settings {
   bool weld_vertices = true;
   uint32_t max_per_pixel = 64;
   uint64_t initial_nodes_per_pixel = 8;
-  SortMethod sort = SortMethod::array;
+  SortMethod sort = SortMethod::automatic;
   float normal_variation_scale = 10.0f;
   bool measure_accuracy = false;
   double accuracy_footprints = 1.5;

@@ -78,9 +78,6 @@ uint sort_list(uint head) {
   }
   return sorted;
 }
-#else
-// x: depth order bits, y: stable triangle id, z: fill record index.
-uvec3 items[IB_ARRAY];
 #endif
 
 void main() {
@@ -106,6 +103,7 @@ void main() {
     node = ib_next[node];
   }
 #else
+  uvec3 items[IB_ARRAY];  // x: depth order bits, y: stable triangle id, z: fill record index
   if (length <= uint(IB_ARRAY)) {
     // The whole list fits (always, unless it is truncated): gather it, then
     // copy each fragment to its rank, the number of fragments before it in

@@ -39,6 +39,9 @@ constexpr GLuint kSearchUnit = 0, kTrianglesUnit = 1, kFieldsUnit = 2, kShadeUni
 constexpr GLuint kWorkUnit = 4, kHeadUnit = 5, kCountUnit = 6;  // the listed steps' views (stylize_diffuse.comp)
 constexpr GLuint kFragmentUnit = 0, kNextUnit = 1;  // the sort's views (sort.comp)
 constexpr uint32_t kSmallestArray = 8;
+// sort=auto takes the dynamic sort up to this longest list: faster there on
+// llvmpipe (README, Sort variants), the array's ranks beyond.
+constexpr uint32_t kLongestDynamicList = 4;
 // Keeps both field ranges inside fragData for any storage-offset alignment up to 4 KiB.
 constexpr uint64_t kSmallestPool = 256;
 
@@ -199,7 +202,8 @@ class IllustrationBuffer final : public Technique {
     c.overflow_retries = pool_.overflow_retries();
     c.extra = {{"lists_truncated", double(truncated_lists_)},
                {"neighbor_passes", modulated() ? 1.0 : 0.0},
-               {"stylize_passes", modulated() ? double(1 + s_.iterations) : 0.0}};
+               {"stylize_passes", modulated() ? double(1 + s_.iterations) : 0.0},
+               {"dynamic_sort", sorted_dynamically_ ? 1.0 : 0.0, Combine::max}};
     if (modulated() && s_.neighbors == NeighborSearch::triangle_index)
       c.extra.push_back({"isolated_triangles", double(isolated_triangles_), Combine::max});
     if (modulated()) append_neighbor_statistics(c);
@@ -294,8 +298,10 @@ class IllustrationBuffer final : public Technique {
   // The sort's local array: the frame's longest list rounded up to a power
   // of two (a few programs serve every frame), at most max_per_pixel. The
   // dynamic sort has no array: one program (keyed 0).
-  GLuint sort_program(uint32_t longest) {
-    const bool dynamic = s_.sort == SortMethod::dynamic;
+  GLuint sort_program(uint32_t longest) const {
+    const bool dynamic = s_.sort == SortMethod::dynamic ||
+                         (s_.sort == SortMethod::automatic && longest <= kLongestDynamicList);
+    sorted_dynamically_ = dynamic;
     const uint32_t size =
         dynamic ? 0 : std::min(s_.max_per_pixel, std::max(kSmallestArray, std::bit_ceil(std::max<uint32_t>(longest, 1))));
     auto it = sorts_.find(size);
@@ -398,7 +404,8 @@ class IllustrationBuffer final : public Technique {
 
   Settings s_;
   Program fill_, compose_, neighbors_, stylize_init_, stylize_diffuse_, diffuse_listed_;
-  std::map<uint32_t, Program> sorts_;  // by local array size
+  mutable std::map<uint32_t, Program> sorts_;  // by local array size (0: the dynamic sort)
+  mutable bool sorted_dynamically_ = false;     // the last frame's sort
   Buffer counters_, head_, count_, next_, data_, data2_, data3_, truth_, triangles_;
   Buffer stamps_, worklists_[3], pixel_updates_;  // skip_converged (worklist.glsl)
   Texture worklist_views_[3], head_view_, count_view_;
