@@ -298,7 +298,7 @@ class IllustrationBuffer final : public Technique {
   // The sort's local array: the frame's longest list rounded up to a power
   // of two (a few programs serve every frame), at most max_per_pixel. The
   // dynamic sort has no array: one program (keyed 0).
-  GLuint sort_program(uint32_t longest) const {
+  GLuint sort_program(uint32_t longest) {
     const bool dynamic = s_.sort == SortMethod::dynamic ||
                          (s_.sort == SortMethod::automatic && longest <= kLongestDynamicList);
     sorted_dynamically_ = dynamic;
@@ -404,8 +404,8 @@ class IllustrationBuffer final : public Technique {
 
   Settings s_;
   Program fill_, compose_, neighbors_, stylize_init_, stylize_diffuse_, diffuse_listed_;
-  mutable std::map<uint32_t, Program> sorts_;  // by local array size (0: the dynamic sort)
-  mutable bool sorted_dynamically_ = false;     // the last frame's sort
+  std::map<uint32_t, Program> sorts_;  // by local array size (0: the dynamic sort)
+  bool sorted_dynamically_ = false;    // the last frame's sort
   Buffer counters_, head_, count_, next_, data_, data2_, data3_, truth_, triangles_;
   Buffer stamps_, worklists_[3], pixel_updates_;  // skip_converged (worklist.glsl)
   Texture worklist_views_[3], head_view_, count_view_;
