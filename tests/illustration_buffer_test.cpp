@@ -477,6 +477,14 @@ TEST(IllustrationBuffer, OneIterationTimesInitialisationAndTheStepApart) {
     EXPECT_NE(r.stage(stage, "wall"), nullptr) << stage;
   EXPECT_EQ(r.stage("stylize", "wall"), nullptr);
   EXPECT_EQ(extra(r, "stylize_passes"), 2.0);
+  // measure_accuracy is off unless asked for: no truth records, no precision.
+  EXPECT_EQ(find_figure(r.counters.extra, "neighbor_precision"), std::nullopt);
+  const RunResult measured =
+      test::render_once("illustration_buffer", {{"iterations", "1"}, {"measure_accuracy", "true"}}, "torus", {}, 32, 32);
+  EXPECT_TRUE(find_figure(measured.counters.extra, "neighbor_precision").has_value());
+  // 16 B per pool record more.
+  EXPECT_EQ((measured.counters.bytes_allocated - r.counters.bytes_allocated) % 16, 0u);
+  EXPECT_GT(measured.counters.bytes_allocated, r.counters.bytes_allocated);
 }
 
 // pastyrik2016 Algorithm 2 sorts the lists in the buffers; it must give the
