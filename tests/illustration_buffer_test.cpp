@@ -74,8 +74,9 @@ TEST(IllustrationBuffer, FullScreenQuadsLinkEveryInteriorPairInBothModes) {
 void expect_accurate_neighbours(const std::string& scene, const RawParams& scene_params, double precision,
                                 double recall) {
   for (const std::string& search : kSearches) {
-    const RunResult r = test::render_once("illustration_buffer", {{"neighbors", search}, {"modulation", "silhouette"}},
-                                          scene, scene_params, 96, 96);
+    const RunResult r = test::render_once(
+        "illustration_buffer", {{"neighbors", search}, {"modulation", "silhouette"}, {"measure_accuracy", "true"}},
+        scene, scene_params, 96, 96);
     const double p = extra(r, "neighbor_precision"), q = extra(r, "neighbor_recall");
     std::printf("[ measured ] %s on %s: precision %.4f recall %.4f\n", search.c_str(), scene.c_str(), p, q);
     EXPECT_GT(p, precision) << search << " on " << scene;
@@ -99,7 +100,11 @@ TEST(IllustrationBuffer, PrecisionExposesADegenerateContinuityMeasure) {
   // layers of the torus link to its front layers, and precision must say so.
   const RunResult r =
       test::render_once("illustration_buffer",
-                        {{"neighbors", "heuristic"}, {"modulation", "silhouette"}, {"weight_z", "0"}, {"weight_n", "0"}},
+                        {{"neighbors", "heuristic"},
+                         {"modulation", "silhouette"},
+                         {"weight_z", "0"},
+                         {"weight_n", "0"},
+                         {"measure_accuracy", "true"}},
                         "torus", {}, 96, 96);
   const double p = extra(r, "neighbor_precision");
   std::printf("[ measured ] heuristic with w_z = w_n = 0 on torus: precision %.4f\n", p);
@@ -188,16 +193,20 @@ TEST(IllustrationBuffer, SilhouettesGetBetaOneAndEquationNinePropagatesIt) {
   const Image& reference = test::harness().reference_image("random_quads", quad, w, h, glm::vec3(0.0f));
   for (const std::string& search : kSearches) {
     for (int iterations : {0, 3}) {
-      const RunResult r = test::render_once("illustration_buffer",
-                                            {{"neighbors", search},
-                                             {"modulation", "silhouette"},
-                                             {"iterations", std::to_string(iterations)},
-                                             {"lambda_beta", "0.25"}},
-                                            "random_quads", quad, w, h);
-      const Image expected = single_quad_closed_form(reference, 0.3f, iterations, 0.25f);
-      EXPECT_LT(largest_difference(r.image, expected), kFloatTolerance) << search << " iterations " << iterations;
-      EXPECT_GT(extra(r, "silhouette_fragments"), 20.0) << search;
-      EXPECT_GT(r.error->max_abs, 0.5) << "silhouettes must be opaque";
+      for (const char* skip : {"true", "false"}) {
+        const RunResult r = test::render_once("illustration_buffer",
+                                              {{"neighbors", search},
+                                               {"modulation", "silhouette"},
+                                               {"iterations", std::to_string(iterations)},
+                                               {"lambda_beta", "0.25"},
+                                               {"skip_converged", skip}},
+                                              "random_quads", quad, w, h);
+        const Image expected = single_quad_closed_form(reference, 0.3f, iterations, 0.25f);
+        EXPECT_LT(largest_difference(r.image, expected), kFloatTolerance)
+            << search << " iterations " << iterations << " skip_converged " << skip;
+        EXPECT_GT(extra(r, "silhouette_fragments"), 20.0) << search;
+        EXPECT_GT(r.error->max_abs, 0.5) << "silhouettes must be opaque";
+      }
     }
   }
 }
@@ -285,14 +294,16 @@ TEST(IllustrationBuffer, WithoutModulationNeighboursAndStylizeAreNotDispatched) 
   const RunResult plain = test::render_once("illustration_buffer", {{"modulation", "none"}, {"iterations", "5"}},
                                             "spheres", {}, 32, 32);
   EXPECT_EQ(plain.stage("neighbors", "wall"), nullptr);
-  EXPECT_EQ(plain.stage("stylize", "wall"), nullptr);
+  EXPECT_EQ(plain.stage("stylize_init", "wall"), nullptr);
+  EXPECT_EQ(plain.stage("diffuse", "wall"), nullptr);
   // The neighbour search, the stylize init and 5 diffusion iterations.
   EXPECT_EQ(work_saved(plain, "passes_skipped"), 7.0);
   EXPECT_EQ(extra(plain, "neighbor_passes"), 0.0);
   EXPECT_EQ(extra(plain, "stylize_passes"), 0.0);
   const RunResult styled = test::render_once("illustration_buffer", {{"iterations", "5"}}, "spheres", {}, 32, 32);
   EXPECT_NE(styled.stage("neighbors", "wall"), nullptr);
-  EXPECT_NE(styled.stage("stylize", "wall"), nullptr);
+  EXPECT_NE(styled.stage("stylize_init", "wall"), nullptr);
+  EXPECT_NE(styled.stage("diffuse", "wall"), nullptr);
   EXPECT_EQ(work_saved(styled, "passes_skipped"), 0.0);
   EXPECT_EQ(extra(styled, "stylize_passes"), 6.0);
 }
@@ -415,6 +426,222 @@ TEST(IllustrationBuffer, DiagnosticImagesMarkSilhouettesAndEmptyPixels) {
   EXPECT_TRUE(
       test::diagnostic_images_once("illustration_buffer", {{"modulation", "none"}}, "quads", {{"layers", "2"}}, 8, 8)
           .empty());
+}
+
+}  // namespace
+}  // namespace oit
+
+namespace oit {
+namespace {
+
+double figure(const std::vector<Figure>& figures, const std::string& name) {
+  if (auto value = find_figure(figures, name)) return *value;
+  ADD_FAILURE() << "no figure '" << name << "'";
+  return -1.0;
+}
+
+// skip_converged diffuses only the pixels around fragments that changed in
+// the previous iteration; every skipped fragment would have recomputed its
+// own value, so the image is bitwise the one of all fragments every iteration.
+TEST(IllustrationBuffer, SkippingConvergedFragmentsGivesTheSameImage) {
+  struct Case {
+    const char* scene;
+    RawParams scene_params, params;
+  };
+  const std::vector<Case> cases = {
+      {"torus", {}, {}},
+      {"spheres", {}, {{"adaptive_alpha", "true"}, {"iterations", "10"}}},
+      {"random_quads", {{"count", "64"}, {"size", "0.3"}}, {{"neighbors", "heuristic"}}},
+      {"nested_spheres", {}, {{"modulation", "halo"}, {"lambda_gamma", "0.2"}}}};
+  for (const Case& c : cases) {
+    RawParams on = c.params, off = c.params;
+    on["skip_converged"] = "true";
+    off["skip_converged"] = "false";
+    const RunResult fast = test::render_once("illustration_buffer", on, c.scene, c.scene_params, 64, 64);
+    const RunResult full = test::render_once("illustration_buffer", off, c.scene, c.scene_params, 64, 64);
+    EXPECT_EQ(largest_difference(fast.image, full.image), 0.0) << c.scene;
+    const double iterations = c.params.count("iterations") ? 10.0 : 20.0;
+    const double all = iterations * double(fast.counters.fragments_stored);
+    const double updates = extra(fast, "fragment_updates");
+    std::printf("[ measured ] %s: %.0f of %.0f fragment updates\n", c.scene, updates, all);
+    EXPECT_GT(updates, 0.0) << c.scene;
+    EXPECT_LT(updates, all) << c.scene;
+    EXPECT_EQ(work_saved(fast, "fragment_updates_skipped"), all - updates) << c.scene;
+    EXPECT_EQ(find_figure(full.counters.extra, "fragment_updates"), std::nullopt) << c.scene;
+  }
+}
+
+TEST(IllustrationBuffer, ConvergedFullScreenLayersAreDiffusedOnce) {
+  // Full layers: no silhouette, no halo, one alpha. The first step updates
+  // every fragment, none moves, so no pixel is queued for the 19 others;
+  // the image is plain blending.
+  const int w = 32, h = 24;
+  const RunResult r = test::render_once("illustration_buffer", {}, "quads", {{"layers", "8"}}, w, h);
+  EXPECT_EQ(extra(r, "fragment_updates"), 8.0 * w * h);
+  EXPECT_EQ(work_saved(r, "fragment_updates_skipped"), 19.0 * 8 * w * h);
+  EXPECT_LT(r.error->max_abs, kFloatTolerance);
+}
+
+TEST(IllustrationBuffer, ADiffusionToleranceStaysWithinItsMeasuredError) {
+  // Adaptive alpha on spheres keeps moving by float rounding for many
+  // iterations; a tolerance stops the small moves (README: the measured error).
+  const RawParams base = {{"adaptive_alpha", "true"}, {"modulation", "halo"}, {"iterations", "50"}};
+  RawParams loose = base, exact = base, full = base;
+  loose["diffusion_tolerance"] = "0.0001";
+  full["skip_converged"] = "false";
+  const RunResult a = test::render_once("illustration_buffer", loose, "spheres", {}, 64, 64);
+  const RunResult b = test::render_once("illustration_buffer", exact, "spheres", {}, 64, 64);
+  const RunResult c = test::render_once("illustration_buffer", full, "spheres", {}, 64, 64);
+  EXPECT_EQ(largest_difference(b.image, c.image), 0.0);
+  const double error = largest_difference(a.image, c.image);
+  std::printf("[ measured ] tolerance 0.0001: max image difference %.6f, updates %.0f vs %.0f\n", error,
+              extra(a, "fragment_updates"), extra(b, "fragment_updates"));
+  EXPECT_LT(error, 2e-3);  // measured 6.5e-4 (README)
+  EXPECT_LT(extra(a, "fragment_updates"), extra(b, "fragment_updates"));
+}
+
+TEST(IllustrationBuffer, OneIterationTimesInitialisationAndTheStepApart) {
+  const RunResult r = test::render_once("illustration_buffer", {{"iterations", "1"}}, "torus", {}, 32, 32);
+  for (const char* stage : {"clear", "fill", "sort", "neighbors", "stylize_init", "diffuse", "compose"})
+    EXPECT_NE(r.stage(stage, "wall"), nullptr) << stage;
+  EXPECT_EQ(r.stage("stylize", "wall"), nullptr);
+  EXPECT_EQ(extra(r, "stylize_passes"), 2.0);
+  // measure_accuracy is off unless asked for: no truth records, no precision.
+  EXPECT_EQ(find_figure(r.counters.extra, "neighbor_precision"), std::nullopt);
+  const RunResult measured =
+      test::render_once("illustration_buffer", {{"iterations", "1"}, {"measure_accuracy", "true"}}, "torus", {}, 32, 32);
+  EXPECT_TRUE(find_figure(measured.counters.extra, "neighbor_precision").has_value());
+  // 16 B per pool record more.
+  EXPECT_EQ((measured.counters.bytes_allocated - r.counters.bytes_allocated) % 16, 0u);
+  EXPECT_GT(measured.counters.bytes_allocated, r.counters.bytes_allocated);
+}
+
+// pastyrik2016 Algorithm 2 sorts the lists in the buffers; it must give the
+// records (so the image, the counts and the links) of the array sort.
+TEST(IllustrationBuffer, DynamicSortGivesTheArraySortsImage) {
+  struct Case {
+    const char* scene;
+    RawParams scene_params, params;
+  };
+  const std::vector<Case> cases = {{"spheres", {}, {}},
+                                   {"random_quads", {{"count", "64"}, {"size", "0.3"}}, {{"modulation", "none"}}},
+                                   {"quads", {{"layers", "12"}}, {{"max_per_pixel", "5"}, {"modulation", "none"}}},
+                                   {"torus", {}, {{"neighbors", "heuristic"}}}};
+  for (const Case& c : cases) {
+    RawParams array = c.params, dynamic = c.params, automatic = c.params;
+    array["sort"] = "array";
+    dynamic["sort"] = "dynamic";
+    automatic["sort"] = "auto";
+    const RunResult a = test::render_once("illustration_buffer", array, c.scene, c.scene_params, 48, 48);
+    const RunResult d = test::render_once("illustration_buffer", dynamic, c.scene, c.scene_params, 48, 48);
+    const RunResult x = test::render_once("illustration_buffer", automatic, c.scene, c.scene_params, 48, 48);
+    EXPECT_EQ(largest_difference(a.image, d.image), 0.0) << c.scene;
+    EXPECT_EQ(largest_difference(a.image, x.image), 0.0) << c.scene;
+    EXPECT_EQ(extra(a, "dynamic_sort"), 0.0) << c.scene;
+    EXPECT_EQ(extra(d, "dynamic_sort"), 1.0) << c.scene;
+    // auto: the dynamic sort for lists of at most 4 fragments (the torus), else the array.
+    EXPECT_EQ(extra(x, "dynamic_sort"), x.max_depth_complexity <= 4 ? 1.0 : 0.0) << c.scene;
+    EXPECT_EQ(a.counters.fragments_stored, d.counters.fragments_stored) << c.scene;
+    EXPECT_EQ(a.counters.fragments_dropped, d.counters.fragments_dropped) << c.scene;
+    EXPECT_EQ(extra(a, "lists_truncated"), extra(d, "lists_truncated")) << c.scene;
+    EXPECT_EQ(figure(a.counters.work_saved, "fragments_not_sorted"),
+              figure(d.counters.work_saved, "fragments_not_sorted"))
+        << c.scene;
+    if (c.params.count("modulation") == 0) {
+      for (const char* links : {"links_left", "links_right", "links_down", "links_up"})
+        EXPECT_EQ(extra(a, links), extra(d, links)) << c.scene << " " << links;
+    }
+  }
+  const RunResult plain = test::render_once("illustration_buffer", {{"sort", "dynamic"}, {"modulation", "none"}},
+                                            "spheres", {}, 48, 48);
+  EXPECT_LT(plain.error->max_abs, kFloatTolerance);
+}
+
+// carnecky2013 Fig. 11(c): opacity = (2/pi) * the angle between normal and
+// view ray. A sphere of radius R met by a ray at distance h from its centre
+// is entered and left at the same angle, asin(h / R), so a pixel's coverage
+// is 1 - (1 - a)^2 with a = (2/pi) asin(h / R).
+TEST(IllustrationBuffer, AngleBasedOpacityFollowsTheSpheresClosedForm) {
+  const int size = 64;
+  const RawParams sphere = {{"count", "1"}, {"slices", "256"}, {"stacks", "128"}};
+  const RunResult r = test::render_once("illustration_buffer", {{"modulation", "angle"}}, "nested_spheres", sphere,
+                                        size, size);
+  EXPECT_EQ(r.stage("neighbors", "wall"), nullptr);
+  EXPECT_EQ(r.stage("diffuse", "wall"), nullptr);
+  const Scene scene = load_scene("nested_spheres", sphere);
+  ASSERT_FALSE(scene.camera.orthographic);
+  const glm::mat4 projection = scene.camera.projection(1.0f);
+  const glm::vec3 centre = glm::vec3(scene.camera.view * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  const double radius = 1.0, pi = 3.14159265358979;
+  double worst = 0.0;
+  int inside = 0, outside_nonzero = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const double nx = (x + 0.5) / size * 2.0 - 1.0, ny = (y + 0.5) / size * 2.0 - 1.0;
+      const glm::dvec3 ray = glm::normalize(glm::dvec3((nx + projection[2][0]) / projection[0][0],
+                                                       (ny + projection[2][1]) / projection[1][1], -1.0));
+      const glm::dvec3 c(centre);
+      const double h = glm::length(c - glm::dot(c, ray) * ray);
+      const float coverage = r.image.at(x, y, 3);
+      if (h > 1.05 * radius) {
+        outside_nonzero += coverage != 0.0f;
+      } else if (h < 0.9 * radius) {
+        const double a = 2.0 / pi * std::asin(h / radius);
+        worst = std::max(worst, std::abs(double(coverage) - (1.0 - (1.0 - a) * (1.0 - a))));
+        ++inside;
+      }
+    }
+  std::printf("[ measured ] angle-based coverage vs closed form: max difference %.5f over %d pixels\n", worst, inside);
+  EXPECT_GT(inside, 500);
+  EXPECT_EQ(outside_nonzero, 0);
+  EXPECT_LT(worst, 1e-3);  // the mesh's interpolated normals against the exact sphere (measured 1.4e-4)
+  // Full-screen quads face an orthographic camera: angle 0, fully transparent
+  // (the paper's flat cube); the image is the black background.
+  const RunResult flat = test::render_once("illustration_buffer", {{"modulation", "angle"}}, "quads", {{"layers", "4"}}, 16, 16);
+  EXPECT_EQ(*std::max_element(flat.image.rgba.begin(), flat.image.rgba.end()), 0.0f);
+}
+
+// carnecky2013 Fig. 11(d): opacity = min(1, scale |grad n|). Flat quads have
+// a constant normal, hence nothing at all; on a sphere the normal turns
+// faster per pixel towards the rim, so the coverage grows outwards.
+TEST(IllustrationBuffer, NormalVariationOpacityIsZeroOnFlatLayersAndGrowsTowardsASpheresRim) {
+  const RunResult flat =
+      test::render_once("illustration_buffer", {{"modulation", "normal_variation"}}, "quads", {{"layers", "4"}}, 16, 16);
+  EXPECT_EQ(*std::max_element(flat.image.rgba.begin(), flat.image.rgba.end()), 0.0f);
+  EXPECT_EQ(flat.stage("neighbors", "wall"), nullptr);
+  const int size = 64;
+  const RawParams sphere = {{"count", "1"}, {"slices", "256"}, {"stacks", "128"}};
+  const RunResult r = test::render_once("illustration_buffer",
+                                        {{"modulation", "normal_variation"}, {"normal_variation_scale", "2"}},
+                                        "nested_spheres", sphere, size, size);
+  // Coverage along the middle row from the centre outwards, until the sphere ends.
+  std::vector<float> row;
+  for (int x = size / 2; x < size && r.image.at(x, size / 2, 3) > 0.0f; ++x) row.push_back(r.image.at(x, size / 2, 3));
+  ASSERT_GT(row.size(), 8u);
+  std::printf("[ measured ] normal variation coverage from the centre outwards:");
+  for (float v : row) std::printf(" %.3f", v);
+  std::printf("\n");
+  EXPECT_GT(row.front(), 0.0f);
+  int decreasing = 0;
+  for (size_t i = 1; i + 1 < row.size(); ++i) decreasing += row[i] < row[i - 1] - 1e-3f;
+  EXPECT_EQ(decreasing, 0);
+  EXPECT_GT(row.back(), 1.5f * row.front());
+  // At the centre the ray meets the sphere (radius 1, centre at eye depth d)
+  // head-on at depths d -+ 1; there the normal turns by one radian per unit
+  // of length in x and in y, and one pixel spans z * 2 / (P00 * size), so
+  // |grad n| = sqrt(2) z * 2 / (P00 * size) for each of the two layers.
+  const Scene scene = load_scene("nested_spheres", sphere);
+  const double p00 = scene.camera.projection(1.0f)[0][0];
+  const double d = -(scene.camera.view * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)).z;
+  auto layer = [&](double z) { return std::min(1.0, 2.0 * std::sqrt(2.0) * z * 2.0 / (p00 * size)); };
+  const double centre = 1.0 - (1.0 - layer(d - 1.0)) * (1.0 - layer(d + 1.0));
+  std::printf("[ measured ] centre coverage %.4f, closed form %.4f\n", row.front(), centre);
+  EXPECT_NEAR(row.front(), centre, 0.02 * centre);
+  // Scale 0: nothing is drawn.
+  const RunResult none = test::render_once("illustration_buffer",
+                                           {{"modulation", "normal_variation"}, {"normal_variation_scale", "0"}},
+                                           "nested_spheres", sphere, 16, 16);
+  EXPECT_EQ(*std::max_element(none.image.rgba.begin(), none.image.rgba.end()), 0.0f);
 }
 
 }  // namespace

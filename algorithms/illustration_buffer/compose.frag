@@ -6,6 +6,9 @@
 //   alpha_hat = (1 - gamma) * (alpha + (1 - alpha) * beta)
 //   c += T * alpha_hat * c_i;  T *= 1 - alpha_hat
 // after the optional profile (eq. 10 / 11) is applied to beta and gamma.
+// IB_LOCAL_OPACITY (modulation=angle / normal_variation): the opacity the
+// fill computed (fill.frag), read from the fragment's fill record, which
+// these modes leave in place (no field ranges).
 #include "shaders/compose.glsl"
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 
@@ -39,6 +42,9 @@ void main() {
     const vec4 field = ib_fields_in[i];
     const float alpha = clamp(field.x, 0.0, 1.0);
     const float opacity = (1.0 - profile(field.z)) * (alpha + (1.0 - alpha) * profile(field.y));
+#elif defined(IB_LOCAL_OPACITY)
+    const uvec4 geometry = ib_search[i].geometry;  // whole members (ib_storage.glsl)
+    const float opacity = ib_fragments[geometry.w].slopes.z;
 #else
     const float opacity = c.a;
 #endif

@@ -11,6 +11,20 @@
 layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 2) uniform uint u_capacity;
 layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 3) uniform uint u_max_per_pixel;
 
+// The purely local opacities of carnecky2013 Fig. 11 (modulation=angle /
+// normal_variation), stored in the record's slopes.z for the compose:
+//  angle: the angle between the normal and the view ray, (2/pi) acos|n.v|
+//    (0 facing the viewer, 1 at a silhouette; Hummel et al. 2010 [6]);
+//  normal_variation: min(1, scale * |grad n|), grad n = (dn/dx, dn/dy) the
+//    view normal's change per pixel (Born et al. [7]; carnecky2013: "the
+//    derivatives of the surface normal").
+layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 18) uniform float u_normal_variation_scale;
+layout(location = OIT_UNIFORM_PROJECTION) uniform mat4 u_projection;
+
+// Unit vector from the fragment towards the eye along its view ray: +z for
+// an orthographic camera (no perspective divide: projection[2][3] = 0).
+vec3 to_eye() { return u_projection[2][3] == 0.0 ? vec3(0.0, 0.0, 1.0) : normalize(-v_view_position); }
+
 #ifdef IB_MEASURE
 // Ground truth for the neighbour accuracy only (parameter measure_accuracy):
 // x: surface id, yz: (u, v) bits, w: uv footprint of one pixel (fwidth, half2).
@@ -21,6 +35,14 @@ void main() {
   // Derivatives first, in uniform control flow (before any early return).
   const float depth = oit_view_depth();
   const vec2 slopes = vec2(dFdx(depth), dFdy(depth));
+  float local_opacity = 0.0;
+#if defined(IB_ANGLE)
+  local_opacity = acos(clamp(abs(dot(normalize(v_view_normal), to_eye())), 0.0, 1.0)) * (2.0 / 3.14159265358979);
+#elif defined(IB_NORMAL_VARIATION)
+  const vec3 normal = normalize(v_view_normal);
+  const vec3 dndx = dFdx(normal), dndy = dFdy(normal);
+  local_opacity = min(1.0, u_normal_variation_scale * sqrt(dot(dndx, dndx) + dot(dndy, dndy)));
+#endif
 #ifdef IB_MEASURE
   const vec2 footprint = fwidth(v_uv);
 #endif
@@ -37,7 +59,7 @@ void main() {
   if (index >= u_capacity) return;  // pool overflow: the host grows the pool and re-renders
   ib_next[index] = atomicExchange(ib_head[pixel], index);
   const uvec4 key = uvec4(floatBitsToUint(depth), oit_triangle_id(), v_object_id, ib_pack_normal(oit_view_normal()));
-  ib_fragments[index] = IbFragment(oit_shade(), key, vec4(slopes, 0.0, 0.0));
+  ib_fragments[index] = IbFragment(oit_shade(), key, vec4(slopes, local_opacity, 0.0));
 #ifdef IB_MEASURE
   ib_truth[index] = uvec4(v_surface_id, floatBitsToUint(v_uv.x), floatBitsToUint(v_uv.y), packHalf2x16(footprint));
 #endif

@@ -15,7 +15,7 @@
 struct IbFragment {
   vec4 color;   // straight RGBA from oit_shade()
   uvec4 key;    // x: view depth bits, y: stable triangle id, z: object id, w: view normal (octahedral snorm16x2)
-  vec4 slopes;  // x: d(depth)/dx, y: d(depth)/dy per pixel, zw: unused
+  vec4 slopes;  // x: d(depth)/dx, y: d(depth)/dy per pixel, z: angle / normal_variation opacity, w: unused
 };
 
 // The sorted lists, each pixel's fragments contiguous, nearest first, split

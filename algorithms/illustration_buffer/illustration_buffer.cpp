@@ -27,9 +27,16 @@ Settings settings_from(const ParamSet& p) {
                                   {{"none", Modulation::none},
                                    {"silhouette", Modulation::silhouette},
                                    {"halo", Modulation::halo},
-                                   {"silhouette_halo", Modulation::silhouette_halo}});
+                                   {"silhouette_halo", Modulation::silhouette_halo},
+                                   {"angle", Modulation::angle},
+                                   {"normal_variation", Modulation::normal_variation}});
   s.adaptive_alpha = p.boolean("adaptive_alpha");
   s.iterations = int(p.integer("iterations"));
+  s.skip_converged = p.boolean("skip_converged");
+  s.diffusion_tolerance = float(p.real("diffusion_tolerance"));
+  s.sort = pick<SortMethod>("sort", p.choice("sort"),
+                            {{"auto", SortMethod::automatic}, {"array", SortMethod::array}, {"dynamic", SortMethod::dynamic}});
+  s.normal_variation_scale = float(p.real("normal_variation_scale"));
   s.lambda_alpha = float(p.real("lambda_alpha"));
   s.lambda_beta = float(p.real("lambda_beta"));
   s.lambda_gamma = float(p.real("lambda_gamma"));
@@ -59,11 +66,20 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
                         "neighbour search: carnecky2013 Algorithm 2 (continuity measure eq. 1-3, mutual check), "
                         "the same links found by a walk from the predicted depth in the depth-sorted list "
                         "(heuristic_merge), or pastyrik2016 Algorithm 3 (triangles sharing a vertex index)"),
-      ParamSpec::choice("modulation", "silhouette_halo", {"none", "silhouette", "halo", "silhouette_halo"},
+      ParamSpec::choice("modulation", "silhouette_halo",
+                        {"none", "silhouette", "halo", "silhouette_halo", "angle", "normal_variation"},
                         "opacity modulation (carnecky2013 section 5): none = plain alpha blending (no neighbour "
-                        "search, no stylize), silhouette = beta field, halo = gamma field, or both"),
+                        "search, no stylize), silhouette = beta field, halo = gamma field, or both; angle and "
+                        "normal_variation = the purely local baselines of carnecky2013 Fig. 11 (opacity from the "
+                        "angle between normal and view ray, or from the normal's screen-space variation)"),
       ParamSpec::boolean("adaptive_alpha", false, "initial alpha 1-(1-s)^(1/n) (eq. 5) instead of s (eq. 4)"),
       ParamSpec::integer("iterations", 20, 0, 1000, "diffusion iterations of alpha (eq. 8) and beta/gamma (eq. 9)"),
+      ParamSpec::boolean("skip_converged", true,
+                         "diffuse only the pixels around fragments that changed in the previous iteration (the "
+                         "others would recompute their value; exact with diffusion_tolerance 0)"),
+      ParamSpec::real("diffusion_tolerance", 0.0, 0.0, 1.0,
+                      "skip_converged: a fragment whose fields move by at most this keeps its value and does not "
+                      "wake its neighbours (0: the same image as every fragment every iteration)"),
       ParamSpec::real("lambda_alpha", 1.0, 0.0, 1.0, "diffusion coefficient of alpha (eq. 8, normalised Laplacian)"),
       ParamSpec::real("lambda_beta", 0.05, 0.0, 1.0, "decrement per step of the silhouette field (eq. 9)"),
       ParamSpec::real("lambda_gamma", 0.1, 0.0, 1.0, "decrement per step of the halo field (eq. 9)"),
@@ -75,19 +91,29 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
       ParamSpec::real("weight_n", 1.0, 0.0, 1000.0, "w_n of the continuity measure (eq. 3; heuristic)"),
       ParamSpec::boolean("weld_vertices", true,
                          "triangle_index: vertices at bitwise-equal positions count as one index (closes UV seams)"),
+      ParamSpec::choice("sort", "auto", {"auto", "array", "dynamic"},
+                        "array = rank sort in a local array (carnecky2013 4.3); dynamic = insertion sort of the "
+                        "linked list in the buffers (pastyrik2016 Algorithm 2); auto = dynamic when the frame's "
+                        "longest list has at most 4 fragments, else array; the same records either way"),
+      ParamSpec::real("normal_variation_scale", 10.0, 0.0, 1000.0,
+                      "modulation=normal_variation: opacity = min(1, scale * |grad n|), grad n the view normal's "
+                      "change per pixel (dFdx, dFdy)"),
       ParamSpec::integer("max_per_pixel", 64, 1, 1024,
                          "sort array size; longer lists keep their nearest max_per_pixel fragments (counted)"),
       ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,
                          "first frame's pool per pixel; it grows (with a re-render) on overflow"),
-      ParamSpec::boolean("measure_accuracy", true,
+      ParamSpec::boolean("measure_accuracy", false,
                          "record surface id and (u, v) per fragment and report neighbor_precision/recall "
                          "(16 B per fragment more; computed after the timed frames)"),
       ParamSpec::real("accuracy_footprints", 1.5, 0.5, 10.0,
                       "a link is correct when |du|, |dv| are within this many pixel footprints (fwidth(uv))")};
-  d.stages = {"clear", "fill", "sort", "neighbors", "stylize", "compose"};
+  // stylize_init sets the fields (carnecky2013 5.2-5.3); diffuse runs the
+  // `iterations` steps of eq. 8-9 (iterations=1 times the paper's one solve step).
+  d.stages = {"clear", "fill", "sort", "neighbors", "stylize_init", "diffuse", "compose"};
   d.exactness = Exactness::approximate;  // exact (float blend) only with modulation=none
   d.extra_support_check = [](const ParamSet& params, const SceneFacts& scene) -> std::string {
-    if (params.choice("modulation") != "none" && params.choice("neighbors") == "triangle_index" && !scene.indexed)
+    const illustration_buffer::Settings s = illustration_buffer::settings_from(params);
+    if (s.diffused() && s.neighbors == illustration_buffer::NeighborSearch::triangle_index && !scene.indexed)
       return "neighbors=triangle_index needs indexed geometry (shared vertex indices)";
     return "";
   };
@@ -95,11 +121,16 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
     return illustration_buffer::storage_need(illustration_buffer::settings_from(params), content);
   };
   // A pixel's links reach the 4 adjacent pixels, and each diffusion
-  // iteration carries values one link further.
+  // iteration carries values one link further (also when skip_converged
+  // leaves fragments out: it computes the same iterations).
   d.tile_halo = [](const ParamSet& params) {
     const illustration_buffer::Settings s = illustration_buffer::settings_from(params);
-    return s.modulation == illustration_buffer::Modulation::none ? 0 : s.iterations + 2;
+    return s.diffused() ? s.iterations + 2 : 0;
   };
+  d.adaptive_switches = {{"skip_converged",
+                          "diffuses only the pixels around fragments that changed in the previous iteration",
+                          {{"skip_converged", "true"}},
+                          {{"skip_converged", "false"}}}};
   d.create = [](const ParamSet& params) {
     return illustration_buffer::make_illustration_buffer(illustration_buffer::settings_from(params));
   };

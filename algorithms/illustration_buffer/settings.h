@@ -12,8 +12,14 @@ namespace oit::illustration_buffer {
 enum class NeighborSearch { heuristic, heuristic_merge, triangle_index };
 // Which of carnecky2013's fields modulate the opacity: none (plain alpha
 // blending; no neighbour search, no stylize), beta (silhouette), gamma
-// (halo) or both.
-enum class Modulation { none, silhouette, halo, silhouette_halo };
+// (halo) or both; or one of the purely local baselines of its Fig. 11
+// (opacity from the angle between normal and view ray, or from the
+// normal's screen-space variation; no neighbour search, no stylize).
+enum class Modulation { none, silhouette, halo, silhouette_halo, angle, normal_variation };
+// The sort: ranks in a local array (carnecky2013 section 4.3), or
+// pastyrik2016's Algorithm 2, insertion sort of the linked list in place, or
+// per frame the faster of the two on llvmpipe for the frame's longest list.
+enum class SortMethod { automatic, array, dynamic };
 enum class Profile { none, exponential, power };  // eq. 10 / eq. 11
 
 struct Settings {
@@ -21,6 +27,8 @@ struct Settings {
   Modulation modulation = Modulation::silhouette_halo;
   bool adaptive_alpha = false;  // eq. 5 instead of eq. 4
   int iterations = 20;
+  bool skip_converged = true;       // diffuse only the pixels whose neighbourhood changed
+  float diffusion_tolerance = 0.0f; // a fragment moving by at most this keeps its value
   float lambda_alpha = 1.0f, lambda_beta = 0.05f, lambda_gamma = 0.1f;
   Profile profile = Profile::none;
   float exponential_p = 3.0f, power_p = 0.3f;
@@ -28,10 +36,16 @@ struct Settings {
   bool weld_vertices = true;
   uint32_t max_per_pixel = 64;
   uint64_t initial_nodes_per_pixel = 8;
-  bool measure_accuracy = true;
+  SortMethod sort = SortMethod::automatic;
+  float normal_variation_scale = 10.0f;
+  bool measure_accuracy = false;
   double accuracy_footprints = 1.5;
 
   bool heuristic() const { return neighbors != NeighborSearch::triangle_index; }
+  // The modes that search neighbours and diffuse fields (carnecky2013 section 5).
+  bool diffused() const { return uses_beta() || uses_gamma(); }
+  // The purely local baselines: an opacity per fragment from the fill.
+  bool purely_local() const { return modulation == Modulation::angle || modulation == Modulation::normal_variation; }
   bool uses_beta() const { return modulation == Modulation::silhouette || modulation == Modulation::silhouette_halo; }
   bool uses_gamma() const { return modulation == Modulation::halo || modulation == Modulation::silhouette_halo; }
 };

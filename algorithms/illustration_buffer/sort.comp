@@ -7,6 +7,14 @@
 // nearest fragments (the fill counted the rest as dropped). Lists of 0 or 1
 // fragments skip the walk and the sort.
 //
+// IB_DYNAMIC (sort=dynamic): pastyrik2016 Algorithm 2 instead of the array.
+// The list is insertion-sorted in the buffers: each node is unlinked from
+// the fill's list (its old `next` kept in a register, so one next buffer
+// serves both lists, where the paper keeps a second one) and linked into a
+// sorted list at the first node it precedes; then the nearest max_per_pixel
+// nodes are copied as above. Equal keys keep list order in both variants,
+// so the records are the same.
+//
 // The list is walked by ONE flat loop: each iteration either takes the next
 // node or moves the pending node's insertion hole one step nearer. Mesa 22.3
 // llvmpipe miscompiled nested loops following `next` pointers (only the head
@@ -20,9 +28,6 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform usamplerBuffer ib_fragment_view;
 layout(binding = 1) uniform usamplerBuffer ib_next_view;
 
-// x: depth order bits, y: stable triangle id, z: fill record index.
-uvec3 items[IB_ARRAY];
-
 bool precedes(uvec3 a, uvec3 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
 
 // Copies fill record `node` of `pixel` to sorted position `to`.
@@ -33,6 +38,47 @@ void copy_record(uint to, uint node, uint pixel) {
   ib_search[to] = IbSortedSearch(uvec4(key.xyz, pixel), uvec4(key.w, slopes.x, slopes.y, node));
   ib_shade[to] = IbSortedShade(color, uvec4(IB_NONE));
 }
+
+// The sort key of fill record `node`: x depth order bits, y stable triangle id, z the node.
+uvec3 sort_key(uint node) {
+  const uvec4 key = texelFetch(ib_fragment_view, int(node * 3u + 1u));
+  return uvec3(ib_depth_order(key.x), key.y, node);
+}
+
+#ifdef IB_DYNAMIC
+layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 3) uniform uint u_max_per_pixel;
+
+// Sorts the list of `length` (>= 2) nodes from `head` in place; returns the sorted head.
+// One flat loop: each step takes the next unsorted node, or moves the
+// insertion point one node along the sorted list.
+uint sort_list(uint head) {
+  uint unsorted = head, sorted = IB_NIL, previous = IB_NIL;
+  uvec3 pending = uvec3(IB_NIL);  // z: the node being inserted after `previous`, IB_NIL: none
+  while (unsorted != IB_NIL || pending.z != IB_NIL) {
+    if (pending.z == IB_NIL) {
+      pending = sort_key(unsorted);
+      unsorted = ib_next[unsorted];
+      if (sorted == IB_NIL || precedes(pending, sort_key(sorted))) {
+        ib_next[pending.z] = sorted;
+        sorted = pending.z;
+        pending.z = IB_NIL;
+      } else {
+        previous = sorted;
+      }
+    } else {
+      const uint after = ib_next[previous];
+      if (after != IB_NIL && !precedes(pending, sort_key(after))) {
+        previous = after;
+      } else {
+        ib_next[pending.z] = after;
+        ib_next[previous] = pending.z;
+        pending.z = IB_NIL;
+      }
+    }
+  }
+  return sorted;
+}
+#endif
 
 void main() {
   if (gl_GlobalInvocationID.x >= uint(u_width) || gl_GlobalInvocationID.y >= uint(u_height)) return;
@@ -46,14 +92,47 @@ void main() {
     ib_head[pixel] = only;
     return;
   }
+#ifdef IB_DYNAMIC
+  const uint kept = min(length, u_max_per_pixel);
+  uint node = sort_list(ib_head[pixel]);
+  const uint first = atomicAdd(ib_allocated, kept);
+  ib_head[pixel] = first;
+  ib_count[pixel] = kept;
+  for (uint i = 0u; i < kept; ++i) {
+    copy_record(first + i, node, pixel);
+    node = ib_next[node];
+  }
+#else
+  uvec3 items[IB_ARRAY];  // x: depth order bits, y: stable triangle id, z: fill record index
+  if (length <= uint(IB_ARRAY)) {
+    // The whole list fits (always, unless it is truncated): gather it, then
+    // copy each fragment to its rank, the number of fragments before it in
+    // (depth, triangle) order, ties in list order. Every array index here is
+    // a loop counter, the same in all lanes, so llvmpipe reads the array as
+    // vectors, where the insertion below moves a per-lane hole (a gather and
+    // a scatter per step): about 3x faster at 32 layers.
+    uint node = ib_head[pixel];
+    for (uint k = 0u; k < length; ++k) {
+      items[k] = sort_key(node);
+      node = texelFetch(ib_next_view, int(node)).x;
+    }
+    const uint first = atomicAdd(ib_allocated, length);
+    ib_head[pixel] = first;
+    for (uint i = 0u; i < length; ++i) {
+      uint rank = 0u;
+      for (uint j = 0u; j < length; ++j)
+        rank += precedes(items[j], items[i]) || (j < i && items[j].xy == items[i].xy) ? 1u : 0u;
+      copy_record(first + rank, items[i].z, pixel);
+    }
+    return;
+  }
   uint cursor = ib_head[pixel];
   uint kept = 0u;
   int hole = -1;  // where `pending` goes; -1: nothing being inserted
   uvec3 pending = uvec3(0u);
   while (cursor != IB_NIL || hole >= 0) {
     if (hole < 0) {
-      const uvec4 key = texelFetch(ib_fragment_view, int(cursor * 3u + 1u));
-      pending = uvec3(ib_depth_order(key.x), key.y, cursor);
+      pending = sort_key(cursor);
       cursor = texelFetch(ib_next_view, int(cursor)).x;
       // Enters at the end while there is room, else replaces the farthest
       // kept fragment when nearer, else is left out (counted by the fill).
@@ -75,4 +154,5 @@ void main() {
   ib_head[pixel] = first;
   ib_count[pixel] = kept;
   for (uint i = 0u; i < kept; ++i) copy_record(first + i, items[i].z, pixel);
+#endif
 }

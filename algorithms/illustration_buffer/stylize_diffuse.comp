@@ -1,6 +1,6 @@
 #version 450 core
-// One diffusion iteration (carnecky2013 section 5.4), one invocation per
-// sorted fragment, reading one field range and writing the other:
+// One diffusion iteration (carnecky2013 section 5.4), reading one field
+// range and writing the other:
 //  alpha <- alpha + lambda_alpha * laplacian(alpha)               (eq. 8)
 //     with the Laplacian normalised by the neighbour count,
 //     mean(alpha_neighbours) - alpha, so that lambda_alpha in [0, 1] is a
@@ -8,6 +8,14 @@
 //     missing neighbours are left out (zero flux across silhouettes);
 //  u <- max(u, max(u_neighbours) - lambda_u), u in {beta, gamma}  (eq. 9)
 //     unless the fragment's u is fixed by a boundary condition.
+// Three variants: plain (skip_converged=false), one invocation per sorted
+// fragment; IB_TRACK (the first step with skip_converged): the same, and a
+// fragment that moved by more than u_tolerance queues the pixels around it
+// for the next step; IB_WORKLIST (the later steps): one invocation per
+// queued pixel, which updates the pixel's fragments and queues likewise
+// (worklist.glsl). With skip_converged a move of at most u_tolerance is not
+// applied (the fragment keeps its value), so a fragment that is not queued
+// has its value in both field ranges.
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 #include "algorithms/illustration_buffer/per_fragment.glsl"
 #include "algorithms/illustration_buffer/fields.glsl"
@@ -17,29 +25,73 @@ layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 11) uniform float u_lambda_alpha
 layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 12) uniform float u_lambda_beta;
 layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 13) uniform float u_lambda_gamma;
 
-float alpha_sum = 0.0, neighbors = 0.0, beta_max = 0.0, gamma_max = 0.0;
-
-void gather(uint link) {
-  if (link >= IB_OFF_IMAGE) return;
-  const vec4 field = texelFetch(ib_fields_view, int(link));
-  alpha_sum += field.x;
-  neighbors += 1.0;
-  beta_max = max(beta_max, field.y);
-  gamma_max = max(gamma_max, field.z);
-}
-
-void main() {
-  const uint s = ib_fragment_index();
-  if (s >= u_fragments) return;
-  const vec4 field = texelFetch(ib_fields_view, int(s));
+// The fields of fragment s after one iteration.
+vec4 diffused(uint s, vec4 field) {
   const uvec4 links = ib_sorted_links(s);
-  gather(links.x);
-  gather(links.y);
-  gather(links.z);
-  gather(links.w);
+  float alpha_sum = 0.0, neighbors = 0.0, beta_max = 0.0, gamma_max = 0.0;
+  for (int d = 0; d < 4; ++d) {
+    if (links[d] >= IB_OFF_IMAGE) continue;
+    const vec4 other = texelFetch(ib_fields_view, int(links[d]));
+    alpha_sum += other.x;
+    neighbors += 1.0;
+    beta_max = max(beta_max, other.y);
+    gamma_max = max(gamma_max, other.z);
+  }
   const uint flags = ib_flags(field);
   const float alpha = neighbors > 0.0 ? field.x + u_lambda_alpha * (alpha_sum / neighbors - field.x) : field.x;
   const float beta = (flags & IB_FIXED_BETA) != 0u ? field.y : max(field.y, beta_max - u_lambda_beta);
   const float gamma = (flags & IB_FIXED_GAMMA) != 0u ? field.z : max(field.z, gamma_max - u_lambda_gamma);
-  ib_fields_out[s] = vec4(alpha, beta, gamma, field.w);
+  return vec4(alpha, beta, gamma, field.w);
 }
+
+#if defined(IB_TRACK) || defined(IB_WORKLIST)
+#include "algorithms/illustration_buffer/worklist.glsl"
+layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 17) uniform float u_tolerance;
+
+// Updates fragment s; true when it moved by more than the tolerance.
+bool update(uint s) {
+  const vec4 field = texelFetch(ib_fields_view, int(s));
+  const vec4 next = diffused(s, field);
+  const vec3 moved = abs(next.xyz - field.xyz);
+  const bool changed = max(moved.x, max(moved.y, moved.z)) > u_tolerance;
+  ib_fields_out[s] = changed ? next : field;
+  return changed;
+}
+#endif
+
+#if defined(IB_TRACK)
+void main() {
+  const uint s = ib_fragment_index();
+  if (s >= u_fragments) return;
+  if (update(s)) ib_enqueue_around(ib_sorted_key(s).w);
+}
+#elif defined(IB_WORKLIST)
+// The step's list (header: groups x, y, z, count; then pixels) and the
+// sorted ranges, read as buffer textures (gathers on llvmpipe, views.glsl).
+layout(binding = 4) uniform usamplerBuffer ib_work_view;
+layout(binding = 5) uniform usamplerBuffer ib_head_view;
+layout(binding = 6) uniform usamplerBuffer ib_count_view;
+
+// The list of the step after next (read by the step before): emptied here,
+// so that no host upload sits between the dispatches.
+layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 14) writeonly buffer IbWorkNext { uvec4 ib_next_header; };
+
+void main() {
+  if (gl_GlobalInvocationID.x == 0u) ib_next_header = uvec4(1u, 1u, 1u, 0u);
+  const uint stride = gl_NumWorkGroups.x * 64u, count = texelFetch(ib_work_view, 3).x;
+  for (uint e = gl_GlobalInvocationID.x; e < count; e += stride) {
+    const uint pixel = texelFetch(ib_work_view, int(4u + e)).x;
+    const uint first = texelFetch(ib_head_view, int(pixel)).x, end = first + texelFetch(ib_count_view, int(pixel)).x;
+    bool changed = false;
+    for (uint s = first; s < end; ++s) changed = update(s) || changed;
+    ib_pixel_updates[pixel] += end - first;
+    if (changed) ib_enqueue_around(pixel);
+  }
+}
+#else
+void main() {
+  const uint s = ib_fragment_index();
+  if (s >= u_fragments) return;
+  ib_fields_out[s] = diffused(s, texelFetch(ib_fields_view, int(s)));
+}
+#endif

@@ -29,12 +29,19 @@ constexpr GLsizeiptr kLargestRecordBytes = std::max({kFragmentBytes, kSearchByte
 constexpr GLsizeiptr kCounterBytes = 20;  // produced, longest, dropped, truncated, allocated
 constexpr GLuint kBinding = OIT_FIRST_TECHNIQUE_BINDING;
 enum : GLuint {
-  kHead = kBinding, kCount, kNext, kData, kData2, kCounters, kTruth, kTriangles, kFieldsIn, kFieldsOut, kData3
+  kHead = kBinding, kCount, kNext, kData, kData2, kCounters, kTruth, kTriangles, kFieldsIn, kFieldsOut, kData3,
+  kStamps, kWorkOut, kPixelUpdates, kWorkNext  // worklist.glsl, stylize_diffuse.comp
 };
+// A worklist (worklist.glsl): indirect-dispatch arguments and count, then one entry per pixel.
+constexpr GLsizeiptr kWorklistHeaderBytes = 16;
 // Texture units of views.glsl.
 constexpr GLuint kSearchUnit = 0, kTrianglesUnit = 1, kFieldsUnit = 2, kShadeUnit = 3;
+constexpr GLuint kWorkUnit = 4, kHeadUnit = 5, kCountUnit = 6;  // the listed steps' views (stylize_diffuse.comp)
 constexpr GLuint kFragmentUnit = 0, kNextUnit = 1;  // the sort's views (sort.comp)
 constexpr uint32_t kSmallestArray = 8;
+// sort=auto takes the dynamic sort up to this longest list: faster there on
+// llvmpipe (README, Sort variants), the array's ranks beyond.
+constexpr uint32_t kLongestDynamicList = 4;
 // Keeps both field ranges inside fragData for any storage-offset alignment up to 4 KiB.
 constexpr uint64_t kSmallestPool = 256;
 
@@ -52,6 +59,20 @@ uint64_t bytes_per_fragment(const Settings& s) {
   return uint64_t(kNextBytes + kFragmentBytes + kSearchBytes + kShadeBytes + (s.measure_accuracy ? kTruthBytes : 0));
 }
 
+bool tracks_convergence(const Settings& s) { return s.diffused() && s.skip_converged; }
+
+// Per pixel: head and count, plus (when the diffusion skips converged
+// fragments) a stamp, an entry in each of three worklists and an update count.
+uint64_t bytes_per_pixel(const Settings& s) { return tracks_convergence(s) ? 28 : 8; }
+
+ShaderDefines fill_defines(const Settings& s) {
+  ShaderDefines defines;
+  if (s.measure_accuracy) defines.push_back({"IB_MEASURE", "1"});
+  if (s.modulation == Modulation::angle) defines.push_back({"IB_ANGLE", "1"});
+  if (s.modulation == Modulation::normal_variation) defines.push_back({"IB_NORMAL_VARIATION", "1"});
+  return defines;
+}
+
 class IllustrationBuffer final : public Technique {
  public:
   explicit IllustrationBuffer(const Settings& settings)
@@ -59,11 +80,13 @@ class IllustrationBuffer final : public Technique {
         counters_(make_buffer(kCounterBytes)),
         pool_("illustration_buffer", FragmentPool::Sizing::previous_frame, kLargestRecordBytes,
               [this](uint64_t capacity) { allocate_pool(capacity); }, kSmallestPool) {
-    const ShaderDefines measure = s_.measure_accuracy ? ShaderDefines{{"IB_MEASURE", "1"}} : ShaderDefines{};
-    fill_ = build_geometry_program("algorithms/illustration_buffer/fill.frag", measure);
+    fill_ = build_geometry_program("algorithms/illustration_buffer/fill.frag", fill_defines(s_));
     set(fill_.id(), "u_max_per_pixel", s_.max_per_pixel);
+    set(fill_.id(), "u_normal_variation_scale", s_.normal_variation_scale);
     compose_ = build_fullscreen_program("algorithms/illustration_buffer/compose.frag",
-                                        modulated() ? ShaderDefines{{"IB_MODULATE", "1"}} : ShaderDefines{});
+                                        modulated()          ? ShaderDefines{{"IB_MODULATE", "1"}}
+                                        : s_.purely_local() ? ShaderDefines{{"IB_LOCAL_OPACITY", "1"}}
+                                                             : ShaderDefines{});
     if (!modulated()) return;
     neighbors_ = build_compute_program(
         "algorithms/illustration_buffer/neighbors.comp",
@@ -75,10 +98,19 @@ class IllustrationBuffer final : public Technique {
     set(stylize_init_.id(), "u_adaptive", int(s_.adaptive_alpha));
     set(stylize_init_.id(), "u_use_beta", int(s_.uses_beta()));
     set(stylize_init_.id(), "u_use_gamma", int(s_.uses_gamma()));
-    stylize_diffuse_ = build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp");
-    set(stylize_diffuse_.id(), "u_lambda_alpha", s_.lambda_alpha);
-    set(stylize_diffuse_.id(), "u_lambda_beta", s_.lambda_beta);
-    set(stylize_diffuse_.id(), "u_lambda_gamma", s_.lambda_gamma);
+    const bool track = tracks_convergence(s_);
+    stylize_diffuse_ = build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp",
+                                             track ? ShaderDefines{{"IB_TRACK", "1"}} : ShaderDefines{});
+    if (track)
+      diffuse_listed_ =
+          build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp", {{"IB_WORKLIST", "1"}});
+    for (const Program* p : {&stylize_diffuse_, &diffuse_listed_}) {
+      if (!*p) continue;
+      set(p->id(), "u_tolerance", s_.diffusion_tolerance);
+      set(p->id(), "u_lambda_alpha", s_.lambda_alpha);
+      set(p->id(), "u_lambda_beta", s_.lambda_beta);
+      set(p->id(), "u_lambda_gamma", s_.lambda_gamma);
+    }
     set(compose_.id(), "u_profile", int(s_.profile));
     set(compose_.id(), "u_profile_p", s_.profile == Profile::power ? s_.power_p : s_.exponential_p);
   }
@@ -90,6 +122,17 @@ class IllustrationBuffer final : public Technique {
     count_ = make_buffer(GLsizeiptr(width) * height * 4);
     pool_.reset(uint64_t(width) * uint64_t(height) * s_.initial_nodes_per_pixel);
     no_attachments_ = make_attachmentless_framebuffer(width, height);
+    if (tracks_convergence(s_)) {
+      stamps_ = make_buffer(GLsizeiptr(width) * height * 4);
+      pixel_updates_ = make_buffer(GLsizeiptr(width) * height * 4);
+      const GLsizeiptr list_bytes = kWorklistHeaderBytes + GLsizeiptr(width) * height * 4;
+      for (int i = 0; i < 3; ++i) {
+        worklists_[i] = make_buffer(list_bytes);
+        worklist_views_[i] = make_buffer_texture(worklists_[i], GL_R32UI, 0, list_bytes);
+      }
+      head_view_ = make_buffer_texture(head_, GL_R32UI, 0, GLsizeiptr(width) * height * 4);
+      count_view_ = make_buffer_texture(count_, GL_R32UI, 0, GLsizeiptr(width) * height * 4);
+    }
     for (GLuint program : programs()) {
       set(program, "u_width", width);
       set(program, "u_height", height);
@@ -132,24 +175,7 @@ class IllustrationBuffer final : public Technique {
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
     const GLintptr second_range = second_field_range();
-    if (modulated()) {
-      glBindTextureUnit(kSearchUnit, search_view_.id());
-      glBindTextureUnit(kShadeUnit, shade_view_.id());
-      {
-        auto stage = frame.clock.stage("neighbors");
-        prepare_scene_data(frame.scene.scene());
-        glBindTextureUnit(kTrianglesUnit, triangles_view_ ? triangles_view_.id() : 0);
-        run_per_fragment(neighbors_.id());
-      }
-      auto stage = frame.clock.stage("stylize");
-      // Ranges of fragData (dead after the sort) hold the two field buffers.
-      bind_fields(0, second_range);
-      run_per_fragment(stylize_init_.id());
-      for (int i = 0; i < s_.iterations; ++i) {
-        i % 2 == 0 ? bind_fields(second_range, 0) : bind_fields(0, second_range);
-        run_per_fragment(stylize_diffuse_.id());
-      }
-    }
+    if (modulated()) stylize(frame, second_range);
     auto stage = frame.clock.stage("compose");
     if (modulated()) {
       // The last range written: the init writes the second range, iteration i
@@ -161,53 +187,132 @@ class IllustrationBuffer final : public Technique {
     glUseProgram(compose_.id());
     frame.set_shared_uniforms(compose_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    for (GLuint unit : {kSearchUnit, kTrianglesUnit, kFieldsUnit, kShadeUnit}) glBindTextureUnit(unit, 0);
+    for (GLuint unit : {kSearchUnit, kTrianglesUnit, kFieldsUnit, kShadeUnit, kWorkUnit, kHeadUnit, kCountUnit})
+      glBindTextureUnit(unit, 0);
   }
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
     const uint64_t per_fragment = bytes_per_fragment(s_);
-    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * 8 + pool_.capacity() * per_fragment + kCounterBytes +
-                        triangle_rows_ * 16;
+    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * bytes_per_pixel(s_) + pool_.capacity() * per_fragment +
+                        kCounterBytes + triangle_rows_ * 16 +
+                        (tracks_convergence(s_) ? 3 * kWorklistHeaderBytes : 0);
     c.fragments_stored = stored_;
     c.fragments_dropped = dropped_;
     c.passes = passes_;
     c.overflow_retries = pool_.overflow_retries();
     c.extra = {{"lists_truncated", double(truncated_lists_)},
                {"neighbor_passes", modulated() ? 1.0 : 0.0},
-               {"stylize_passes", modulated() ? double(1 + s_.iterations) : 0.0}};
+               {"stylize_passes", modulated() ? double(1 + s_.iterations) : 0.0},
+               {"dynamic_sort", sorted_dynamically_ ? 1.0 : 0.0, Combine::max}};
     if (modulated() && s_.neighbors == NeighborSearch::triangle_index)
       c.extra.push_back({"isolated_triangles", double(isolated_triangles_), Combine::max});
     if (modulated()) append_neighbor_statistics(c);
     work_saved(c);
+    if (tracks_convergence(s_)) append_diffusion_work(c);
     return c;
   }
 
   std::vector<DiagnosticImage> diagnostic_images() const override;
 
  private:
-  bool modulated() const { return s_.modulation != Modulation::none; }
+  // The modes with the neighbour search and the stylize stages.
+  bool modulated() const { return s_.diffused(); }
+
+  // Neighbour search, then the fields' initial and boundary conditions
+  // (stylize_init) and the `iterations` steps of eq. 8-9 (diffuse).
+  void stylize(const Frame& frame, GLintptr second_range) {
+    glBindTextureUnit(kSearchUnit, search_view_.id());
+    glBindTextureUnit(kShadeUnit, shade_view_.id());
+    {
+      auto stage = frame.clock.stage("neighbors");
+      prepare_scene_data(frame.scene.scene());
+      glBindTextureUnit(kTrianglesUnit, triangles_view_ ? triangles_view_.id() : 0);
+      run_per_fragment(neighbors_.id());
+    }
+    {
+      auto stage = frame.clock.stage("stylize_init");
+      // Ranges of fragData (dead after the sort) hold the two field buffers.
+      bind_fields(0, second_range);
+      run_per_fragment(stylize_init_.id());
+    }
+    auto stage = frame.clock.stage("diffuse");
+    const bool track = tracks_convergence(s_);
+    if (track) start_worklists();
+    for (int i = 0; i < s_.iterations; ++i) {
+      i % 2 == 0 ? bind_fields(second_range, 0) : bind_fields(0, second_range);
+      // With skip_converged the first step updates every fragment (so both
+      // ranges hold every value after it) and queues the pixels of the second.
+      if (i == 0 || !track) {
+        if (track) set(stylize_diffuse_.id(), "u_next_step", 2u);
+        run_per_fragment(stylize_diffuse_.id());
+      } else {
+        run_queued(uint32_t(i + 1));
+      }
+    }
+  }
+
+  // No pixel queued for any step yet (stamps 0); list 2 receives step 2's,
+  // list 0 step 3's (step k reads list k % 3 and empties list (k + 2) % 3).
+  void start_worklists() const {
+    fill_buffer_u32(stamps_, 0);
+    fill_buffer_u32(pixel_updates_, 0);
+    reset_worklist(worklists_[2]);
+    reset_worklist(worklists_[0]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStamps, stamps_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPixelUpdates, pixel_updates_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWorkOut, worklists_[2].id());
+  }
+
+  static void reset_worklist(const Buffer& list) {
+    const GLuint header[4] = {1, 1, 1, 0};  // groups x, y, z (one at least, worklist.glsl); count
+    glNamedBufferSubData(list.id(), 0, sizeof(header), header);
+  }
+
+  // Step `step` (>= 2) over the pixels queued for it (list step % 3),
+  // queueing the next step's pixels in list (step + 1) % 3 (emptied by the
+  // step before) and emptying list (step + 2) % 3 for the step after.
+  void run_queued(uint32_t step) const {
+    const Buffer& in = worklists_[step % 3];
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWorkOut, worklists_[(step + 1) % 3].id());
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kWorkNext, worklists_[(step + 2) % 3].id(), 0, kWorklistHeaderBytes);
+    glBindTextureUnit(kWorkUnit, worklist_views_[step % 3].id());
+    glBindTextureUnit(kHeadUnit, head_view_.id());
+    glBindTextureUnit(kCountUnit, count_view_.id());
+    glUseProgram(diffuse_listed_.id());
+    set(diffuse_listed_.id(), "u_next_step", step + 1);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.id());
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    glDispatchComputeIndirect(0);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  }
 
   std::vector<GLuint> programs() const {
     std::vector<GLuint> all = {fill_.id(), compose_.id()};
-    for (const Program* p : {&neighbors_, &stylize_init_, &stylize_diffuse_})
+    for (const Program* p : {&neighbors_, &stylize_init_, &stylize_diffuse_, &diffuse_listed_})
       if (*p) all.push_back(p->id());
     for (const auto& [size, program] : sorts_) all.push_back(program.id());
     return all;
   }
 
   // The sort's local array: the frame's longest list rounded up to a power
-  // of two (a few programs serve every frame), at most max_per_pixel.
+  // of two (a few programs serve every frame), at most max_per_pixel. The
+  // dynamic sort has no array: one program (keyed 0).
   GLuint sort_program(uint32_t longest) {
+    const bool dynamic = s_.sort == SortMethod::dynamic ||
+                         (s_.sort == SortMethod::automatic && longest <= kLongestDynamicList);
+    sorted_dynamically_ = dynamic;
     const uint32_t size =
-        std::min(s_.max_per_pixel, std::max(kSmallestArray, std::bit_ceil(std::max<uint32_t>(longest, 1))));
+        dynamic ? 0 : std::min(s_.max_per_pixel, std::max(kSmallestArray, std::bit_ceil(std::max<uint32_t>(longest, 1))));
     auto it = sorts_.find(size);
     if (it == sorts_.end()) {
-      it = sorts_.emplace(size, build_compute_program("algorithms/illustration_buffer/sort.comp",
-                                                      {{"IB_ARRAY", std::to_string(size)}}))
-               .first;
+      const ShaderDefines defines =
+          dynamic ? ShaderDefines{{"IB_DYNAMIC", "1"}} : ShaderDefines{{"IB_ARRAY", std::to_string(size)}};
+      it = sorts_.emplace(size, build_compute_program("algorithms/illustration_buffer/sort.comp", defines)).first;
       set(it->second.id(), "u_width", width_);
       set(it->second.id(), "u_height", height_);
+      set(it->second.id(), "u_max_per_pixel", s_.max_per_pixel);
     }
     return it->second.id();
   }
@@ -293,14 +398,18 @@ class IllustrationBuffer final : public Technique {
   }
 
   void append_neighbor_statistics(TechniqueCounters& c) const;
+  void append_diffusion_work(TechniqueCounters& c) const;
   void work_saved(TechniqueCounters& c) const;
   // The last frame's per-pixel ranges and sorted records (read back).
   void read_lists(std::vector<uint32_t>& first, std::vector<uint32_t>& count, std::vector<SortedRecord>& sorted) const;
 
   Settings s_;
-  Program fill_, compose_, neighbors_, stylize_init_, stylize_diffuse_;
-  std::map<uint32_t, Program> sorts_;  // by local array size
+  Program fill_, compose_, neighbors_, stylize_init_, stylize_diffuse_, diffuse_listed_;
+  std::map<uint32_t, Program> sorts_;  // by local array size (0: the dynamic sort)
+  bool sorted_dynamically_ = false;    // the last frame's sort
   Buffer counters_, head_, count_, next_, data_, data2_, data3_, truth_, triangles_;
+  Buffer stamps_, worklists_[3], pixel_updates_;  // skip_converged (worklist.glsl)
+  Texture worklist_views_[3], head_view_, count_view_;
   Texture fragment_view_, next_view_, search_view_, shade_view_, triangles_view_, fields_view_[2];  // read-only views (views.glsl)
   Framebuffer no_attachments_;
   const Scene* scene_seen_ = nullptr;
@@ -370,6 +479,23 @@ void IllustrationBuffer::work_saved(TechniqueCounters& c) const {
   c.work_saved = {{"passes_skipped", skipped}, {"fragments_not_sorted", double(single - walked)}};
 }
 
+// fragment_updates: fragments the diffusion recomputed (skip_converged);
+// fragment_updates_skipped: the rest of iterations x fragments, each of
+// which would have recomputed its own value (read back outside the frame).
+void IllustrationBuffer::append_diffusion_work(TechniqueCounters& c) const {
+  std::vector<GLuint> per_pixel(size_t(width_) * size_t(height_));
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  if (!per_pixel.empty())
+    glGetNamedBufferSubData(pixel_updates_.id(), 0, GLsizeiptr(per_pixel.size() * 4), per_pixel.data());
+  gl_check("illustration_buffer: reading back the diffusion's update counts");
+  // The first step updates every fragment; the counts are the later steps'.
+  uint64_t updates = s_.iterations > 0 ? stored_ : 0;
+  for (GLuint n : per_pixel) updates += n;
+  const uint64_t all = stored_ * uint64_t(s_.iterations);
+  c.extra.push_back({"fragment_updates", double(updates)});
+  c.work_saved.push_back({"fragment_updates_skipped", double(all - std::min<uint64_t>(updates, all))});
+}
+
 // Neighbour links of each pixel's front fragment (the nearest of its sorted
 // list): how many of the 4 were found, and whether one inside the image is
 // missing (carnecky2013's silhouette, the seed of the beta field).
@@ -410,7 +536,8 @@ std::unique_ptr<Technique> make_illustration_buffer(const Settings& settings) {
 
 StorageNeed storage_need(const Settings& settings, const FrameContent& content) {
   const uint64_t nodes = std::max(fragment_pool::nodes_for(content, settings.initial_nodes_per_pixel), kSmallestPool);
-  return {nodes * uint64_t(kLargestRecordBytes), content.pixels() * 8 + nodes * bytes_per_fragment(settings)};
+  return {nodes * uint64_t(kLargestRecordBytes),
+          content.pixels() * bytes_per_pixel(settings) + nodes * bytes_per_fragment(settings)};
 }
 
 }  // namespace oit::illustration_buffer
