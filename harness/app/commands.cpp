@@ -235,14 +235,18 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
                      *result.clock_disagreement * 100.0);
       }
       if (!options.images_dir.empty()) {
-        const std::string stem = options.images_dir + "/" + run_label(result);
-        write_image(result.image, stem + ".png");
-        // Where the image is wrong, and how much (scaled to this run's largest error).
+        // Never over an earlier file: a name already there gets _2, _3, ...
+        const std::string image = write_new_image(result.image, options.images_dir + "/" + run_label(result) + ".png");
+        std::string written = image;
+        // Where the image is wrong, and how much, on the one scale of every error map.
         if (result.error && result.error->max_abs > 0.0) {
           const Image& reference = harness.reference_image(spec.scene, spec.scene_params, spec.width, spec.height,
                                                            spec.background, spec.camera);
-          write_image(error_heatmap(result.image, reference), stem + "_error.png");
+          const std::string stem = image.substr(0, image.size() - 4);  // without ".png"
+          written += " " + write_new_image(with_colour_bar(error_heatmap(result.image, reference), error_scale()),
+                                           stem + "_error.png");
         }
+        std::fprintf(stderr, "  images: %s\n", written.c_str());
       }
     } else {
       std::fprintf(stderr, "%s: %s\n", to_string(result.status).c_str(), result.message.c_str());

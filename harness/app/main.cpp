@@ -31,7 +31,9 @@ void add_sweep_options(CLI::App* command, oit::BenchOptions& options, const std:
                       "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G "
                       "(default: see `list`)");
   command->add_option("--csv", options.csv, "CSV file to append to")->required();
-  command->add_option("--images", options.images_dir, "directory for one PNG per run");
+  command->add_option("--images", options.images_dir,
+                      "directory for one sRGB PNG per run (+ _error.png heatmap), named by technique, scene, "
+                      "parameters, size and camera; an existing file is never replaced (_2, _3, ... instead)");
   command->add_flag("--resume", options.resume,
                     "leave out runs that already have an ok or skipped row in the CSV (error rows run again)");
 }
@@ -150,7 +152,7 @@ int main(int argc, char** argv) {
   stats_cmd->add_option("--scene-set", stats.scene_sets, "scene parameter key=value (repeatable)");
   stats_cmd->add_option("--camera", stats.camera, "default, random:N:SEED, random:N:SEED@I or max_list[:N:SEED]");
   stats_cmd->add_option("--size", stats.size, "WIDTHxHEIGHT (default 512x512)");
-  stats_cmd->add_option("--heatmap", stats.heatmap, "list-length heatmap .png (blue 0 .. red longest)");
+  stats_cmd->add_option("--heatmap", stats.heatmap, "list-length heatmap .png (viridis 0 .. longest, colour bar below)");
 
   oit::ViewOptions view;
   auto* view_cmd = oit::add_view_command(app, view);
