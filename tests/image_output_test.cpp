@@ -104,6 +104,29 @@ TEST(ImageOutput, RenderPngIsSrgbOfTheLinearCompositeThePfmHolds) {
   EXPECT_NE(png.at(0, 0, 0), int(std::lround(pfm.at(0, 7, 0) * 255.0f)));
 }
 
+TEST(ImageOutput, PngLinearKeepsTheValuesAndTheCoverage) {
+  // --png linear: the linear values as bytes and alpha = coverage (PNGs as
+  // they were before display became the default); a bad value names itself.
+  const std::string dir = fresh_dir("png_linear");
+  const std::string args = "render --technique reference --scene quads --scene-set layers=2 --size 8x8 --out " + dir;
+  ASSERT_EQ(test::run_oitbench(dir, args + "/q.pfm").exit_code, 0);
+  ASSERT_EQ(test::run_oitbench(dir, args + "/q.png --png linear").exit_code, 0);
+  const Png png = load_png(dir + "/q.png");
+  const Image pfm = read_pfm(dir + "/q.pfm");
+  ASSERT_EQ(png.width, 8);
+  bool partial_coverage = false;
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) {
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(png.at(x, 7 - y, c), int(std::lround(pfm.at(x, y, c) * 255.0f)));
+      partial_coverage |= png.at(x, 7 - y, 3) > 0 && png.at(x, 7 - y, 3) < 255;
+    }
+  EXPECT_TRUE(partial_coverage) << "two quads at alpha 0.3 cover 51%";
+  const test::Outcome bad = test::run_oitbench(dir, args + "/bad.png --png srgb");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("srgb"), std::string::npos) << bad.output;
+  EXPECT_THROW(parse_png_encoding("srgb"), std::invalid_argument);
+}
+
 TEST(ImageOutput, WriteNewImageNeverReplacesAFile) {
   const std::string dir = fresh_dir("new_image");
   const Image black = uniform(2, 2, 0.0f, 0.0f, 0.0f), white = uniform(2, 2, 1.0f, 1.0f, 1.0f);

@@ -180,7 +180,7 @@ int run_render(const CommonOptions& common, const RenderOptions& options) {
       return 1;
     }
     const std::string out = cameras.size() > 1 ? per_view_path(options.out, view) : options.out;
-    write_image(result.image, out);
+    write_image(result.image, out, parse_png_encoding(options.png));
     std::printf("%s on %s %dx%d%s -> %s (%s)\n", options.technique.c_str(), options.scene.c_str(), spec.width,
                 spec.height, spec.camera == "default" ? "" : (" camera " + spec.camera).c_str(), out.c_str(),
                 error_text(result).c_str());
@@ -236,7 +236,8 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
       }
       if (!options.images_dir.empty()) {
         // Never over an earlier file: a name already there gets _2, _3, ...
-        const std::string image = write_new_image(result.image, options.images_dir + "/" + run_label(result) + ".png");
+        const std::string image = write_new_image(result.image, options.images_dir + "/" + run_label(result) + ".png",
+                                                  parse_png_encoding(options.png));
         std::string written = image;
         // Where the image is wrong, and how much, on the one scale of every error map.
         if (result.error && result.error->max_abs > 0.0) {

@@ -34,6 +34,8 @@ void add_sweep_options(CLI::App* command, oit::BenchOptions& options, const std:
   command->add_option("--images", options.images_dir,
                       "directory for one sRGB PNG per run (+ _error.png heatmap), named by technique, scene, "
                       "parameters, size and camera; an existing file is never replaced (_2, _3, ... instead)");
+  command->add_option("--png", options.png, "display (sRGB of the composite, opaque) or linear (values, alpha = coverage)")
+      ->check(CLI::IsMember({"display", "linear"}));
   command->add_flag("--resume", options.resume,
                     "leave out runs that already have an ok or skipped row in the CSV (error rows run again)");
 }
@@ -66,7 +68,7 @@ int main(int argc, char** argv) {
   list->add_flag("--markdown", list_markdown, "print only the technique table of the README, from the registry (no GL)");
 
   oit::RenderOptions render;
-  auto* render_cmd = app.add_subcommand("render", "render one image (.png: 8-bit linear RGBA, .pfm: float RGB)");
+  auto* render_cmd = app.add_subcommand("render", "render one image (.png: 8-bit sRGB of the composite, .pfm: linear float RGB)");
   render_cmd->add_option("--technique,-t", render.technique, "technique id (see `list`)");
   render_cmd->add_option("--set", render.sets, "technique parameter key=value (repeatable)");
   render_cmd->add_option("--scene,-s", render.scene, "scene id or .gltf/.glb/.obj/.off/.ply/.stl file");
@@ -74,6 +76,8 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--size", render.size, "WIDTHxHEIGHT");
   render_cmd->add_option("--background", render.background, "r,g,b (linear, default 0,0,0)");
   render_cmd->add_option("--out,-o", render.out, "output .png or .pfm")->required();
+  render_cmd->add_option("--png", render.png, "display (sRGB of the composite, opaque) or linear (values, alpha = coverage)")
+      ->check(CLI::IsMember({"display", "linear"}));
   render_cmd->add_option("--camera", render.camera,
                          "default, random:N:SEED (one image per view, _camI), random:N:SEED@I or max_list[:N:SEED]");
   render_cmd->add_option("--scene-rect", render.scene_rect,

@@ -30,6 +30,12 @@ float srgb_decode(float encoded) {
   return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
 }
 
+PngEncoding parse_png_encoding(const std::string& text) {
+  if (text == "display") return PngEncoding::display;
+  if (text == "linear") return PngEncoding::raw;
+  throw std::invalid_argument("--png '" + text + "': expected display or linear");
+}
+
 namespace {
 
 void append_bytes(void* context, void* data, int size) {

@@ -30,6 +30,9 @@ float srgb_decode(float encoded);
 //  raw: the values as they are, alpha kept (window screenshots, whose
 //    values are display bytes already).
 enum class PngEncoding { display, raw };
+// The --png option: "display" or "linear" (raw: the linear values, alpha =
+// coverage, as PNGs were before); throws naming the text otherwise.
+PngEncoding parse_png_encoding(const std::string& text);
 
 // .png: 8-bit, top row first, `encoding` above (values clamped to [0, 1]).
 // .pfm: 32-bit float linear RGB (alpha is not part of the PFM format).
