@@ -58,7 +58,8 @@ Vec3 hunt_lab(const Vec3& rgb) {
 }
 
 double hyab(const Vec3& a, const Vec3& b) {
-  return std::abs(a[0] - b[0]) + std::hypot(a[1] - b[1], a[2] - b[2]);
+  const double da = a[1] - b[1], db = a[2] - b[2];
+  return std::abs(a[0] - b[0]) + std::sqrt(da * da + db * db);
 }
 
 struct Plane {
@@ -69,22 +70,31 @@ struct Plane {
 };
 
 // `in` correlated with kernel_x along rows, then kernel_y along columns
-// (both centred, odd length), borders replicated.
+// (both centred, odd length), borders replicated. Rows are padded once and
+// columns summed row by row, so the inner loops run over contiguous memory.
 Plane separable(const Plane& in, const std::vector<double>& kernel_x, const std::vector<double>& kernel_y) {
-  Plane rows{in.width, in.height, std::vector<double>(in.v.size())}, out = rows;
+  const int w = in.width, h = in.height;
   const int rx = int(kernel_x.size() / 2), ry = int(kernel_y.size() / 2);
-  for (int y = 0; y < in.height; ++y)
-    for (int x = 0; x < in.width; ++x) {
+  Plane rows{w, h, std::vector<double>(in.v.size())}, out{w, h, std::vector<double>(in.v.size(), 0.0)};
+  std::vector<double> padded(size_t(w + 2 * rx));
+  for (int y = 0; y < h; ++y) {
+    const double* source = &in.v[size_t(y) * size_t(w)];
+    for (int x = -rx; x < w + rx; ++x) padded[size_t(x + rx)] = source[std::clamp(x, 0, w - 1)];
+    double* target = &rows.v[size_t(y) * size_t(w)];
+    for (int x = 0; x < w; ++x) {
       double sum = 0.0;
-      for (int i = -rx; i <= rx; ++i) sum += kernel_x[size_t(i + rx)] * in.at(std::clamp(x + i, 0, in.width - 1), y);
-      rows.at(x, y) = sum;
+      for (size_t i = 0; i < kernel_x.size(); ++i) sum += kernel_x[i] * padded[size_t(x) + i];
+      target[x] = sum;
     }
-  for (int y = 0; y < in.height; ++y)
-    for (int x = 0; x < in.width; ++x) {
-      double sum = 0.0;
-      for (int i = -ry; i <= ry; ++i) sum += kernel_y[size_t(i + ry)] * rows.at(x, std::clamp(y + i, 0, in.height - 1));
-      out.at(x, y) = sum;
+  }
+  for (int y = 0; y < h; ++y) {
+    double* target = &out.v[size_t(y) * size_t(w)];
+    for (int i = -ry; i <= ry; ++i) {
+      const double k = kernel_y[size_t(i + ry)];
+      const double* source = &rows.v[size_t(std::clamp(y + i, 0, h - 1)) * size_t(w)];
+      for (int x = 0; x < w; ++x) target[x] += k * source[x];
     }
+  }
   return out;
 }
 
@@ -189,8 +199,8 @@ Features features(const Image& image, const FeatureKernels& k) {
   const Plane px = separable(y, k.point, k.gaussian), py = separable(y, k.gaussian, k.point);
   Features f{std::vector<double>(pixels), std::vector<double>(pixels)};
   for (size_t i = 0; i < pixels; ++i) {
-    f.edge[i] = std::hypot(ex.v[i], ey.v[i]);
-    f.point[i] = std::hypot(px.v[i], py.v[i]);
+    f.edge[i] = std::sqrt(ex.v[i] * ex.v[i] + ey.v[i] * ey.v[i]);
+    f.point[i] = std::sqrt(px.v[i] * px.v[i] + py.v[i] * py.v[i]);
   }
   return f;
 }
