@@ -112,24 +112,33 @@ TEST(Complexity, KnownLayersGivePsiHistogramAndHeatmap) {
   EXPECT_EQ(list_length_histogram(c), (std::vector<uint64_t>{1024, 1024, 1024, 1024}));
   const Image heat = list_length_heatmap(c);
   ASSERT_EQ(heat.width, size);
-  // Left band: the longest list, red; right band: empty, blue.
-  EXPECT_GT(heat.at(2, 30, 0), 0.4f);
-  EXPECT_EQ(heat.at(2, 30, 2), 0.0f);
-  EXPECT_EQ(heat.at(60, 30, 0), 0.0f);
-  EXPECT_GT(heat.at(60, 30, 2), 0.4f);
+  // Left band: the longest list, viridis's top (yellow #fde725); right
+  // band: empty, its bottom (purple #440154); linear values in the image.
+  const float top[3] = {0.993248f, 0.906157f, 0.143936f}, bottom[3] = {0.267004f, 0.004874f, 0.329415f};
+  for (int ch = 0; ch < 3; ++ch) {
+    EXPECT_NEAR(heat.at(2, 30, ch), srgb_decode(top[ch]), 1e-6f) << ch;
+    EXPECT_NEAR(heat.at(60, 30, ch), srgb_decode(bottom[ch]), 1e-6f) << ch;
+  }
+  EXPECT_EQ(list_length_scale(c).high, 3.0f);
   // The harness reports the same Psi for a run.
   const RunResult r = test::render_once("reference", {}, write_banded_gltf(), {}, size, size);
   EXPECT_DOUBLE_EQ(r.psi, 0.25);
 }
 
-TEST(Complexity, HeatmapRangeMapsLowToBlueHighToRedAndNanToBlack) {
-  // The signed range of a diagnostic field (e.g. kappa in [-1, 1]).
+TEST(Complexity, HeatmapRangeMapsLowToTheBottomHighToTheTopAndNanToBlack) {
+  // The signed range of a diagnostic field (e.g. kappa in [-1, 1]): -1, 0
+  // and 1 are viridis at 0, 1/2 and 1 (#440154, #21918c, #fde725), NaN is
+  // black, 5 is clamped to the top.
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const Image heat = heatmap_range({-1.0f, 0.0f, 1.0f, nan, 5.0f}, 5, 1, -1.0f, 1.0f);
-  const std::vector<float> expected = {0.0f, 0.0f, 0.5f, 1.0f,  0.5f, 1.0f, 0.5f, 1.0f,  0.5f, 0.0f, 0.0f, 1.0f,
-                                       0.0f, 0.0f, 0.0f, 1.0f,  0.5f, 0.0f, 0.0f, 1.0f};
-  ASSERT_EQ(heat.rgba.size(), expected.size());
-  for (size_t i = 0; i < expected.size(); ++i) EXPECT_FLOAT_EQ(heat.rgba[i], expected[i]) << i;
+  const float srgb[5][3] = {{0.267004f, 0.004874f, 0.329415f}, {0.127568f, 0.566949f, 0.550556f},
+                            {0.993248f, 0.906157f, 0.143936f}, {0.0f, 0.0f, 0.0f},
+                            {0.993248f, 0.906157f, 0.143936f}};
+  ASSERT_EQ(heat.rgba.size(), 20u);
+  for (int p = 0; p < 5; ++p) {
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(heat.at(p, 0, c), srgb_decode(srgb[p][c]), 1e-6f) << p << " " << c;
+    EXPECT_EQ(heat.at(p, 0, 3), 1.0f);
+  }
   EXPECT_THROW(heatmap_range({0.0f}, 2, 1, 0.0f, 1.0f), std::invalid_argument);
 }
 
@@ -237,7 +246,7 @@ TEST(Cameras, SweepsExpandRandomSetsIntoOneRunPerViewpoint) {
   EXPECT_EQ(runs[2].camera, "random:2:5@1");
   RunResult r;
   r.spec = runs[2];
-  EXPECT_EQ(run_label(r), "unsorted_camera-random-2-5-1");
+  EXPECT_EQ(run_label(r), "unsorted_quads_256x256_camera-random-2-5-1");
   options.cameras = {"sideways"};
   EXPECT_THROW(expand_sweep(options, builtin_techniques()), std::invalid_argument);
 }

@@ -71,18 +71,22 @@ TEST(ErrorMetrics, NanMakesTheErrorInfiniteAndSizesMustMatch) {
 namespace oit {
 namespace {
 
-TEST(Heatmap, ZeroIsBlueTheMaximumIsRedAndTheErrorMapFindsThePixel) {
-  const Image map = heatmap({0.0f, 0.5f, 1.0f}, 3, 1);
-  EXPECT_GT(map.at(0, 0, 2), 0.4f);  // blue
-  EXPECT_EQ(map.at(0, 0, 0), 0.0f);
-  EXPECT_GT(map.at(2, 0, 0), 0.4f);  // red
-  EXPECT_EQ(map.at(2, 0, 2), 0.0f);
-  EXPECT_EQ(map.at(1, 0, 1), 1.0f);  // green in the middle
-  Image a = gradient(4, 4), b = a;
+TEST(Heatmap, ErrorsSitOnOneAbsoluteLogScaleNotOnTheirOwnMaximum) {
+  // Off by 0.25 in one pixel, or by 6e-8: each map scaled to its own
+  // maximum made both pixels the top colour. On the shared scale 6e-8 is
+  // the bottom colour (<= 1e-4) and 0.25 sits at (log10 0.25 + 4) / 4.
+  Image a = gradient(4, 4), b = a, c = a;
   b.rgba[4 * 5 + 2] += 0.25f;
-  const Image errors = error_heatmap(b, a);
-  EXPECT_GT(errors.at(1, 1, 0), 0.4f);  // pixel 5 = (1, 1) is the worst: red
-  EXPECT_EQ(errors.at(0, 0, 0), 0.0f);
+  c.rgba[4 * 5 + 2] += 6e-8f;
+  const Image big = error_heatmap(b, a), tiny = error_heatmap(c, a);
+  float expected[3], bottom[3];
+  viridis((std::log10(0.25f) + 4.0f) / 4.0f, expected);
+  viridis(0.0f, bottom);
+  for (int ch = 0; ch < 3; ++ch) {
+    EXPECT_NEAR(big.at(1, 1, ch), srgb_decode(expected[ch]), 1e-3f) << ch;  // pixel 5 = (1, 1)
+    EXPECT_NEAR(big.at(0, 0, ch), srgb_decode(bottom[ch]), 1e-6f) << ch;
+    EXPECT_NEAR(tiny.at(1, 1, ch), srgb_decode(bottom[ch]), 1e-6f) << ch;
+  }
 }
 
 }  // namespace

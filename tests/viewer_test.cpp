@@ -141,6 +141,40 @@ TEST(ViewerLiveTechnique, RendersTheHarnessImageWithStageTimings) {
   EXPECT_EQ(live.canonical_params(), "k=2 tail=drop auto_k_memory_mb=1024");
 }
 
+// The table's medians are over frames actually timed: the first frame after
+// configure (shader compilation, allocation) is warm-up and left out; until
+// a window of kWindow frames is complete it covers the timed frames so far,
+// then the last complete window; timed_frames() says how many.
+TEST(ViewerLiveTechnique, TimingsLeaveOutTheWarmUpFrameAndCountTheTimedFrames) {
+  LiveQuads quads;
+  LiveTechnique live(builtin_techniques(), quads.context.device(), ClockKind::wall);
+  ASSERT_EQ(live.configure("unsorted", {}, quads.facts, 16, 16), "");
+  const Camera& camera = quads.scene.camera;
+  auto frames = [&](int n) {
+    for (int i = 0; i < n; ++i) live.render(quads.gpu, camera.view, camera.projection(1.0f), glm::vec3(0.0f));
+  };
+  auto total_count = [&]() -> size_t {
+    for (const auto& t : live.timings())
+      if (t.stage == "total") return t.summary.count;
+    return 0;
+  };
+  frames(1);
+  EXPECT_TRUE(live.timings().empty());
+  EXPECT_EQ(live.timed_frames(), 0);
+  frames(2);  // --frames 3: two timed frames, the compile frame not among them
+  EXPECT_EQ(live.timed_frames(), 2);
+  EXPECT_EQ(total_count(), 2u);
+  frames(LiveTechnique::kWindow - 2);
+  EXPECT_EQ(live.timed_frames(), LiveTechnique::kWindow);
+  EXPECT_EQ(total_count(), size_t(LiveTechnique::kWindow));
+  frames(3);  // the next window is not complete: the last complete one stays
+  EXPECT_EQ(live.timed_frames(), LiveTechnique::kWindow);
+  EXPECT_EQ(total_count(), size_t(LiveTechnique::kWindow));
+  ASSERT_EQ(live.configure("unsorted", {}, quads.facts, 16, 16), "");
+  EXPECT_EQ(live.timed_frames(), 0);
+  EXPECT_TRUE(live.timings().empty());
+}
+
 TEST(ViewerLiveTechnique, InvalidParametersAreRefusedWithTheSchemaMessageAndTheOldOneKeepsRunning) {
   LiveQuads quads;
   LiveTechnique live(builtin_techniques(), quads.context.device(), ClockKind::wall);

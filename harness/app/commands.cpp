@@ -138,7 +138,7 @@ int run_render(const CommonOptions& common, const RenderOptions& options) {
       return 1;
     }
     const std::string out = cameras.size() > 1 ? per_view_path(options.out, view) : options.out;
-    write_image(result.image, out);
+    write_image(result.image, out, parse_png_encoding(options.png));
     std::printf("%s on %s %dx%d%s -> %s (%s)\n", options.technique.c_str(), options.scene.c_str(), spec.width,
                 spec.height, spec.camera == "default" ? "" : (" camera " + spec.camera).c_str(), out.c_str(),
                 error_text(result).c_str());
@@ -183,7 +183,8 @@ class BenchSession {
   // Each returns what happened, for the progress line.
   std::string run_one(const RunSpec& spec);
   std::string record(RunResult result);
-  void write_images(const RunResult& result) const;
+  // The names of the images written (none without --images).
+  std::string write_images(const RunResult& result) const;
 
   Harness& harness_;
   const BenchOptions& options_;
@@ -227,7 +228,8 @@ std::string BenchSession::record(RunResult result) {
                     *result.clock_disagreement * 100.0);
       outcome += text;
     }
-    write_images(result);
+    const std::string images = write_images(result);
+    if (!images.empty()) outcome += "; images: " + images;
   } else {
     outcome = to_string(result.status) + ": " + result.message;
   }
@@ -236,17 +238,22 @@ std::string BenchSession::record(RunResult result) {
   return outcome;
 }
 
-void BenchSession::write_images(const RunResult& result) const {
-  if (options_.images_dir.empty()) return;
+std::string BenchSession::write_images(const RunResult& result) const {
+  if (options_.images_dir.empty()) return "";
   const RunSpec& spec = result.spec;
-  const std::string stem = options_.images_dir + "/" + run_label(result);
-  write_image(result.image, stem + ".png");
-  // Where the image is wrong, and how much (scaled to this run's largest error).
+  // Never over an earlier file: a name already there gets _2, _3, ...
+  const std::string image = write_new_image(result.image, options_.images_dir + "/" + run_label(result) + ".png",
+                                            parse_png_encoding(options_.png));
+  std::string written = image;
+  // Where the image is wrong, and how much, on the one scale of every error map.
   if (result.error && result.error->max_abs > 0.0) {
     const Image& reference =
         harness_.reference_image(spec.scene, spec.scene_params, spec.width, spec.height, spec.background, spec.camera);
-    write_image(error_heatmap(result.image, reference), stem + "_error.png");
+    const std::string stem = image.substr(0, image.size() - 4);  // without ".png"
+    written += " " + write_new_image(with_colour_bar(error_heatmap(result.image, reference), error_scale()),
+                                     stem + "_error.png");
   }
+  return written;
 }
 
 int BenchSession::report() const {

@@ -39,6 +39,7 @@ struct RenderOptions {
   std::string camera = "default";
   std::string scene_rect = "on";  // RunSpec::scene_rect
   std::string memory_budget;      // RunSpec::memory_budget; empty: the device's default
+  std::string png = "display";    // parse_png_encoding (harness/core/image.h)
 };
 
 // `oitbench stats`: the fragment statistics of one scene view (stats_command.cpp).
@@ -54,6 +55,7 @@ struct BenchOptions {
   SweepOptions sweep;
   std::string csv;
   std::string images_dir;  // one PNG per run when set
+  std::string png = "display";  // their encoding (parse_png_encoding); error heatmaps are always display
   std::string baseline = "unsorted";  // the summary's speed ratios are against this technique
   std::string samples;  // bench_files.h: every frame's stage times, when set
   std::string json;     // bench_files.h: this invocation's runs as JSON, when set

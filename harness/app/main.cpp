@@ -22,7 +22,11 @@ namespace {
 void add_bench_options(CLI::App* command, oit::BenchOptions& options, const std::string& size_note) {
   oit::add_sweep_cli_options(command, options.sweep, size_note);
   command->add_option("--csv", options.csv, "CSV file to append to")->required();
-  command->add_option("--images", options.images_dir, "directory for one PNG per run");
+  command->add_option("--images", options.images_dir,
+                      "directory for one sRGB PNG per run (+ _error.png heatmap), named by technique, scene, "
+                      "parameters, size and camera; an existing file is never replaced (_2, _3, ... instead)");
+  command->add_option("--png", options.png, "display (sRGB of the composite, opaque) or linear (values, alpha = coverage)")
+      ->check(CLI::IsMember({"display", "linear"}));
   command->add_flag("--resume", options.resume,
                     "leave out runs that already have an ok or skipped row in the CSV (error rows run again)");
   command->add_option("--samples", options.samples,
@@ -61,7 +65,7 @@ int main(int argc, char** argv) {
   list->add_flag("--markdown", list_markdown, "print only the technique table of the README, from the registry (no GL)");
 
   oit::RenderOptions render;
-  auto* render_cmd = app.add_subcommand("render", "render one image (.png: 8-bit linear RGBA, .pfm: float RGB)");
+  auto* render_cmd = app.add_subcommand("render", "render one image (.png: 8-bit sRGB of the composite, .pfm: linear float RGB)");
   render_cmd->add_option("--technique,-t", render.technique, "technique id (see `list`)");
   render_cmd->add_option("--set", render.sets, "technique parameter key=value (repeatable)");
   render_cmd->add_option("--scene,-s", render.scene, "scene id or .gltf/.glb/.obj/.off/.ply/.stl file");
@@ -69,6 +73,8 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--size", render.size, "WIDTHxHEIGHT");
   render_cmd->add_option("--background", render.background, "r,g,b (linear)");
   render_cmd->add_option("--out,-o", render.out, "output .png or .pfm")->required();
+  render_cmd->add_option("--png", render.png, "display (sRGB of the composite, opaque) or linear (values, alpha = coverage)")
+      ->check(CLI::IsMember({"display", "linear"}));
   render_cmd->add_option("--camera", render.camera,
                          "default, random:N:SEED (one image per view, _camI), random:N:SEED@I or max_list[:N:SEED]");
   render_cmd->add_option("--scene-rect", render.scene_rect,
@@ -139,7 +145,7 @@ int main(int argc, char** argv) {
   stats_cmd->add_option("--scene-set", stats.scene_sets, "scene parameter key=value (repeatable)");
   stats_cmd->add_option("--camera", stats.camera, "default, random:N:SEED, random:N:SEED@I or max_list[:N:SEED]");
   stats_cmd->add_option("--size", stats.size, "WIDTHxHEIGHT");
-  stats_cmd->add_option("--heatmap", stats.heatmap, "list-length heatmap .png (blue 0 .. red longest)");
+  stats_cmd->add_option("--heatmap", stats.heatmap, "list-length heatmap .png (viridis 0 .. longest, colour bar below)");
 
   oit::ExportOptions export_options;
   auto* export_cmd = app.add_subcommand(

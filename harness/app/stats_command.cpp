@@ -78,8 +78,9 @@ int run_stats(const CommonOptions& common, const StatsOptions& options) {
     print_histogram(c);
     if (!options.heatmap.empty()) {
       const std::string path = cameras.size() > 1 ? per_view_path(options.heatmap, view) : options.heatmap;
-      write_image(list_length_heatmap(c), path);
-      std::printf("heatmap           %s (blue 0 .. red %u fragments)\n", path.c_str(), c.max);
+      write_image(with_colour_bar(list_length_heatmap(c), list_length_scale(c)), path);
+      std::printf("heatmap           %s (%dx%d, viridis 0 .. %u fragments; colour bar in the %d rows below)\n",
+                  path.c_str(), width, height, c.max, kColourBarHeight);
     }
   }
   return 0;

@@ -1,7 +1,11 @@
 #include "harness/app/sweep.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -211,12 +215,28 @@ std::optional<RunKey> resume_key(const RunSpec& spec, const TechniqueRegistry& r
 }
 
 std::string run_label(const RunResult& result) {
-  std::string label = result.spec.technique;
-  for (const auto& [key, value] : result.spec.params) label += "_" + key + "-" + value;
-  if (result.spec.camera != "default") label += "_camera-" + result.spec.camera;
-  if (!result.spec.scene_rect) label += "_scene-rect-off";
+  const RunSpec& spec = result.spec;
+  // A scene file is named by its file name (a path's directories would make
+  // names long); two files of one name in different folders still get
+  // distinct image files, from write_new_image's suffix.
+  const std::string scene = spec.scene.find_first_of("/.") == std::string::npos
+                                ? spec.scene
+                                : std::filesystem::path(spec.scene).filename().string();
+  std::string label = spec.technique;
+  for (const auto& [key, value] : spec.params) label += "_" + key + "-" + value;
+  label += "_" + scene;
+  for (const auto& [key, value] : spec.scene_params) label += "_" + key + "-" + value;
+  label += "_" + std::to_string(spec.width) + "x" + std::to_string(spec.height);
+  if (spec.camera != "default") label += "_camera-" + spec.camera;
+  if (!spec.scene_rect) label += "_scene-rect-off";
   for (char& c : label)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-' && c != '.') c = '-';
+  // File names end at 255 bytes: a long one keeps its start and a hash of the whole.
+  if (label.size() > 180) {
+    char hash[20];
+    std::snprintf(hash, sizeof hash, "_%016llx", static_cast<unsigned long long>(std::hash<std::string>{}(label)));
+    label = label.substr(0, 160) + hash;
+  }
   return label;
 }
 

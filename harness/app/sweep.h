@@ -55,8 +55,11 @@ void parse_size(const std::string& text, int& width, int& height);
 glm::vec3 parse_background(const std::string& text);
 // "on" -> true, "off" -> false; throws naming the text otherwise.
 bool parse_on_off(const std::string& option, const std::string& text);
-// Short label for file names: "kbuffer_k-16_tail-drop" (plus "_camera-..."
-// when the run's camera is not the default).
+// Label for file names, distinct for every run a sweep expands to:
+// technique and its parameters as given, scene (a file's name) and its
+// parameters, size, then "_camera-..." when the camera is not the default
+// and "_scene-rect-off"; only [A-Za-z0-9_.-]:
+// "kbuffer_k-16_tail-drop_quads_objects-3_256x256_camera-random-4-7-2".
 std::string run_label(const RunResult& result);
 
 }  // namespace oit

@@ -87,10 +87,14 @@ std::vector<HistogramBin> binned_histogram(const std::vector<uint64_t>& histogra
   return bins;
 }
 
+ColourScale list_length_scale(const DepthComplexity& c) {
+  // An empty view is all the bottom colour over 0 .. 1.
+  return {ColourScale::Kind::linear, 0.0f, c.max > 0 ? float(c.max) : 1.0f};
+}
+
 Image list_length_heatmap(const DepthComplexity& c) {
   std::vector<float> values(c.per_pixel.begin(), c.per_pixel.end());
-  // Scaled to the longest list; an empty view is all blue.
-  return heatmap(values, c.width, c.height, c.max > 0 ? float(c.max) : 1.0f);
+  return heatmap(values, c.width, c.height, list_length_scale(c));
 }
 
 ChosenViewpoint choose_max_list_camera(const SceneGpu& scene, const CameraSpec& spec, int probe_size) {

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "scenes/cameras.h"
+#include "harness/core/heatmap.h"
 #include "harness/core/image.h"
 #include "harness/core/scene_gpu.h"
 
@@ -43,8 +44,10 @@ struct HistogramBin {
 };
 std::vector<HistogramBin> binned_histogram(const std::vector<uint64_t>& histogram, size_t max_bins);
 
-// List lengths as colours, blue (0) to red (the longest list), like the
-// heatmaps of pastyrik2016 Fig. 10.
+// List lengths as colours (viridis, heatmap.h), 0 to the longest list,
+// like the heatmaps of pastyrik2016 Fig. 10; list_length_scale is that
+// scale, for the colour bar.
+ColourScale list_length_scale(const DepthComplexity& complexity);
 Image list_length_heatmap(const DepthComplexity& complexity);
 
 // The max_list camera: among the viewpoints of spec's random set, the one

@@ -1,5 +1,7 @@
 #include "harness/core/error_metrics.h"
 
+#include "harness/core/flip.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -85,6 +87,7 @@ ImageError compare_images(const Image& image, const Image& reference) {
         error.max_abs = error.rmse = std::numeric_limits<double>::infinity();
         error.psnr_db = -std::numeric_limits<double>::infinity();
         error.ssim = -1.0;
+        error.flip = 1.0;
         error.share_over_1_255 = 1.0;
         return error;
       }
@@ -99,6 +102,7 @@ ImageError compare_images(const Image& image, const Image& reference) {
   error.psnr_db = error.rmse > 0.0 ? -20.0 * std::log10(error.rmse) : std::numeric_limits<double>::infinity();
   error.share_over_1_255 = pixels ? double(pixels_over) / double(pixels) : 0.0;
   error.ssim = structural_similarity(image, reference);
+  error.flip = mean_flip(image, reference);
   return error;
 }
 

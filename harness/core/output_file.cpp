@@ -79,13 +79,18 @@ void require_regular_file(const std::string& path, const std::string& what) {
     throw std::runtime_error(what + " '" + path + "' is " + file_kind(info.st_mode) + ", not a regular file");
 }
 
-void write_file_atomically(const std::string& path, std::string_view bytes) {
+namespace {
+
+void create_parent_directories(const std::string& path) {
   if (const auto parent = std::filesystem::path(path).parent_path(); !parent.empty()) {
     std::error_code error;
     std::filesystem::create_directories(parent, error);
     if (error) throw std::runtime_error("cannot create the directory of '" + path + "': " + error.message());
   }
-  const std::filesystem::path target = destination_of(path);
+}
+
+// `bytes` in a new, synced temporary file beside `target`; returns its path.
+std::string write_temporary(const std::filesystem::path& target, std::string_view bytes, const std::string& path) {
   std::string temporary;
   const int fd = open_temporary(target, temporary);
   if (fd < 0) throw failure("cannot create a temporary file to write", path, errno);
@@ -100,11 +105,33 @@ void write_file_atomically(const std::string& path, std::string_view bytes) {
     ::unlink(temporary.c_str());
     throw;
   }
+  return temporary;
+}
+
+}  // namespace
+
+void write_file_atomically(const std::string& path, std::string_view bytes) {
+  create_parent_directories(path);
+  const std::filesystem::path target = destination_of(path);
+  const std::string temporary = write_temporary(target, bytes, path);
   if (::rename(temporary.c_str(), target.c_str()) != 0) {
     const int error = errno;
     ::unlink(temporary.c_str());
     throw failure("cannot move the new file into place at", path, error);
   }
+}
+
+bool write_new_file_atomically(const std::string& path, std::string_view bytes) {
+  create_parent_directories(path);
+  const std::string temporary = write_temporary(std::filesystem::path(path), bytes, path);
+  // link(2), unlike rename(2), fails when the name exists: no check-then-write
+  // race with another process writing the same name.
+  const int linked = ::link(temporary.c_str(), path.c_str());
+  const int error = errno;
+  ::unlink(temporary.c_str());
+  if (linked == 0) return true;
+  if (error == EEXIST) return false;
+  throw failure("cannot move the new file into place at", path, error);
 }
 
 SharedAppendFile::SharedAppendFile(std::string path) : path_(std::move(path)) {

@@ -20,6 +20,9 @@ namespace oit {
 // FIFO, a directory) is refused. On failure `path` is left as it was, no
 // temporary file remains, and the exception names `path`.
 void write_file_atomically(const std::string& path, std::string_view bytes);
+// The same for a file that must not exist yet: false (and nothing written)
+// when `path` exists, whatever it is; never replaces anything.
+bool write_new_file_atomically(const std::string& path, std::string_view bytes);
 
 // All `size` bytes to `fd` (short writes and EINTR retried); throws naming
 // `path` with the system's reason (e.g. "No space left on device").

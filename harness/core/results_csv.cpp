@@ -30,7 +30,7 @@ const std::vector<std::string>& csv_columns() {
       "status", "message",
       "fragments", "max_depth_complexity", "mean_depth_complexity", "psi",
       "bytes_allocated", "fragments_stored", "fragments_dropped", "passes", "overflow_retries",
-      "error_max", "error_rmse", "psnr", "ssim", "pixels_over_1_255",
+      "error_max", "error_rmse", "psnr", "ssim", "flip", "pixels_over_1_255",
       "other_cpu_load", "noisy", "clock_disagreement", "work_saved", "extra", "run_id", "run_rows"};
   return columns;
 }
@@ -119,6 +119,7 @@ std::vector<std::vector<std::string>> csv_rows(const RunResult& r, const RunCont
         ran ? std::to_string(r.counters.overflow_retries) : "",
         r.error ? number(r.error->max_abs) : "", r.error ? number(r.error->rmse) : "",
         r.error ? number(r.error->psnr_db) : "", r.error ? number(r.error->ssim) : "",
+        r.error ? number(r.error->flip) : "",
         r.error ? number(r.error->share_over_1_255) : "",
         r.other_process_load >= 0.0 ? number(r.other_process_load) : "", r.noisy ? "true" : "false",
         r.clock_disagreement ? number(*r.clock_disagreement) : "", ran ? extra_text(r.counters.work_saved) : "",

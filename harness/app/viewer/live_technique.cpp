@@ -32,6 +32,8 @@ std::string LiveTechnique::configure(const std::string& id, const RawParams& par
     clock_ = std::make_unique<StageClock>(clock_kind_, descriptor_->stages);
     frames_in_window_ = 0;
     timings_.clear();
+    timed_frames_ = 0;
+    warmup_left_ = kWarmup;
     id_ = id;
     params_ = params;
     canonical_ = values.canonical();
@@ -49,12 +51,25 @@ void LiveTechnique::render(const SceneGpu& scene, const glm::mat4& view, const g
   if (!technique_) return;
   plan_for(scene, view, projection);
   const Frame frame{scene, view, projection, width_, height_, background, target_->framebuffer.id(), *clock_};
-  const ScreenRect rect = render_frame(*technique_, frame, true, scene_rect_, tiling_.get());
+  // Warm-up frames (the first after configure compiles shaders and
+  // allocates; the first after a re-plan reallocates) are rendered but not
+  // timed, as bench's --warmup frames are not.
+  const bool record = warmup_left_ == 0;
+  const ScreenRect rect = render_frame(*technique_, frame, record, scene_rect_, tiling_.get());
   pixels_outside_ = scene_rect_ ? uint64_t(width_) * uint64_t(height_) - rect.pixels() : 0;
   gl_check("a viewer frame of " + id_);
-  // The very first frame closes a window at once, so timings show up
-  // without waiting (and a short --frames run has them too).
-  if (++frames_in_window_ == kWindow || timings_.empty()) finish_window();
+  if (!record) {
+    --warmup_left_;
+    return;
+  }
+  // Until a whole window is there, the table follows every timed frame (a
+  // short --frames run shows what it timed); then it changes once per window.
+  ++frames_in_window_;
+  if (frames_in_window_ == kWindow || timed_frames_ < kWindow) show_window();
+  if (frames_in_window_ == kWindow) {
+    clock_ = std::make_unique<StageClock>(clock_kind_, descriptor_->stages);
+    frames_in_window_ = 0;
+  }
 }
 
 void LiveTechnique::plan_for(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection) {
@@ -68,6 +83,11 @@ void LiveTechnique::plan_for(const SceneGpu& scene, const glm::mat4& view, const
   if (plan.frame_width() != tiling_->plan().frame_width() ||
       plan.frame_height() != tiling_->plan().frame_height() || plan.count() != tiling_->plan().count()) {
     technique_->resize(plan.frame_width(), plan.frame_height());
+    // Timings of the old plan do not mix with the new one's.
+    clock_ = std::make_unique<StageClock>(clock_kind_, descriptor_->stages);
+    frames_in_window_ = 0;
+    timed_frames_ = 0;
+    warmup_left_ = kWarmup;
   }
   tiling_ = std::make_unique<Tiling>(std::move(plan));
   planned_scene_ = &scene;
@@ -75,16 +95,15 @@ void LiveTechnique::plan_for(const SceneGpu& scene, const glm::mat4& view, const
   planned_projection_ = projection;
 }
 
-void LiveTechnique::finish_window() {
+void LiveTechnique::show_window() {
   timings_.clear();
-  // gl clock: results() waits for the window's queries, once per window.
+  // gl clock: results() waits for the window's queries.
   const std::string clock_name = clock_kind_ == ClockKind::gl ? "gl" : "wall";
   for (auto& [name, samples] : clock_->results()) {
     const std::vector<double>& ms = clock_name == "gl" ? samples.gl_ms : samples.wall_ms;
     if (!ms.empty()) timings_.push_back({name, summarize(ms)});
   }
-  clock_ = std::make_unique<StageClock>(clock_kind_, descriptor_->stages);
-  frames_in_window_ = 0;
+  timed_frames_ = frames_in_window_;
 }
 
 Image LiveTechnique::read_image() const { return read_texture_rgba32f(target_->color.id(), width_, height_); }

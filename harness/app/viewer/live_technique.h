@@ -45,8 +45,15 @@ class LiveTechnique {
   std::vector<DiagnosticImage> diagnostic_images() const {
     return technique_ ? technique_->diagnostic_images() : std::vector<DiagnosticImage>{};
   }
-  // Per-stage timings of the last complete window (empty before the first).
+  // Per-stage timings of the last complete window of kWindow timed frames,
+  // or, before the first is complete, of the timed frames so far (empty
+  // before the first); timed_frames() says how many frames they cover.
+  // Warm-up frames (kWarmup after configure and after every re-plan into
+  // a new tile layout: shader compilation, allocation) are never in them.
   const std::vector<StageTiming>& timings() const { return timings_; }
+  int timed_frames() const { return timed_frames_; }
+  static constexpr int kWindow = 8;
+  static constexpr int kWarmup = 1;
   ClockKind clock_kind() const { return clock_kind_; }
   // render_frame's scene rectangle, for every later frame (default on).
   void set_scene_rect(bool on) { scene_rect_ = on; }
@@ -56,10 +63,9 @@ class LiveTechnique {
   uint64_t pixels_outside_scene_rect() const { return pixels_outside_; }
 
  private:
-  // Frames per timing window: medians over a few frames are steadier than
-  // single frames yet still follow parameter changes within a second or so.
-  static constexpr int kWindow = 8;
-  void finish_window();
+  // kWindow: medians over a few frames are steadier than single frames yet
+  // still follow parameter changes within a second or so.
+  void show_window();  // timings_ from the clock's frames so far
 
   const TechniqueRegistry& registry_;
   const DeviceInfo& device_;
@@ -75,7 +81,9 @@ class LiveTechnique {
   const SceneGpu* planned_scene_ = nullptr;
   std::unique_ptr<RenderTarget> target_;
   std::unique_ptr<StageClock> clock_;
-  int frames_in_window_ = 0;
+  int frames_in_window_ = 0;  // timed frames in clock_
+  int warmup_left_ = 0;       // frames still to render untimed
+  int timed_frames_ = 0;      // frames timings_ covers
   std::vector<StageTiming> timings_;
   std::string id_, canonical_;
   RawParams params_;

@@ -13,6 +13,8 @@
 #include "harness/app/viewer/param_editor.h"
 #include "scenes/cameras.h"
 #include "harness/gl/check.h"
+#include "harness/core/passes.h"
+#include "harness/gl/shader_program.h"
 #include "scenes/scene_library.h"
 
 namespace oit {
@@ -84,6 +86,10 @@ Viewer::Viewer(GlfwWindowContext& window, const ViewOptions& options)
     if (!b_->message.empty()) throw std::runtime_error(b_->message);
   }
   display_target_ = std::make_unique<RenderTarget>(width_, height_);
+  Texture texture = make_texture_2d(GL_RGBA8, width_, height_);
+  Framebuffer framebuffer = make_target_framebuffer({&texture}, "viewer: display framebuffer (RGBA8)");
+  encoder_ = std::make_unique<DisplayEncoding>(
+      DisplayEncoding{build_compute_program("shaders/display_srgb.comp"), std::move(texture), std::move(framebuffer)});
 }
 
 Viewer::~Viewer() {
@@ -153,18 +159,29 @@ void Viewer::render_slot(Slot& slot) {
 
 // ---- output -----------------------------------------------------------
 
+void Viewer::encode_for_display(GLuint source_texture) {
+  glUseProgram(encoder_->program.id());
+  glBindTextureUnit(0, source_texture);
+  glBindImageTexture(0, encoder_->texture.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+  glDispatchCompute(GLuint(width_ + 7) / 8, GLuint(height_ + 7) / 8, 1);
+  glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT);
+}
+
 void Viewer::draw_scene_area(int framebuffer_height) {
-  // Blits at 1:1 (float to 8-bit conversion clamps, as the PNG writer
-  // does), so the scene area is pixel for pixel the harness's image.
+  // The harness's images are linear; the scene area shows them as the PNG
+  // writer writes them (sRGB-encoded, opaque), pixel for pixel at 1:1: a
+  // compute pass encodes into RGBA8, which is copied without conversion
+  // whatever the window's own framebuffer format.
   const int top = framebuffer_height - height_;  // GL rows count from the bottom
-  auto blit = [&](GLuint source, int x0, int x1) {
-    glBlitNamedFramebuffer(source, 0, x0, 0, x1, height_, x0, top, x1, top + height_, GL_COLOR_BUFFER_BIT,
-                           GL_NEAREST);
+  auto show = [&](GLuint source_texture, int x0, int x1) {
+    encode_for_display(source_texture);
+    glBlitNamedFramebuffer(encoder_->framebuffer.id(), 0, x0, 0, x1, height_, x0, top, x1, top + height_,
+                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
   };
-  if (display_ != Display::image) return blit(display_target_->framebuffer.id(), 0, width_);
+  if (display_ != Display::image) return show(display_target_->color.id(), 0, width_);
   const Slot& first = shown_slot();
-  if (first.live.ready()) blit(first.live.target().framebuffer.id(), 0, width_);
-  if (compare_ && show_ == Show::split && b_->live.ready()) blit(b_->live.target().framebuffer.id(), split_column(), width_);
+  if (first.live.ready()) show(first.live.target().color.id(), 0, width_);
+  if (compare_ && show_ == Show::split && b_->live.ready()) show(b_->live.target().color.id(), split_column(), width_);
 }
 
 void Viewer::handle_mouse() {
@@ -205,7 +222,7 @@ void Viewer::save_screenshot(const std::string& path) {
   for (size_t i = 0; i < bytes.size(); ++i) image.rgba[i] = float(bytes[i]) / 255.0f;
   // The window is opaque whatever alpha its framebuffer holds.
   for (size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 1.0f;
-  write_image(image, path);  // bottom-up rows, written top row first
+  write_image(image, path, PngEncoding::raw);  // display bytes already; bottom-up rows, written top row first
   std::printf("screenshot %s: %dx%d window; scene area x=0 y=0 w=%d h=%d (from the top-left)\n", path.c_str(),
               fb_width, fb_height, width_, height_);
   std::fflush(stdout);

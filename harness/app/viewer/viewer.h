@@ -12,6 +12,7 @@
 #include "harness/app/viewer/orbit_camera.h"
 #include "harness/app/viewer/sweep_line.h"
 #include "harness/app/viewer/view_command.h"
+#include "harness/core/heatmap.h"
 #include "harness/gl/glfw_window.h"
 
 namespace oit {
@@ -20,6 +21,8 @@ class Viewer {
  public:
   static constexpr int kPanelWidth = 470;
   static constexpr int kMinHeight = 940;
+  // The timings go below the scene area when that leaves at least this much.
+  static constexpr int kBelowMinWidth = 360, kBelowMinHeight = 240;
 
   Viewer(GlfwWindowContext& window, const ViewOptions& options);
   ~Viewer();
@@ -62,9 +65,13 @@ class Viewer {
   void update_diagnostics();
   std::string diagnostic_key() const;
   const Image& reference_of_view();
-  Image heatmap_of(const Slot& slot, DiagnosticHalf& half);
+  // The half's values: its error field, or its diagnostic field.
+  std::vector<float> field_of(const Slot& slot, DiagnosticHalf& half);
   void upload(const Image& image);
   // Output.
+  // `source` (linear RGBA32F) as the PNG writer would write it, into
+  // encoder_ (RGBA8), which the window copies 1:1.
+  void encode_for_display(GLuint source_texture);
   void draw_scene_area(int framebuffer_height);
   void handle_mouse();
   void save_screenshot(const std::string& path);
@@ -112,7 +119,14 @@ class Viewer {
   std::string diagnostic_name_;             // wanted diagnostic image ("": the technique's first)
   std::vector<std::string> diagnostic_names_;  // what the shown technique offers
   DiagnosticHalf halves_[2];                // the shown technique; B in split mode
+  ColourScale scale_ = error_scale();       // the heatmap shown (both halves), for the panel's colour bar
   std::unique_ptr<RenderTarget> display_target_;  // uploaded diagnostic image
+  struct DisplayEncoding {
+    Program program;  // shaders/display_srgb.comp
+    Texture texture;  // RGBA8, sRGB-encoded bytes
+    Framebuffer framebuffer;
+  };
+  std::unique_ptr<DisplayEncoding> encoder_;
 
   std::string screenshot_path_ = "oitbench_view.png";
   std::string sweep_file_, sweep_csv_;

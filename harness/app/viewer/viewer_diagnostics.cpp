@@ -49,12 +49,12 @@ const Image& Viewer::reference_of_view() {
   return reference_image_;
 }
 
-Image Viewer::heatmap_of(const Slot& slot, DiagnosticHalf& half) {
+std::vector<float> Viewer::field_of(const Slot& slot, DiagnosticHalf& half) {
   if (!slot.live.ready()) throw std::runtime_error("no technique is running");
   if (display_ == Display::error) {
     const Image image = slot.live.read_image();
     half.error = compare_images(image, reference_image_);
-    return error_heatmap(image, reference_image_);
+    return error_field(image, reference_image_);
   }
   // Display::diagnostic: the field asked for (or the technique's first);
   // B in split mode shows the field of the same name when it has one.
@@ -69,7 +69,7 @@ Image Viewer::heatmap_of(const Slot& slot, DiagnosticHalf& half) {
   }
   if (it == images.end()) it = images.begin();
   half.field = std::move(*it);
-  return heatmap_range(half.field->values, half.field->width, half.field->height, half.field->low, half.field->high);
+  return half.field->values;
 }
 
 void Viewer::update_diagnostics() {
@@ -84,6 +84,7 @@ void Viewer::update_diagnostics() {
   try {
     if (display_ == Display::list_length) {
       complexity_ = measure_depth_complexity(*scene_gpu_, orbit_.camera().view, projection(), width_, height_);
+      scale_ = list_length_scale(complexity_);
       return upload(list_length_heatmap(complexity_));
     }
     if (display_ != Display::diagnostic) reference_of_view();
@@ -94,22 +95,40 @@ void Viewer::update_diagnostics() {
     return;
   }
   // Each half on its own: one technique's failure leaves its half black.
+  // Both halves share one colour scale: errors on error_scale(), a
+  // diagnostic field over the union of the halves' natural ranges.
   Image shown{width_, height_, std::vector<float>(size_t(width_) * size_t(height_) * 4, 0.0f)};
   for (size_t i = 3; i < shown.rgba.size(); i += 4) shown.rgba[i] = 1.0f;
   const int split = split_diagnostics() ? split_column() : width_;
   const Slot* slots[2] = {&shown_slot(), split_diagnostics() ? b_.get() : nullptr};
+  std::vector<float> fields[2];
   for (int h = 0; h < 2; ++h) {
     if (!slots[h]) continue;
     try {
-      const Image heatmap = heatmap_of(*slots[h], halves_[h]);
-      const int x0 = h == 0 ? 0 : split, x1 = h == 0 ? split : width_;
-      for (int y = 0; y < height_; ++y)
-        std::copy_n(heatmap.rgba.begin() + (size_t(y) * size_t(width_) + size_t(x0)) * 4, size_t(x1 - x0) * 4,
-                    shown.rgba.begin() + (size_t(y) * size_t(width_) + size_t(x0)) * 4);
+      fields[h] = field_of(*slots[h], halves_[h]);
     } catch (const std::exception& e) {
       drain_gl_errors();
       halves_[h].message = e.what();
     }
+  }
+  scale_ = error_scale();
+  if (display_ == Display::diagnostic) {
+    bool first = true;
+    for (const DiagnosticHalf& half : halves_) {
+      if (!half.field) continue;
+      scale_ = first ? ColourScale{ColourScale::Kind::linear, half.field->low, half.field->high}
+                     : ColourScale{ColourScale::Kind::linear, std::min(scale_.low, half.field->low),
+                                   std::max(scale_.high, half.field->high)};
+      first = false;
+    }
+  }
+  for (int h = 0; h < 2; ++h) {
+    if (fields[h].empty()) continue;
+    const Image heatmap = oit::heatmap(fields[h], width_, height_, scale_);
+    const int x0 = h == 0 ? 0 : split, x1 = h == 0 ? split : width_;
+    for (int y = 0; y < height_; ++y)
+      std::copy_n(heatmap.rgba.begin() + (size_t(y) * size_t(width_) + size_t(x0)) * 4, size_t(x1 - x0) * 4,
+                  shown.rgba.begin() + (size_t(y) * size_t(width_) + size_t(x0)) * 4);
   }
   upload(shown);
 }

@@ -35,6 +35,39 @@ std::string mib(uint64_t bytes) {
   return text;
 }
 
+// The shown heatmap's colour bar, drawn like the PNGs' (heatmap.h): the
+// colour map across the panel and the scale's ticks with their numbers.
+void colour_bar(const ColourScale& scale, const std::string& what) {
+  ImGui::TextWrapped("%s", what.c_str());
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const float margin = 16.0f, width = ImGui::GetContentRegionAvail().x - 2.0f * margin, height = 12.0f;
+  const float left = origin.x + margin;
+  // The window shows bytes as they are: viridis's sRGB values go straight in.
+  auto colour = [](float t) {
+    float srgb[3];
+    viridis(t, srgb);
+    return IM_COL32(int(std::lround(srgb[0] * 255.0f)), int(std::lround(srgb[1] * 255.0f)),
+                    int(std::lround(srgb[2] * 255.0f)), 255);
+  };
+  constexpr int kSteps = 64;
+  for (int i = 0; i < kSteps; ++i) {
+    const float x0 = left + width * float(i) / kSteps, x1 = left + width * float(i + 1) / kSteps;
+    const ImU32 a = colour(float(i) / kSteps), b = colour(float(i + 1) / kSteps);
+    draw->AddRectFilledMultiColor({x0, origin.y}, {x1, origin.y + height}, a, b, b, a);
+  }
+  for (float tick : scale.ticks()) {
+    const float x = left + scale.position(tick) * width;
+    draw->AddLine({x, origin.y + height}, {x, origin.y + height + 3.0f}, IM_COL32_WHITE);
+    const std::string label = scale.tick_label(tick);
+    const float text_width = ImGui::CalcTextSize(label.c_str()).x;
+    draw->AddText({std::clamp(x - 0.5f * text_width, origin.x, origin.x + 2.0f * margin + width - text_width),
+                   origin.y + height + 4.0f},
+                  IM_COL32_WHITE, label.c_str());
+  }
+  ImGui::Dummy({2.0f * margin + width, height + 6.0f + ImGui::GetTextLineHeight()});
+}
+
 }  // namespace
 
 void Viewer::draw_panel(int framebuffer_width, int framebuffer_height) {
@@ -65,14 +98,29 @@ void Viewer::draw_panel(int framebuffer_width, int framebuffer_height) {
       panel_technique(*b_, "B");
     }
   }
-  if (ImGui::CollapsingHeader("Timings and counters", ImGuiTreeNodeFlags_DefaultOpen)) {
-    panel_timings(*a_, "A");
-    if (compare_) panel_timings(*b_, "B");
-  }
+  // Timings and counters go below the scene area when it leaves room there
+  // (the window is at least kMinHeight tall, the scene often much less):
+  // in the panel they were cut off at the window's bottom.
+  const bool below = width_ >= kBelowMinWidth && framebuffer_height - height_ >= kBelowMinHeight;
+  auto timings = [&] {
+    if (ImGui::CollapsingHeader("Timings and counters", ImGuiTreeNodeFlags_DefaultOpen)) {
+      panel_timings(*a_, "A");
+      if (compare_) panel_timings(*b_, "B");
+    }
+  };
+  if (!below) timings();
   if (ImGui::CollapsingHeader("Diagnostics", ImGuiTreeNodeFlags_DefaultOpen)) panel_diagnostics();
   if (ImGui::CollapsingHeader("Output", ImGuiTreeNodeFlags_DefaultOpen)) panel_output();
   ImGui::PopItemWidth();
   ImGui::End();
+  if (below) {
+    ImGui::SetNextWindowPos(ImVec2(0.0f, float(height_)));
+    ImGui::SetNextWindowSize(ImVec2(float(width_), float(framebuffer_height - height_)));
+    ImGui::Begin("timings", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                         ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoTitleBar);
+    timings();
+    ImGui::End();
+  }
 
   // Labels over the split image, drawn by ImGui on top of the scene area.
   if (compare_ && show_ == Show::split && (display_ == Display::image || split_diagnostics())) {
@@ -166,8 +214,12 @@ void Viewer::panel_technique(Slot& slot, const char* label) {
 
 void Viewer::panel_timings(const Slot& slot, const char* label) {
   ImGui::PushID(label);
-  ImGui::Text("%s: %s, %s clock, ms over %s", label, slot.live.id().c_str(),
-              slot.live.clock_kind() == ClockKind::gl ? "gl" : "wall+glFinish", "the last 8 frames");
+  const int timed = slot.live.timed_frames();
+  ImGui::TextWrapped("%s: %s, %s clock, ms over %s %d timed frame%s (%d warm-up frame%s left out)", label,
+                     slot.live.id().c_str(), slot.live.clock_kind() == ClockKind::gl ? "gl" : "wall+glFinish",
+                     timed == LiveTechnique::kWindow ? "the last" : "the", timed, timed == 1 ? "" : "s",
+                     LiveTechnique::kWarmup, LiveTechnique::kWarmup == 1 ? "" : "s");
+  if (timed == 0) ImGui::TextColored(kGrey, "no timed frame yet");
   if (ImGui::BeginTable("stages", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_SizingStretchSame)) {
     ImGui::TableSetupColumn("stage");
     ImGui::TableSetupColumn("median");
@@ -221,7 +273,7 @@ void Viewer::panel_diagnostics() {
   if (display_ == Display::image) return;
   if (display_ == Display::reference) ImGui::TextColored(kGrey, "exact reference (%s)", registry_.reference().id.c_str());
   if (display_ == Display::list_length) {
-    ImGui::Text("fragments per pixel (blue 0 .. red %u)", complexity_.max);
+    colour_bar(scale_, "fragments per pixel (linear 0 .. " + std::to_string(complexity_.max) + ")");
     ImGui::Text("Psi %.4f   mean %.3f   max %u", complexity_.psi, complexity_.mean, complexity_.max);
     ImGui::Text("fragments %llu, covered pixels %llu", static_cast<unsigned long long>(complexity_.fragments),
                 static_cast<unsigned long long>(complexity_.covered_pixels));
@@ -233,7 +285,11 @@ void Viewer::panel_diagnostics() {
     }
   }
   const bool split = split_diagnostics();
-  if (split) ImGui::TextColored(kGrey, "split: A left of the line, B right of it");
+  if (split) ImGui::TextColored(kGrey, "split: A left of the line, B right of it, one colour scale");
+  if (display_ == Display::error)
+    colour_bar(scale_, "largest abs channel error, log scale (<= 1e-4 and exact 0: the bottom colour)");
+  if (display_ == Display::diagnostic && (halves_[0].field || halves_[1].field))
+    colour_bar(scale_, "field value, linear (black: no fragment)");
   const Slot* slots[2] = {&shown_slot(), split ? b_.get() : nullptr};
   for (int h = 0; h < 2; ++h) {
     if (!slots[h]) continue;
@@ -241,9 +297,9 @@ void Viewer::panel_diagnostics() {
     const std::string who = (split ? std::string(h == 0 ? "A " : "B ") : std::string()) + slots[h]->live.id();
     if (display_ == Display::error && half.error) {
       const ImageError& e = *half.error;
-      ImGui::Text("%s vs reference (heatmap: blue 0 .. red max)", who.c_str());
+      ImGui::Text("%s vs reference", who.c_str());
       ImGui::Text("max abs %.4g   rmse %.4g", e.max_abs, e.rmse);
-      ImGui::Text("psnr %.2f dB   ssim %.4f", e.psnr_db, e.ssim);
+      ImGui::Text("psnr %.2f dB   ssim %.4f   FLIP %.4f", e.psnr_db, e.ssim, e.flip);
       ImGui::Text("pixels off by > 1/255: %.2f%%", 100.0 * e.share_over_1_255);
     }
     if (display_ == Display::diagnostic && half.field) {
@@ -257,7 +313,7 @@ void Viewer::panel_diagnostics() {
         ++valued;
       }
       ImGui::TextWrapped("%s, %s: %s", who.c_str(), d.name.c_str(), d.description.c_str());
-      ImGui::Text("heatmap: blue %.4g .. red %.4g (black: no fragment)", d.low, d.high);
+      ImGui::Text("natural range %.4g .. %.4g", d.low, d.high);
       if (valued > 0) ImGui::Text("values %.4g .. %.4g over %zu pixels", lo, hi, valued);
     }
     if (!half.message.empty()) wrapped_colored(kRed, (split ? who + ": " : std::string()) + half.message);
