@@ -52,11 +52,7 @@ Scene make_random_quads(const RandomQuadsParams& params) {
     append_facing_quad(scene, quads[i].center, half, quads[i].distance, quads[i].color, uint32_t(i), uint32_t(i),
                        uint32_t(i));
   scene.object_count = uint32_t(quads.size());
-  scene.camera.orthographic = true;
-  scene.camera.ymag = 1.0f;
-  scene.camera.xmag = 1.0f;
-  scene.camera.znear = 0.5f;
-  scene.camera.zfar = float(params.count) + 1.5f;
+  scene.camera = orthographic_square_camera(0.5f, float(params.count) + 1.5f);
   return scene;
 }
 

@@ -69,6 +69,15 @@ void Scene::validate() const {
   }
 }
 
+Camera orthographic_square_camera(float znear, float zfar) {
+  Camera camera;
+  camera.orthographic = true;
+  camera.xmag = camera.ymag = 1.0f;
+  camera.znear = znear;
+  camera.zfar = zfar;
+  return camera;
+}
+
 void append_facing_quad(Scene& scene, glm::vec2 center, float half, float distance, const glm::vec4& color,
                         uint32_t object_id, uint32_t surface_id, uint32_t quad) {
   const auto base = uint32_t(scene.vertices.size());

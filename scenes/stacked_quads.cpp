@@ -55,11 +55,7 @@ Scene make_stacked_quads(const StackedQuadsParams& params) {
     max_object = std::max(max_object, layer.object_id);
   }
   scene.object_count = max_object + 1;
-  scene.camera.orthographic = true;
-  scene.camera.ymag = 1.0f;
-  scene.camera.xmag = 1.0f;
-  scene.camera.znear = 0.5f;
-  scene.camera.zfar = float(params.layers) + 1.5f;
+  scene.camera = orthographic_square_camera(0.5f, float(params.layers) + 1.5f);
   return scene;
 }
 

@@ -91,10 +91,7 @@ Scene make_stress_layers(const StressLayersParams& p) {
   }
   scene.object_count = uint32_t(layers.size());
   if (p.space == "ndc") {
-    scene.camera.orthographic = true;
-    scene.camera.xmag = scene.camera.ymag = 1.0f;
-    scene.camera.znear = float(orthographic_near(p));
-    scene.camera.zfar = float(far);
+    scene.camera = orthographic_square_camera(float(orthographic_near(p)), float(far));
   } else {
     scene.camera.yfov_radians = kFovY;
     scene.camera.znear = 1.0f;
