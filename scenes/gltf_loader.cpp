@@ -10,7 +10,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
-#include <functional>
+#include <optional>
 #include <stdexcept>
 
 namespace oit {
@@ -109,9 +109,31 @@ glm::mat4 local_transform(const tinygltf::Node& node) {
   return m;
 }
 
-}  // namespace
+// The camera of a node whose world transform is `world`: orthographic or
+// perspective, checked for a usable size and depth range.
+Camera read_camera(const tinygltf::Camera& source, const glm::mat4& world, const GltfReader& reader) {
+  Camera c;
+  c.view = glm::inverse(world);
+  if (source.type == "orthographic") {
+    c.orthographic = true;
+    c.xmag = std::abs(float(source.orthographic.xmag));
+    c.ymag = std::abs(float(source.orthographic.ymag));
+    if (!(c.xmag > 0.0f && c.ymag > 0.0f && std::isfinite(c.xmag) && std::isfinite(c.ymag)))
+      reader.fail("orthographic camera has a zero or non-finite xmag/ymag");
+    c.znear = float(source.orthographic.znear);
+    c.zfar = float(source.orthographic.zfar);
+  } else {
+    c.yfov_radians = float(source.perspective.yfov);
+    if (!(c.yfov_radians > 0.0f && c.yfov_radians < 3.1f)) reader.fail("perspective camera yfov is not in (0, pi)");
+    c.znear = float(source.perspective.znear);
+    c.zfar = source.perspective.zfar > 0 ? float(source.perspective.zfar) : c.znear * 1e4f;
+  }
+  if (!(c.znear > 0.0f || c.orthographic) || !(c.zfar > c.znear)) reader.fail("camera has an invalid depth range");
+  return c;
+}
 
-Scene load_gltf_scene(const std::string& path) {
+// Parses `path` (.glb binary, anything else JSON), skipping images.
+tinygltf::Model load_model(const std::string& path) {
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skip_image, nullptr);
   tinygltf::Model model;
@@ -122,28 +144,178 @@ Scene load_gltf_scene(const std::string& path) {
   const bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
                          : loader.LoadASCIIFromFile(&model, &error, &warning, path);
   if (!ok) throw std::invalid_argument(path + ": cannot load glTF: " + (error.empty() ? "unknown error" : error));
-  GltfReader reader(model, path);
+  return model;
+}
 
-  Scene scene;
-  scene.name = path;
-  bool all_unlit = true;
-  std::optional<Camera> camera;
-  uint32_t next_object = 0;
+// Flattens a glTF model into one Scene: every mesh instance in world space,
+// one object per instance, the first camera found.
+class SceneBuilder {
+ public:
+  SceneBuilder(const tinygltf::Model& model, const std::string& path)
+      : model_(model), reader_(model, path), visited_(model.nodes.size(), 0) {
+    scene_.name = path;
+  }
 
-  auto material_color = [&](int material_index) {
+  // Visits the default scene's roots, or, without scenes, every node that
+  // is no other node's child.
+  void visit_roots() {
+    const int scene_index = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+    if (model_.scenes.empty()) {
+      std::vector<uint8_t> is_child(model_.nodes.size(), 0);
+      for (const auto& node : model_.nodes)
+        for (int child : node.children)
+          if (child >= 0 && size_t(child) < is_child.size()) is_child[size_t(child)] = 1;
+      for (size_t i = 0; i < model_.nodes.size(); ++i)
+        if (!is_child[i]) visit(int(i), glm::mat4(1.0f), 0);
+    } else {
+      if (size_t(scene_index) >= model_.scenes.size()) reader_.fail("default scene index out of range");
+      for (int root : model_.scenes[size_t(scene_index)].nodes) visit(root, glm::mat4(1.0f), 0);
+    }
+  }
+
+  Scene finish() {
+    if (scene_.indices.empty()) reader_.fail("contains no triangles");
+    scene_.object_count = next_object_;
+    scene_.lit = !all_unlit_;
+    scene_.camera = camera_ ? *camera_ : frame_bounding_sphere(scene_.bounds());
+    scene_.validate();
+    return std::move(scene_);
+  }
+
+ private:
+  // glTF nodes form trees: a node reached twice (a cycle, or a node shared
+  // by two parents, which could multiply into exponentially many visits) is
+  // an error.
+  void visit(int node_index, const glm::mat4& parent, int depth) {
+    if (node_index < 0 || size_t(node_index) >= model_.nodes.size()) reader_.fail("node index out of range");
+    if (depth > 256) reader_.fail("node hierarchy deeper than 256");
+    if (visited_[size_t(node_index)]++)
+      reader_.fail("node " + std::to_string(node_index) + " is reached twice (the node hierarchy must be a tree)");
+    const auto& node = model_.nodes[size_t(node_index)];
+    const glm::mat4 world = parent * local_transform(node);
+    if (node.mesh >= 0) {
+      if (size_t(node.mesh) >= model_.meshes.size()) reader_.fail("node mesh index out of range");
+      add_mesh(model_.meshes[size_t(node.mesh)], world);
+    }
+    if (node.camera >= 0 && !camera_) {
+      if (size_t(node.camera) >= model_.cameras.size()) reader_.fail("node camera index out of range");
+      camera_ = read_camera(model_.cameras[size_t(node.camera)], world, reader_);
+    }
+    for (int child : node.children) visit(child, world, depth + 1);
+  }
+
+  void add_mesh(const tinygltf::Mesh& mesh, const glm::mat4& world) {
+    const uint32_t object = next_object_++;
+    for (const auto& primitive : mesh.primitives) add_primitive(mesh, primitive, world, object);
+  }
+
+  void add_primitive(const tinygltf::Mesh& mesh, const tinygltf::Primitive& primitive, const glm::mat4& world,
+                     uint32_t object) {
+    if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1)
+      reader_.fail("mesh '" + mesh.name + "' has a primitive of mode " + std::to_string(primitive.mode) +
+                   "; only triangles are supported");
+    auto position_it = primitive.attributes.find("POSITION");
+    if (position_it == primitive.attributes.end()) reader_.fail("mesh '" + mesh.name + "' has no POSITION");
+    const auto positions = reader_.read(position_it->second, 3);
+    const size_t vertex_count = positions.size() / 3;
+    std::vector<double> normals;
+    if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
+      normals = reader_.read(it->second, 3);
+      if (normals.size() != positions.size()) reader_.fail("mesh '" + mesh.name + "' NORMAL count differs from POSITION");
+    }
+    const std::vector<uint32_t> indices = primitive_indices(mesh, primitive, vertex_count);
+    if (scene_.vertices.size() + vertex_count > kMaxVertices ||
+        scene_.indices.size() / 3 + indices.size() / 3 > kMaxTriangles)
+      reader_.fail("the instanced scene has more than " + std::to_string(kMaxVertices) + " vertices or " +
+                   std::to_string(kMaxTriangles) + " triangles");
+    const glm::vec4 color = material_color(primitive.material);
+    const auto base = uint32_t(scene_.vertices.size());
+    add_vertices(positions, normals, world, color, object);
+    add_triangles(base, indices, normals.empty());
+  }
+
+  // The primitive's indices (0..n-1 without an index accessor), each
+  // checked against its vertex count, in whole triangles.
+  std::vector<uint32_t> primitive_indices(const tinygltf::Mesh& mesh, const tinygltf::Primitive& primitive,
+                                          size_t vertex_count) const {
+    std::vector<uint32_t> indices;
+    if (primitive.indices >= 0) {
+      if (size_t(primitive.indices) < model_.accessors.size()) {
+        const int type = model_.accessors[size_t(primitive.indices)].componentType;
+        if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+          reader_.fail("mesh '" + mesh.name + "' indices are not unsigned byte, short or int");
+      }
+      for (double i : reader_.read(primitive.indices, 1)) {
+        if (i >= double(vertex_count))
+          reader_.fail("mesh '" + mesh.name + "' index " + std::to_string(uint64_t(i)) + " is past its " +
+                       std::to_string(vertex_count) + " vertices");
+        indices.push_back(uint32_t(i));
+      }
+    } else {
+      for (uint32_t i = 0; i < vertex_count; ++i) indices.push_back(i);
+    }
+    if (indices.size() % 3 != 0) reader_.fail("mesh '" + mesh.name + "' index count is not a multiple of 3");
+    return indices;
+  }
+
+  // The primitive's vertices in world space; normals through the normal
+  // matrix, or zero to be accumulated by add_triangles when there are none.
+  void add_vertices(const std::vector<double>& positions, const std::vector<double>& normals, const glm::mat4& world,
+                    const glm::vec4& color, uint32_t object) {
+    const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(world)));
+    for (size_t i = 0; i < positions.size() / 3; ++i) {
+      Vertex v;
+      v.position = glm::vec3(world * glm::vec4(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2], 1.0));
+      v.normal = glm::vec3(0.0f);
+      if (!normals.empty()) {
+        // A zero or non-finite file normal must not become NaN shading.
+        const glm::vec3 n = normal_matrix * glm::vec3(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
+        const float length = glm::length(n);
+        v.normal = std::isfinite(length) && length > 0.0f ? n / length : glm::vec3(0.0f, 0.0f, 1.0f);
+      }
+      v.color = color;
+      v.object_id = object;
+      v.surface_id = object;
+      scene_.vertices.push_back(v);
+    }
+  }
+
+  // The triangles of vertices from `base` on; with `face_normals` (the file
+  // has none) each vertex's normal is its faces' area-weighted sum.
+  void add_triangles(uint32_t base, const std::vector<uint32_t>& indices, bool face_normals) {
+    std::vector<Vertex>& vertices = scene_.vertices;
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+      const uint32_t a = base + indices[t], b = base + indices[t + 1], c = base + indices[t + 2];
+      if (face_normals) {
+        const glm::vec3 n =
+            glm::cross(vertices[b].position - vertices[a].position, vertices[c].position - vertices[a].position);
+        for (uint32_t k : {a, b, c}) vertices[k].normal += n;
+      }
+      scene_.indices.insert(scene_.indices.end(), {a, b, c});
+      scene_.triangle_ids.push_back(uint32_t(scene_.triangle_ids.size()));
+    }
+    if (!face_normals) return;
+    for (size_t i = base; i < vertices.size(); ++i) {
+      glm::vec3& n = vertices[i].normal;
+      n = glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0.0f, 0.0f, 1.0f);
+    }
+  }
+
+  glm::vec4 material_color(int material_index) {
     if (material_index < 0) {
-      all_unlit = false;
+      all_unlit_ = false;
       return glm::vec4(1.0f);
     }
-    if (size_t(material_index) >= model.materials.size()) reader.fail("material index out of range");
-    const auto& material = model.materials[size_t(material_index)];
-    if (!material.extensions.count("KHR_materials_unlit")) all_unlit = false;
+    if (size_t(material_index) >= model_.materials.size()) reader_.fail("material index out of range");
+    const auto& material = model_.materials[size_t(material_index)];
+    if (!material.extensions.count("KHR_materials_unlit")) all_unlit_ = false;
     const auto& f = material.pbrMetallicRoughness.baseColorFactor;
     glm::vec4 color(1.0f);
     if (f.size() == 4) color = glm::vec4(float(f[0]), float(f[1]), float(f[2]), float(f[3]));
     for (int c = 0; c < 4; ++c) {
       if (!std::isfinite(color[c]))
-        reader.fail("material " + std::to_string(material_index) + " has a non-finite baseColorFactor");
+        reader_.fail("material " + std::to_string(material_index) + " has a non-finite baseColorFactor");
       color[c] = std::clamp(color[c], 0.0f, 1.0f);  // the spec's range; blending assumes it
     }
     // MASK: the colour has no texture, so the whole triangle is either
@@ -151,142 +323,24 @@ Scene load_gltf_scene(const std::string& path) {
     if (material.alphaMode == "OPAQUE" || material.alphaMode.empty()) color.a = 1.0f;
     else if (material.alphaMode == "MASK") color.a = color.a >= float(material.alphaCutoff) ? 1.0f : 0.0f;
     return color;
-  };
-
-  auto add_mesh = [&](const tinygltf::Mesh& mesh, const glm::mat4& world) {
-    const uint32_t object = next_object++;
-    const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(world)));
-    for (const auto& primitive : mesh.primitives) {
-      if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1)
-        reader.fail("mesh '" + mesh.name + "' has a primitive of mode " + std::to_string(primitive.mode) +
-                    "; only triangles are supported");
-      auto position_it = primitive.attributes.find("POSITION");
-      if (position_it == primitive.attributes.end()) reader.fail("mesh '" + mesh.name + "' has no POSITION");
-      const auto positions = reader.read(position_it->second, 3);
-      const size_t vertex_count = positions.size() / 3;
-      std::vector<double> normals;
-      if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
-        normals = reader.read(it->second, 3);
-        if (normals.size() != positions.size()) reader.fail("mesh '" + mesh.name + "' NORMAL count differs from POSITION");
-      }
-      std::vector<uint32_t> local_indices;
-      if (primitive.indices >= 0) {
-        if (size_t(primitive.indices) < model.accessors.size()) {
-          const int type = model.accessors[size_t(primitive.indices)].componentType;
-          if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-              type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-            reader.fail("mesh '" + mesh.name + "' indices are not unsigned byte, short or int");
-        }
-        for (double i : reader.read(primitive.indices, 1)) {
-          if (i >= double(vertex_count))
-            reader.fail("mesh '" + mesh.name + "' index " + std::to_string(uint64_t(i)) + " is past its " +
-                        std::to_string(vertex_count) + " vertices");
-          local_indices.push_back(uint32_t(i));
-        }
-      } else {
-        for (uint32_t i = 0; i < vertex_count; ++i) local_indices.push_back(i);
-      }
-      if (local_indices.size() % 3 != 0) reader.fail("mesh '" + mesh.name + "' index count is not a multiple of 3");
-      if (scene.vertices.size() + vertex_count > kMaxVertices ||
-          scene.indices.size() / 3 + local_indices.size() / 3 > kMaxTriangles)
-        reader.fail("the instanced scene has more than " + std::to_string(kMaxVertices) + " vertices or " +
-                    std::to_string(kMaxTriangles) + " triangles");
-      const glm::vec4 color = material_color(primitive.material);
-      const auto base = uint32_t(scene.vertices.size());
-      for (size_t i = 0; i < vertex_count; ++i) {
-        Vertex v;
-        v.position = glm::vec3(world * glm::vec4(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2], 1.0));
-        v.normal = glm::vec3(0.0f);
-        if (!normals.empty()) {
-          // A zero or non-finite file normal must not become NaN shading.
-          const glm::vec3 n = normal_matrix * glm::vec3(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
-          const float length = glm::length(n);
-          v.normal = std::isfinite(length) && length > 0.0f ? n / length : glm::vec3(0.0f, 0.0f, 1.0f);
-        }
-        v.color = color;
-        v.object_id = object;
-        v.surface_id = object;
-        scene.vertices.push_back(v);
-      }
-      for (size_t t = 0; t + 2 < local_indices.size(); t += 3) {
-        const uint32_t a = base + local_indices[t], b = base + local_indices[t + 1], c = base + local_indices[t + 2];
-        if (normals.empty()) {
-          // Face normal accumulated per vertex (area weighted) when the file has none.
-          const glm::vec3 n = glm::cross(scene.vertices[b].position - scene.vertices[a].position,
-                                         scene.vertices[c].position - scene.vertices[a].position);
-          for (uint32_t k : {a, b, c}) scene.vertices[k].normal += n;
-        }
-        scene.indices.insert(scene.indices.end(), {a, b, c});
-        scene.triangle_ids.push_back(uint32_t(scene.triangle_ids.size()));
-      }
-      if (normals.empty()) {
-        for (size_t i = base; i < scene.vertices.size(); ++i) {
-          glm::vec3& n = scene.vertices[i].normal;
-          n = glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0.0f, 0.0f, 1.0f);
-        }
-      }
-    }
-  };
-
-  // glTF nodes form trees: a node reached twice (a cycle, or a node shared
-  // by two parents, which could multiply into exponentially many visits) is
-  // an error.
-  std::vector<uint8_t> visited(model.nodes.size(), 0);
-  std::function<void(int, const glm::mat4&, int)> visit = [&](int node_index, const glm::mat4& parent, int depth) {
-    if (node_index < 0 || size_t(node_index) >= model.nodes.size()) reader.fail("node index out of range");
-    if (depth > 256) reader.fail("node hierarchy deeper than 256");
-    if (visited[size_t(node_index)]++)
-      reader.fail("node " + std::to_string(node_index) + " is reached twice (the node hierarchy must be a tree)");
-    const auto& node = model.nodes[size_t(node_index)];
-    const glm::mat4 world = parent * local_transform(node);
-    if (node.mesh >= 0) {
-      if (size_t(node.mesh) >= model.meshes.size()) reader.fail("node mesh index out of range");
-      add_mesh(model.meshes[size_t(node.mesh)], world);
-    }
-    if (node.camera >= 0 && !camera) {
-      if (size_t(node.camera) >= model.cameras.size()) reader.fail("node camera index out of range");
-      const auto& source = model.cameras[size_t(node.camera)];
-      Camera c;
-      c.view = glm::inverse(world);
-      if (source.type == "orthographic") {
-        c.orthographic = true;
-        c.xmag = std::abs(float(source.orthographic.xmag));
-        c.ymag = std::abs(float(source.orthographic.ymag));
-        if (!(c.xmag > 0.0f && c.ymag > 0.0f && std::isfinite(c.xmag) && std::isfinite(c.ymag)))
-          reader.fail("orthographic camera has a zero or non-finite xmag/ymag");
-        c.znear = float(source.orthographic.znear);
-        c.zfar = float(source.orthographic.zfar);
-      } else {
-        c.yfov_radians = float(source.perspective.yfov);
-        if (!(c.yfov_radians > 0.0f && c.yfov_radians < 3.1f)) reader.fail("perspective camera yfov is not in (0, pi)");
-        c.znear = float(source.perspective.znear);
-        c.zfar = source.perspective.zfar > 0 ? float(source.perspective.zfar) : c.znear * 1e4f;
-      }
-      if (!(c.znear > 0.0f || c.orthographic) || !(c.zfar > c.znear)) reader.fail("camera has an invalid depth range");
-      camera = c;
-    }
-    for (int child : node.children) visit(child, world, depth + 1);
-  };
-
-  const int scene_index = model.defaultScene >= 0 ? model.defaultScene : 0;
-  if (model.scenes.empty()) {
-    // No scene: every node that is no other node's child is a root.
-    std::vector<uint8_t> is_child(model.nodes.size(), 0);
-    for (const auto& node : model.nodes)
-      for (int child : node.children)
-        if (child >= 0 && size_t(child) < is_child.size()) is_child[size_t(child)] = 1;
-    for (size_t i = 0; i < model.nodes.size(); ++i)
-      if (!is_child[i]) visit(int(i), glm::mat4(1.0f), 0);
-  } else {
-    if (size_t(scene_index) >= model.scenes.size()) reader.fail("default scene index out of range");
-    for (int root : model.scenes[size_t(scene_index)].nodes) visit(root, glm::mat4(1.0f), 0);
   }
-  if (scene.indices.empty()) reader.fail("contains no triangles");
-  scene.object_count = next_object;
-  scene.lit = !all_unlit;
-  scene.camera = camera ? *camera : frame_bounding_sphere(scene.bounds());
-  scene.validate();
-  return scene;
+
+  const tinygltf::Model& model_;
+  GltfReader reader_;
+  std::vector<uint8_t> visited_;
+  Scene scene_;
+  bool all_unlit_ = true;
+  std::optional<Camera> camera_;
+  uint32_t next_object_ = 0;
+};
+
+}  // namespace
+
+Scene load_gltf_scene(const std::string& path) {
+  const tinygltf::Model model = load_model(path);
+  SceneBuilder builder(model, path);
+  builder.visit_roots();
+  return builder.finish();
 }
 
 }  // namespace oit

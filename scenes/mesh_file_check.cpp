@@ -369,63 +369,82 @@ class PlyBody {
   bool binary_, big_endian_;
 };
 
-MeshFileFacts check_ply(const std::string& path, std::string_view bytes) {
-  MeshFileFacts facts{"ply"};
+struct PlyHeader {
   std::vector<PlyElement> elements;
-  bool binary = false, big_endian = false, have_format = false, ended = false;
-  TextLines lines(bytes);
+  bool binary = false, big_endian = false;
+};
+
+// The header is text; OpenMesh's header parser loops forever on some
+// control bytes (a NUL inside the format line, found by the mutation test).
+void require_text_line(const std::string& path, std::string_view line, const std::string& at) {
+  for (const char c : line)
+    if ((static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r') || static_cast<unsigned char>(c) > 0x7e)
+      fail(path, at + ": byte " + std::to_string(static_cast<unsigned char>(c)) + " in a text header");
+}
+
+// "format <ascii|binary_little_endian|binary_big_endian> 1.0".
+void read_ply_format(const std::string& path, Tokens& tokens, const std::string& at, PlyHeader& header) {
+  const std::string_view format = tokens.next();
+  if (format == "ascii") header.binary = false;
+  else if (format == "binary_little_endian") header.binary = true;
+  else if (format == "binary_big_endian") header.binary = header.big_endian = true;
+  else fail(path, at + ": unknown format " + shown(format));
+  if (const std::string_view version = tokens.next(); version != "1.0")
+    fail(path, at + ": format version " + shown(version) + " is not 1.0");
+}
+
+// "property <type> <name>" or "property list <count type> <type> <name>"
+// of the last element declared.
+void read_ply_property(const std::string& path, Tokens& tokens, const std::string& at, PlyHeader& header) {
+  if (header.elements.empty()) fail(path, at + ": property before any element");
+  PlyProperty property;
+  std::string_view type = tokens.next();
+  if (type == "list") {
+    property.list = true;
+    const std::string_view count_type = tokens.next();
+    if (!ply_type(count_type, property.count_type) || !property.count_type.integer)
+      fail(path, at + ": list count type " + shown(count_type) + " is not an integer type");
+    type = tokens.next();
+  }
+  if (!ply_type(type, property.type)) fail(path, at + ": unknown property type " + shown(type));
+  property.name = std::string(tokens.next());
+  PlyElement& element = header.elements.back();
+  // OpenMesh walks the lists it knows (face vertex indices and texture
+  // coordinates); any other list it would read as one value and lose its
+  // place in the file.
+  const bool known_list = element.name == "face" && (is_index_list(property.name) || property.name == "texcoord");
+  if (property.list && !known_list)
+    fail(path, at + ": list property '" + property.name + "' of element '" + element.name + "' is not supported");
+  if (element.name == "face" && is_index_list(property.name) && (!property.list || !property.type.integer))
+    fail(path, at + ": face vertex indices must be a list of integers");
+  element.properties.push_back(property);
+}
+
+// The header's lines up to end_header; `lines` is left at the body.
+PlyHeader read_ply_header(const std::string& path, TextLines& lines) {
+  PlyHeader header;
+  bool have_format = false, ended = false;
   std::string_view line;
   while (!ended && lines.next(line)) {
     const uint64_t line_number = lines.number();
     const std::string at = "header line " + std::to_string(line_number);
-    // The header is text; OpenMesh's header parser loops forever on some
-    // control bytes (a NUL inside the format line, found by the mutation test).
-    for (const char c : line)
-      if ((static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r') || static_cast<unsigned char>(c) > 0x7e)
-        fail(path, at + ": byte " + std::to_string(static_cast<unsigned char>(c)) + " in a text header");
+    require_text_line(path, line, at);
     Tokens tokens(line);
     const std::string_view keyword = tokens.next();
     if (line_number == 1) {
       if (line != "ply") fail(path, "does not start with 'ply'");
     } else if (keyword == "format") {
-      const std::string_view format = tokens.next();
-      if (format == "ascii") binary = false;
-      else if (format == "binary_little_endian") binary = true;
-      else if (format == "binary_big_endian") binary = big_endian = true;
-      else fail(path, at + ": unknown format " + shown(format));
-      if (const std::string_view version = tokens.next(); version != "1.0")
-        fail(path, at + ": format version " + shown(version) + " is not 1.0");
+      read_ply_format(path, tokens, at, header);
       have_format = true;
     } else if (keyword == "element") {
       PlyElement element;
       element.name = std::string(tokens.next());
       element.count = require_unsigned(path, tokens.next(), at + ": element count");
-      for (const auto& e : elements)
+      for (const auto& e : header.elements)
         if (e.name == element.name) fail(path, at + ": element '" + element.name + "' is declared twice");
-      elements.push_back(element);
+      header.elements.push_back(element);
     } else if (keyword == "property") {
-      if (elements.empty()) fail(path, at + ": property before any element");
-      PlyProperty property;
-      std::string_view type = tokens.next();
-      if (type == "list") {
-        property.list = true;
-        const std::string_view count_type = tokens.next();
-        if (!ply_type(count_type, property.count_type) || !property.count_type.integer)
-          fail(path, at + ": list count type " + shown(count_type) + " is not an integer type");
-        type = tokens.next();
-      }
-      if (!ply_type(type, property.type)) fail(path, at + ": unknown property type " + shown(type));
-      property.name = std::string(tokens.next());
-      PlyElement& element = elements.back();
-      // OpenMesh walks the lists it knows (face vertex indices and texture
-      // coordinates); any other list it would read as one value and lose its
-      // place in the file.
-      const bool known_list = element.name == "face" && (is_index_list(property.name) || property.name == "texcoord");
-      if (property.list && !known_list)
-        fail(path, at + ": list property '" + property.name + "' of element '" + element.name + "' is not supported");
-      if (element.name == "face" && is_index_list(property.name) && (!property.list || !property.type.integer))
-        fail(path, at + ": face vertex indices must be a list of integers");
-      element.properties.push_back(property);
+      read_ply_property(path, tokens, at, header);
     } else if (keyword == "end_header") {
       ended = true;
     }
@@ -433,56 +452,78 @@ MeshFileFacts check_ply(const std::string& path, std::string_view bytes) {
   }
   if (!ended) fail(path, "the PLY header has no end_header line");
   if (!have_format) fail(path, "the PLY header has no format line");
+  return header;
+}
 
+// The vertex element, with x, y and z (float or double when binary).
+const PlyElement& ply_vertex_element(const std::string& path, const PlyHeader& header) {
   const PlyElement* vertex = nullptr;
-  for (const auto& e : elements)
+  for (const auto& e : header.elements)
     if (e.name == "vertex") vertex = &e;
   if (!vertex) fail(path, "has no vertex element");
   for (const char* axis : {"x", "y", "z"}) {
     const auto& props = vertex->properties;
     const auto it = std::find_if(props.begin(), props.end(), [&](const PlyProperty& p) { return p.name == axis; });
     if (it == props.end()) fail(path, std::string("vertex element has no '") + axis + "' property");
-    if (binary && it->type.integer)
+    if (header.binary && it->type.integer)
       fail(path, std::string("binary vertex '") + axis + "' must be float or double (OpenMesh reads only those)");
   }
-  facts.vertices = vertex->count;
-  facts.binary = binary;
+  return *vertex;
+}
 
-  PlyBody body(path, lines.rest(), binary, big_endian);
-  for (const auto& element : elements) {
-    uint64_t min_bytes = 0;  // smallest possible item: one byte (binary) or two characters (ASCII) per value
-    for (const auto& p : element.properties)
-      min_bytes += binary ? uint64_t(p.list ? p.count_type.bytes : p.type.bytes) : 2u;
-    // (+1: the last ASCII value needs no separator after it)
-    require_room(path, element.count, min_bytes, body.remaining() + (binary ? 0 : 1), element.name + " items");
-    if (min_bytes == 0) continue;  // an element without properties occupies nothing
-    const bool is_face = element.name == "face";
-    for (uint64_t i = 0; i < element.count; ++i) {
-      const std::string at = element.name + " " + std::to_string(i);
-      for (const auto& p : element.properties) {
-        if (!p.list) {
-          body.real(p.type, at + " " + p.name);  // every scalar must parse; reals must be finite
-          continue;
-        }
-        const int64_t count = body.integer(p.count_type, at + " " + p.name + " count");
-        if (count < 0 || uint64_t(count) > kMaxFaceCorners)
-          fail(path, at + ": " + p.name + " count " + std::to_string(count) + " is out of range");
-        if (is_face && is_index_list(p.name) && count < 3)
-          fail(path, at + " has " + std::to_string(count) + " corners; at least 3 are needed");
-        require_room(path, uint64_t(count), binary ? uint64_t(p.type.bytes) : 2u, body.remaining(),
-                     p.name + " values in " + at);
-        for (int64_t c = 0; c < count; ++c) {
-          if (is_face && is_index_list(p.name)) {
-            const int64_t index = body.integer(p.type, at + " corner " + std::to_string(c));
-            if (index < 0) fail(path, at + " references vertex " + std::to_string(index));
-            require_index(path, uint64_t(index), facts.vertices, at);
-          } else {
-            body.real(p.type, at + " " + p.name);
-          }
-        }
-      }
+// One list property of item `at`: its count in range, and every value; a
+// face's vertex indices must name one of `vertices`.
+void check_ply_list(const std::string& path, PlyBody& body, const PlyProperty& p, bool is_face, bool binary,
+                    uint64_t vertices, const std::string& at) {
+  const int64_t count = body.integer(p.count_type, at + " " + p.name + " count");
+  if (count < 0 || uint64_t(count) > kMaxFaceCorners)
+    fail(path, at + ": " + p.name + " count " + std::to_string(count) + " is out of range");
+  const bool indices = is_face && is_index_list(p.name);
+  if (indices && count < 3) fail(path, at + " has " + std::to_string(count) + " corners; at least 3 are needed");
+  require_room(path, uint64_t(count), binary ? uint64_t(p.type.bytes) : 2u, body.remaining(),
+               p.name + " values in " + at);
+  for (int64_t c = 0; c < count; ++c) {
+    if (indices) {
+      const int64_t index = body.integer(p.type, at + " corner " + std::to_string(c));
+      if (index < 0) fail(path, at + " references vertex " + std::to_string(index));
+      require_index(path, uint64_t(index), vertices, at);
+    } else {
+      body.real(p.type, at + " " + p.name);
     }
-    if (is_face) {
+  }
+}
+
+// Every item of `element`, after checking the body can hold them. False
+// when the element has no properties: it occupies nothing.
+bool check_ply_element(const std::string& path, PlyBody& body, const PlyElement& element, bool binary,
+                       uint64_t vertices) {
+  uint64_t min_bytes = 0;  // smallest possible item: one byte (binary) or two characters (ASCII) per value
+  for (const auto& p : element.properties)
+    min_bytes += binary ? uint64_t(p.list ? p.count_type.bytes : p.type.bytes) : 2u;
+  // (+1: the last ASCII value needs no separator after it)
+  require_room(path, element.count, min_bytes, body.remaining() + (binary ? 0 : 1), element.name + " items");
+  if (min_bytes == 0) return false;
+  const bool is_face = element.name == "face";
+  for (uint64_t i = 0; i < element.count; ++i) {
+    const std::string at = element.name + " " + std::to_string(i);
+    for (const auto& p : element.properties) {
+      if (p.list) check_ply_list(path, body, p, is_face, binary, vertices, at);
+      else body.real(p.type, at + " " + p.name);  // every scalar must parse; reals must be finite
+    }
+  }
+  return true;
+}
+
+MeshFileFacts check_ply(const std::string& path, std::string_view bytes) {
+  MeshFileFacts facts{"ply"};
+  TextLines lines(bytes);
+  const PlyHeader header = read_ply_header(path, lines);
+  facts.vertices = ply_vertex_element(path, header).count;
+  facts.binary = header.binary;
+  PlyBody body(path, lines.rest(), header.binary, header.big_endian);
+  for (const auto& element : header.elements) {
+    if (!check_ply_element(path, body, element, header.binary, facts.vertices)) continue;
+    if (element.name == "face") {
       facts.faces = element.count;
       break;  // OpenMesh stops after the faces
     }

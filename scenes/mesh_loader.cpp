@@ -202,35 +202,38 @@ bool is_mesh_file(const std::string& path) {
   return extension == "obj" || extension == "off" || extension == "ply" || extension == "stl";
 }
 
-Scene load_mesh_scene(const std::string& path) {
-  const std::string format = lower_extension(path);
-  const std::string bytes = read_bytes(path);
-  const MeshFileFacts facts = check_mesh_file(path, format, bytes);
+namespace {
 
-  PolygonCollector collector;
-  bool read_ok = false;
-  {
-    QuietOpenMesh quiet;
-    OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexNormal;
-    // OpenMesh picks its reader by the lower-case extension.
-    std::string readable = path;
-    const std::string extension = std::filesystem::path(path).extension().string();
-    std::filesystem::path alias;
-    if (extension != "." + format) {
-      alias = std::filesystem::temp_directory_path() /
-              ("oitbench_mesh_" + std::to_string(std::hash<std::string>{}(path)) + "." + format);
-      std::error_code error;
-      std::filesystem::remove(alias, error);
-      std::filesystem::create_symlink(std::filesystem::absolute(path), alias, error);
-      if (error) throw std::invalid_argument(path + ": cannot give it a lower-case extension: " + error.message());
-      readable = alias.string();
-    }
-    read_ok = OpenMesh::IO::IOManager().read(readable, collector, options);
-    if (!alias.empty()) {
-      std::error_code error;
-      std::filesystem::remove(alias, error);
-    }
+// OpenMesh's read of `path` into `collector`, its messages silenced. OpenMesh
+// picks its reader by the lower-case extension: a file named otherwise is
+// read through a temporary link so named.
+bool read_with_openmesh(const std::string& path, const std::string& format, PolygonCollector& collector) {
+  QuietOpenMesh quiet;
+  OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexNormal;
+  std::string readable = path;
+  const std::string extension = std::filesystem::path(path).extension().string();
+  std::filesystem::path alias;
+  if (extension != "." + format) {
+    alias = std::filesystem::temp_directory_path() /
+            ("oitbench_mesh_" + std::to_string(std::hash<std::string>{}(path)) + "." + format);
+    std::error_code error;
+    std::filesystem::remove(alias, error);
+    std::filesystem::create_symlink(std::filesystem::absolute(path), alias, error);
+    if (error) throw std::invalid_argument(path + ": cannot give it a lower-case extension: " + error.message());
+    readable = alias.string();
   }
+  const bool read_ok = OpenMesh::IO::IOManager().read(readable, collector, options);
+  if (!alias.empty()) {
+    std::error_code error;
+    std::filesystem::remove(alias, error);
+  }
+  return read_ok;
+}
+
+// Throws unless OpenMesh read what check_mesh_file() counted in the file;
+// returns the polygons read.
+size_t checked_polygons(const std::string& path, const std::string& format, const MeshFileFacts& facts,
+                        const PolygonCollector& collector, bool read_ok) {
   if (!collector.problem.empty()) throw std::invalid_argument(path + ": " + collector.problem);
   if (!read_ok) throw std::invalid_argument(path + ": OpenMesh could not read it as " + format);
   const size_t polygons = collector.polygon_starts.size() - 1;
@@ -243,8 +246,14 @@ Scene load_mesh_scene(const std::string& path) {
                                 std::to_string(facts.faces));
   }
   if (polygons == 0) throw std::invalid_argument(path + ": contains no faces");
+  return polygons;
+}
 
-  // Components over the vertices the faces use; unused vertices are dropped.
+constexpr uint32_t kUnused = UINT32_MAX;
+
+// The vertices the faces use, one object per connected component; returns
+// each file vertex's index in the scene (kUnused for those dropped).
+std::vector<uint32_t> add_used_vertices(const PolygonCollector& collector, size_t polygons, Scene& scene) {
   const size_t file_vertices = collector.positions.size();
   Components components(file_vertices);
   std::vector<uint8_t> used(file_vertices, 0);
@@ -255,10 +264,7 @@ Scene load_mesh_scene(const std::string& path) {
       if (c > begin) components.join(collector.corners[begin], collector.corners[c]);
     }
   }
-  constexpr uint32_t kUnused = UINT32_MAX;
   std::vector<uint32_t> new_index(file_vertices, kUnused), component_of_root(file_vertices, kUnused);
-  Scene scene;
-  scene.name = path;
   for (size_t v = 0; v < file_vertices; ++v) {
     if (!used[v]) continue;
     new_index[v] = uint32_t(scene.vertices.size());
@@ -272,6 +278,13 @@ Scene load_mesh_scene(const std::string& path) {
     vertex.surface_id = component;
     scene.vertices.push_back(vertex);
   }
+  return new_index;
+}
+
+// Each polygon as a fan of triangles, accumulating area-weighted face
+// normals into its vertices (a zero-area triangle adds nothing).
+void add_polygon_fans(const PolygonCollector& collector, size_t polygons, const std::vector<uint32_t>& new_index,
+                      Scene& scene) {
   for (size_t p = 0; p < polygons; ++p) {
     const size_t begin = collector.polygon_starts[p], end = collector.polygon_starts[p + 1];
     for (size_t c = begin + 1; c + 1 < end; ++c) {
@@ -279,13 +292,17 @@ Scene load_mesh_scene(const std::string& path) {
                      d = new_index[collector.corners[c + 1]];
       scene.indices.insert(scene.indices.end(), {a, b, d});
       scene.triangle_ids.push_back(uint32_t(scene.triangle_ids.size()));
-      // Area-weighted face normal; a zero-area triangle adds nothing.
       const glm::vec3 n = glm::cross(scene.vertices[b].position - scene.vertices[a].position,
                                      scene.vertices[d].position - scene.vertices[a].position);
       for (uint32_t k : {a, b, d}) scene.vertices[k].normal += n;
     }
   }
-  for (size_t v = 0; v < file_vertices; ++v) {
+}
+
+// The file's normal where it has a usable one, else the accumulated face
+// normals, normalised (+z where both are zero).
+void finish_normals(const PolygonCollector& collector, const std::vector<uint32_t>& new_index, Scene& scene) {
+  for (size_t v = 0; v < new_index.size(); ++v) {
     if (new_index[v] == kUnused) continue;
     glm::vec3& normal = scene.vertices[new_index[v]].normal;
     const glm::vec3 file_normal = collector.normals[v];
@@ -297,6 +314,22 @@ Scene load_mesh_scene(const std::string& path) {
       normal = std::isfinite(length) && length > 0.0f ? normal / length : glm::vec3(0.0f, 0.0f, 1.0f);
     }
   }
+}
+
+}  // namespace
+
+Scene load_mesh_scene(const std::string& path) {
+  const std::string format = lower_extension(path);
+  const std::string bytes = read_bytes(path);
+  const MeshFileFacts facts = check_mesh_file(path, format, bytes);
+  PolygonCollector collector;
+  const bool read_ok = read_with_openmesh(path, format, collector);
+  const size_t polygons = checked_polygons(path, format, facts, collector, read_ok);
+  Scene scene;
+  scene.name = path;
+  const std::vector<uint32_t> new_index = add_used_vertices(collector, polygons, scene);
+  add_polygon_fans(collector, polygons, new_index, scene);
+  finish_normals(collector, new_index, scene);
   scene.lit = true;
   scene.camera = frame_bounding_sphere(scene.bounds());
   scene.validate();

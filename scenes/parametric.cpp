@@ -7,31 +7,53 @@
 #include <stdexcept>
 
 namespace oit {
+namespace {
+
+// A point of a parametric surface: where it is, its unit normal and its
+// analytic mean curvature.
+struct SurfacePoint {
+  glm::vec3 position;
+  glm::vec3 normal;
+  float mean_curvature;
+};
+
+// Appends the (slices + 1) x (stacks + 1) vertices of a surface, row by row
+// in v: `point(u, v)` for u, v in [0, 1] (u = 1 has its own vertices, so
+// the seam keeps distinct (u, v)); colour and ids are the surface's.
+template <typename PointAt>
+void append_grid_vertices(Scene& scene, int slices, int stacks, const glm::vec4& color, uint32_t object_id,
+                          uint32_t surface_id, const PointAt& point) {
+  for (int j = 0; j <= stacks; ++j) {
+    const float v = float(j) / float(stacks);
+    for (int i = 0; i <= slices; ++i) {
+      const float u = float(i) / float(slices);
+      const SurfacePoint p = point(u, v);
+      Vertex vertex;
+      vertex.position = p.position;
+      vertex.normal = p.normal;
+      vertex.color = color;
+      vertex.object_id = object_id;
+      vertex.surface_id = surface_id;
+      vertex.uv = glm::vec2(u, v);
+      vertex.mean_curvature = p.mean_curvature;
+      scene.vertices.push_back(vertex);
+    }
+  }
+}
+
+}  // namespace
 
 void append_uv_sphere(Scene& scene, const glm::vec3& center, float radius, int slices, int stacks,
                       const glm::vec4& color, uint32_t object_id, uint32_t surface_id) {
   if (slices < 3 || stacks < 2) throw std::invalid_argument("sphere needs at least 3 slices and 2 stacks");
   const auto base = uint32_t(scene.vertices.size());
-  // (slices + 1) columns so that u = 1 has its own vertices (the seam keeps
-  // distinct (u, v)); positions on the seam coincide, indices do not.
-  for (int j = 0; j <= stacks; ++j) {
-    const float v = float(j) / float(stacks);
+  // Positions on the seam coincide, indices do not.
+  append_grid_vertices(scene, slices, stacks, color, object_id, surface_id, [&](float u, float v) {
     const float theta = v * glm::pi<float>();
-    for (int i = 0; i <= slices; ++i) {
-      const float u = float(i) / float(slices);
-      const float phi = u * glm::two_pi<float>();
-      const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
-      Vertex vertex;
-      vertex.position = center + radius * n;
-      vertex.normal = n;
-      vertex.color = color;
-      vertex.object_id = object_id;
-      vertex.surface_id = surface_id;
-      vertex.uv = glm::vec2(u, v);
-      vertex.mean_curvature = 1.0f / radius;
-      scene.vertices.push_back(vertex);
-    }
-  }
+    const float phi = u * glm::two_pi<float>();
+    const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+    return SurfacePoint{center + radius * n, n, 1.0f / radius};
+  });
   const auto at = [&](int i, int j) { return base + uint32_t(j * (slices + 1) + i); };
   for (int j = 0; j < stacks; ++j) {
     for (int i = 0; i < slices; ++i) {
@@ -80,29 +102,18 @@ void append_torus(Scene& scene, const glm::mat4& to_world, float major_radius, f
   const auto base = uint32_t(scene.vertices.size());
   const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(to_world)));
   const float scale = std::cbrt(std::abs(glm::determinant(glm::mat3(to_world))));
-  for (int j = 0; j <= stacks; ++j) {
-    const float v = float(j) / float(stacks);
+  append_grid_vertices(scene, slices, stacks, color, object_id, surface_id, [&](float u, float v) {
     const float tube = v * glm::two_pi<float>();
-    for (int i = 0; i <= slices; ++i) {
-      const float u = float(i) / float(slices);
-      const float around = u * glm::two_pi<float>();
-      const glm::vec3 radial(std::cos(around), 0.0f, std::sin(around));
-      const glm::vec3 n = std::cos(tube) * radial + glm::vec3(0.0f, std::sin(tube), 0.0f);
-      const glm::vec3 p = major_radius * radial + minor_radius * n;
-      Vertex vertex;
-      vertex.position = glm::vec3(to_world * glm::vec4(p, 1.0f));
-      vertex.normal = glm::normalize(normal_matrix * n);
-      vertex.color = color;
-      vertex.object_id = object_id;
-      vertex.surface_id = surface_id;
-      vertex.uv = glm::vec2(u, v);
-      // H = (R + 2 r cos t) / (2 r (R + r cos t)) for the outward normal.
-      const float c = std::cos(tube);
-      vertex.mean_curvature =
-          (major_radius + 2.0f * minor_radius * c) / (2.0f * minor_radius * (major_radius + minor_radius * c)) / scale;
-      scene.vertices.push_back(vertex);
-    }
-  }
+    const float around = u * glm::two_pi<float>();
+    const glm::vec3 radial(std::cos(around), 0.0f, std::sin(around));
+    const glm::vec3 n = std::cos(tube) * radial + glm::vec3(0.0f, std::sin(tube), 0.0f);
+    const glm::vec3 p = major_radius * radial + minor_radius * n;
+    // H = (R + 2 r cos t) / (2 r (R + r cos t)) for the outward normal.
+    const float c = std::cos(tube);
+    return SurfacePoint{
+        glm::vec3(to_world * glm::vec4(p, 1.0f)), glm::normalize(normal_matrix * n),
+        (major_radius + 2.0f * minor_radius * c) / (2.0f * minor_radius * (major_radius + minor_radius * c)) / scale};
+  });
   append_grid_triangles(scene, base, slices, stacks);
 }
 
@@ -110,23 +121,11 @@ void append_open_cylinder(Scene& scene, const glm::vec3& center, float radius, f
                           int stacks, const glm::vec4& color, uint32_t object_id, uint32_t surface_id) {
   if (slices < 3 || stacks < 1) throw std::invalid_argument("cylinder needs at least 3 slices and 1 stack");
   const auto base = uint32_t(scene.vertices.size());
-  for (int j = 0; j <= stacks; ++j) {
-    const float v = float(j) / float(stacks);
-    for (int i = 0; i <= slices; ++i) {
-      const float u = float(i) / float(slices);
-      const float around = u * glm::two_pi<float>();
-      const glm::vec3 n(std::cos(around), 0.0f, std::sin(around));
-      Vertex vertex;
-      vertex.position = center + radius * n + glm::vec3(0.0f, (v - 0.5f) * height, 0.0f);
-      vertex.normal = n;
-      vertex.color = color;
-      vertex.object_id = object_id;
-      vertex.surface_id = surface_id;
-      vertex.uv = glm::vec2(u, v);
-      vertex.mean_curvature = 0.5f / radius;
-      scene.vertices.push_back(vertex);
-    }
-  }
+  append_grid_vertices(scene, slices, stacks, color, object_id, surface_id, [&](float u, float v) {
+    const float around = u * glm::two_pi<float>();
+    const glm::vec3 n(std::cos(around), 0.0f, std::sin(around));
+    return SurfacePoint{center + radius * n + glm::vec3(0.0f, (v - 0.5f) * height, 0.0f), n, 0.5f / radius};
+  });
   append_grid_triangles(scene, base, slices, stacks);
 }
 

@@ -48,27 +48,11 @@ Scene make_random_quads(const RandomQuadsParams& params) {
   Scene scene;
   scene.name = "random_quads";
   scene.lit = false;
-  for (size_t i = 0; i < quads.size(); ++i) {
-    const auto base = uint32_t(scene.vertices.size());
-    for (glm::vec2 corner : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
-      Vertex v;
-      v.position = glm::vec3(quads[i].center + corner * half, -quads[i].distance);
-      v.color = quads[i].color;
-      v.object_id = uint32_t(i);
-      v.surface_id = uint32_t(i);
-      v.uv = corner * 0.5f + 0.5f;
-      scene.vertices.push_back(v);
-    }
-    for (uint32_t index : {0u, 1u, 2u, 0u, 2u, 3u}) scene.indices.push_back(base + index);
-    scene.triangle_ids.push_back(uint32_t(2 * i));
-    scene.triangle_ids.push_back(uint32_t(2 * i + 1));
-  }
+  for (size_t i = 0; i < quads.size(); ++i)
+    append_facing_quad(scene, quads[i].center, half, quads[i].distance, quads[i].color, uint32_t(i), uint32_t(i),
+                       uint32_t(i));
   scene.object_count = uint32_t(quads.size());
-  scene.camera.orthographic = true;
-  scene.camera.ymag = 1.0f;
-  scene.camera.xmag = 1.0f;
-  scene.camera.znear = 0.5f;
-  scene.camera.zfar = float(params.count) + 1.5f;
+  scene.camera = orthographic_square_camera(0.5f, float(params.count) + 1.5f);
   return scene;
 }
 

@@ -69,6 +69,32 @@ void Scene::validate() const {
   }
 }
 
+Camera orthographic_square_camera(float znear, float zfar) {
+  Camera camera;
+  camera.orthographic = true;
+  camera.xmag = camera.ymag = 1.0f;
+  camera.znear = znear;
+  camera.zfar = zfar;
+  return camera;
+}
+
+void append_facing_quad(Scene& scene, glm::vec2 center, float half, float distance, const glm::vec4& color,
+                        uint32_t object_id, uint32_t surface_id, uint32_t quad) {
+  const auto base = uint32_t(scene.vertices.size());
+  for (glm::vec2 corner : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
+    Vertex v;
+    v.position = glm::vec3(center + corner * half, -distance);
+    v.color = color;
+    v.object_id = object_id;
+    v.surface_id = surface_id;
+    v.uv = corner * 0.5f + 0.5f;
+    scene.vertices.push_back(v);
+  }
+  for (uint32_t index : {0u, 1u, 2u, 0u, 2u, 3u}) scene.indices.push_back(base + index);
+  scene.triangle_ids.push_back(2 * quad);
+  scene.triangle_ids.push_back(2 * quad + 1);
+}
+
 Camera frame_bounding_sphere(const BoundingSphere& sphere) {
   return frame_bounding_sphere(sphere, glm::vec3(0.0f, 0.0f, 1.0f));
 }

@@ -70,6 +70,17 @@ Camera frame_bounding_sphere(const BoundingSphere& sphere);
 // eye; need not be normalised, must not be zero).
 Camera frame_bounding_sphere(const BoundingSphere& sphere, const glm::vec3& direction);
 
+// The camera of the synthetic quad scenes: orthographic, the [-1, 1] square
+// of view space seen down -z from `znear` to `zfar`.
+Camera orthographic_square_camera(float znear, float zfar);
+
+// Appends a square facing the camera (normal +z) at view depth
+// z = -distance, `center` +- `half` in x and y, uv 0..1 across it: two
+// triangles with the ids 2 * quad and 2 * quad + 1. The synthetic quad
+// scenes (quads, random_quads, stress_layers) are built of these.
+void append_facing_quad(Scene& scene, glm::vec2 center, float half, float distance, const glm::vec4& color,
+                        uint32_t object_id, uint32_t surface_id, uint32_t quad);
+
 }  // namespace oit
 
 namespace oit {

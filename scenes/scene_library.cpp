@@ -60,6 +60,53 @@ std::string model_descriptions() {
   return text;
 }
 
+// The scenes' factories: their validated parameters into the generator's.
+Scene make_quads_scene(const ParamSet& p) {
+  StackedQuadsParams q;
+  q.layers = int(p.integer("layers"));
+  q.objects = int(p.integer("objects"));
+  q.seed = uint32_t(p.integer("seed"));
+  q.alpha = float(p.real("alpha"));
+  return make_stacked_quads(q);
+}
+
+Scene make_spheres_scene(const ParamSet& p) {
+  OverlappingSpheresParams s;
+  s.count = int(p.integer("count"));
+  s.slices = int(p.integer("slices"));
+  s.stacks = int(p.integer("stacks"));
+  s.alpha = float(p.real("alpha"));
+  return make_overlapping_spheres(s);
+}
+
+Scene make_random_quads_scene(const ParamSet& p) {
+  RandomQuadsParams q;
+  q.count = int(p.integer("count"));
+  q.size = float(p.real("size"));
+  q.seed = uint32_t(p.integer("seed"));
+  q.alpha = float(p.real("alpha"));
+  q.order = p.choice("order");
+  return make_random_quads(q);
+}
+
+Scene make_particles_scene(const ParamSet& p) {
+  ParticlesParams q;
+  q.per_axis = int(p.integer("per_axis"));
+  q.slices = int(p.integer("slices"));
+  q.stacks = int(p.integer("stacks"));
+  q.alpha = float(p.real("alpha"));
+  q.seed = uint32_t(p.integer("seed"));
+  return make_particles(q);
+}
+
+// A model file with every triangle's opacity replaced by `alpha`.
+Scene make_model_scene(const ParamSet& p) {
+  Scene scene = load_scene_file(model_path(p.choice("name")));
+  scene.name = "model";
+  for (Vertex& v : scene.vertices) v.color.a = float(p.real("alpha"));
+  return scene;
+}
+
 }  // namespace
 
 StressLayersParams stress_layers_params(const ParamSet& p) {
@@ -83,14 +130,7 @@ const std::vector<SceneDescriptor>& scene_library() {
         ParamSpec::integer("objects", 32, 1, 65535, "object ids are drawn from [0, objects)"),
         ParamSpec::integer("seed", 1, 0, 4294967295ll, "random seed for depths, colours and object ids"),
         ParamSpec::real("alpha", 0.3, 0.0, 1.0, "opacity of every quad")},
-       [](const ParamSet& p) {
-         StackedQuadsParams q;
-         q.layers = int(p.integer("layers"));
-         q.objects = int(p.integer("objects"));
-         q.seed = uint32_t(p.integer("seed"));
-         q.alpha = float(p.real("alpha"));
-         return make_stacked_quads(q);
-       }},
+       make_quads_scene},
       {"spheres",
        "closed UV spheres on a ring, overlapping on screen and in depth (perspective, lit): "
        "depth complexity varies per pixel",
@@ -98,14 +138,7 @@ const std::vector<SceneDescriptor>& scene_library() {
         ParamSpec::integer("slices", 32, 3, 4096, "segments around each sphere"),
         ParamSpec::integer("stacks", 16, 2, 4096, "segments from pole to pole"),
         ParamSpec::real("alpha", 0.4, 0.0, 1.0, "opacity of every sphere")},
-       [](const ParamSet& p) {
-         OverlappingSpheresParams s;
-         s.count = int(p.integer("count"));
-         s.slices = int(p.integer("slices"));
-         s.stacks = int(p.integer("stacks"));
-         s.alpha = float(p.real("alpha"));
-         return make_overlapping_spheres(s);
-       }},
+       make_spheres_scene},
       {"torus", "one torus tilted towards the viewer: up to 4 layers, positive and negative curvature (lit)",
        surface_params(0), [](const ParamSet& p) { return make_torus(surface(p)); }},
       {"nested_spheres", "concentric spheres of radii 1 .. 1/count: 2*count layers at the centre (lit)",
@@ -120,30 +153,14 @@ const std::vector<SceneDescriptor>& scene_library() {
         ParamSpec::integer("seed", 1, 0, 4294967295ll, "random seed"),
         ParamSpec::real("alpha", 0.3, 0.0, 1.0, "opacity of every quad"),
         ParamSpec::choice("order", "random", {"random", "front_to_back", "back_to_front"}, "submission order")},
-       [](const ParamSet& p) {
-         RandomQuadsParams q;
-         q.count = int(p.integer("count"));
-         q.size = float(p.real("size"));
-         q.seed = uint32_t(p.integer("seed"));
-         q.alpha = float(p.real("alpha"));
-         q.order = p.choice("order");
-         return make_random_quads(q);
-       }},
+       make_random_quads_scene},
       {"particles", "per_axis^3 small separate spheres on a jittered grid, one object id each (lit)",
        {ParamSpec::integer("per_axis", 6, 1, 40, "spheres along each axis"),
         ParamSpec::integer("slices", 8, 3, 256, "segments around each sphere"),
         ParamSpec::integer("stacks", 6, 2, 256, "segments from pole to pole"),
         ParamSpec::real("alpha", 0.5, 0.0, 1.0, "opacity of every sphere"),
         ParamSpec::integer("seed", 1, 0, 4294967295ll, "random seed")},
-       [](const ParamSet& p) {
-         ParticlesParams q;
-         q.per_axis = int(p.integer("per_axis"));
-         q.slices = int(p.integer("slices"));
-         q.stacks = int(p.integer("stacks"));
-         q.alpha = float(p.real("alpha"));
-         q.seed = uint32_t(p.integer("seed"));
-         return make_particles(q);
-       }},
+       make_particles_scene},
       {"stress_layers",
        "full-screen layers for numerical stress: tiny depth gaps (ndc or relative eye depth under a perspective "
        "camera), coplanar layers (gap 0), extreme alphas, degenerate extras; exact image known in closed form",
@@ -163,12 +180,7 @@ const std::vector<SceneDescriptor>& scene_library() {
            model_descriptions(),
        {ParamSpec::choice("name", "bunny", model_names(), "which model"),
         ParamSpec::real("alpha", 0.4, 0.0, 1.0, "opacity of every triangle (replaces the file's own)")},
-       [](const ParamSet& p) {
-         Scene scene = load_scene_file(model_path(p.choice("name")));
-         scene.name = "model";
-         for (Vertex& v : scene.vertices) v.color.a = float(p.real("alpha"));
-         return scene;
-       }},
+       make_model_scene},
   };
   return library;
 }

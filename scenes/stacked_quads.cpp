@@ -49,30 +49,13 @@ Scene make_stacked_quads(const StackedQuadsParams& params) {
   uint32_t max_object = 0;
   for (size_t i = 0; i < layers.size(); ++i) {
     const QuadLayer& layer = layers[i];
-    const auto base = static_cast<uint32_t>(scene.vertices.size());
     // Larger than the [-1, 1] view so that every pixel centre is covered.
-    for (glm::vec2 corner : {glm::vec2(-1.5f, -1.5f), glm::vec2(1.5f, -1.5f), glm::vec2(1.5f, 1.5f),
-                             glm::vec2(-1.5f, 1.5f)}) {
-      Vertex v;
-      v.position = glm::vec3(corner, -layer.eye_distance);
-      v.normal = glm::vec3(0.0f, 0.0f, 1.0f);
-      v.color = layer.color;
-      v.object_id = layer.object_id;
-      v.surface_id = static_cast<uint32_t>(i);
-      v.uv = corner * (1.0f / 3.0f) + 0.5f;
-      scene.vertices.push_back(v);
-    }
-    for (uint32_t index : {0u, 1u, 2u, 0u, 2u, 3u}) scene.indices.push_back(base + index);
-    scene.triangle_ids.push_back(uint32_t(2 * i));
-    scene.triangle_ids.push_back(uint32_t(2 * i + 1));
+    append_facing_quad(scene, glm::vec2(0.0f), 1.5f, layer.eye_distance, layer.color, layer.object_id, uint32_t(i),
+                       uint32_t(i));
     max_object = std::max(max_object, layer.object_id);
   }
   scene.object_count = max_object + 1;
-  scene.camera.orthographic = true;
-  scene.camera.ymag = 1.0f;
-  scene.camera.xmag = 1.0f;
-  scene.camera.znear = 0.5f;
-  scene.camera.zfar = float(params.layers) + 1.5f;
+  scene.camera = orthographic_square_camera(0.5f, float(params.layers) + 1.5f);
   return scene;
 }
 

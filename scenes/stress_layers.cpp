@@ -74,19 +74,8 @@ Scene make_stress_layers(const StressLayersParams& p) {
       const Layer& layer = layers[k];
       // Large enough to cover the view at this distance (perspective) or the ortho box.
       const float half = p.space == "ndc" ? 1.5f : float(layer.distance * std::tan(kFovY * 0.5) * 3.0);
-      const auto base = uint32_t(scene.vertices.size());
-      for (glm::vec2 c : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
-        Vertex v;
-        v.position = glm::vec3(c * half, float(-layer.distance));
-        v.color = layer.color;
-        v.object_id = layer.index;
-        v.surface_id = layer.index;
-        v.uv = c * 0.5f + 0.5f;
-        scene.vertices.push_back(v);
-      }
-      for (uint32_t index : {0u, 1u, 2u, 0u, 2u, 3u}) scene.indices.push_back(base + index);
-      scene.triangle_ids.push_back(2 * layer.index);
-      scene.triangle_ids.push_back(2 * layer.index + 1);
+      append_facing_quad(scene, glm::vec2(0.0f), half, float(layer.distance), layer.color, layer.index, layer.index,
+                         layer.index);
     }
   }
   if (p.extra == "zero_area" || p.extra == "nan_vertex" || p.extra == "inf_vertex") {
@@ -102,10 +91,7 @@ Scene make_stress_layers(const StressLayersParams& p) {
   }
   scene.object_count = uint32_t(layers.size());
   if (p.space == "ndc") {
-    scene.camera.orthographic = true;
-    scene.camera.xmag = scene.camera.ymag = 1.0f;
-    scene.camera.znear = float(orthographic_near(p));
-    scene.camera.zfar = float(far);
+    scene.camera = orthographic_square_camera(float(orthographic_near(p)), float(far));
   } else {
     scene.camera.yfov_radians = kFovY;
     scene.camera.znear = 1.0f;

@@ -10,15 +10,11 @@ namespace {
 
 constexpr int kSize = 32;
 const char* const kTechnique = "adaptive_transparency";
-
-RunResult adaptive(const RawParams& params, const std::string& scene, const RawParams& scene_params,
-                   const std::string& order = "original") {
-  return test::run_ordered(kTechnique, params, scene, scene_params, kSize, order);
-}
+const test::OneFrameOf spec_of{kTechnique, kSize};
 
 TEST(AdaptiveTransparency, ExactWhenKCoversTheDepthComplexityInAnyOrder) {
   for (const char* order : {"original", "reversed", "shuffled:4"}) {
-    const RunResult r = adaptive({{"k", "8"}}, "quads", {{"layers", "8"}}, order);
+    const RunResult r = test::run_ordered(spec_of({{"k", "8"}}, "quads", {{"layers", "8"}}, order));
     ASSERT_TRUE(r.error.has_value());
     EXPECT_LT(r.error->max_abs, 1e-5) << order;
     EXPECT_EQ(test::extra_counter(r, "node_removals"), 0.0) << order;
@@ -32,14 +28,14 @@ TEST(AdaptiveTransparency, ErrorFallsAsKGrows) {
 }
 
 TEST(AdaptiveTransparency, FiniteAndBoundedOnQuadsAndSpheres) {
-  const RunResult quads = adaptive({{"k", "2"}}, "quads", {{"layers", "32"}});
+  const RunResult quads = test::run_ordered(spec_of({{"k", "2"}}, "quads", {{"layers", "32"}}));
   ASSERT_TRUE(quads.error.has_value());
   EXPECT_EQ(test::garbage_values(quads.image), 0u);
   EXPECT_LT(quads.error->max_abs, 0.2);
   // 32 fragments per pixel into 2 nodes: each fragment after the second
   // removes one node.
   EXPECT_EQ(test::extra_counter(quads, "node_removals"), double(30 * kSize * kSize));
-  const RunResult spheres = adaptive({}, "spheres", {});
+  const RunResult spheres = test::run_ordered(spec_of({}, "spheres", {}));
   ASSERT_TRUE(spheres.error.has_value());
   EXPECT_EQ(test::garbage_values(spheres.image), 0u);
   EXPECT_LT(spheres.error->max_abs, 0.1);

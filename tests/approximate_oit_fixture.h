@@ -63,9 +63,8 @@ inline void expect_no_lock_failures(const RunResult& r) {
 
 // One frame of a technique with ordered per-pixel access, which must be
 // `ok` and have lost no fragment to its lock.
-inline RunResult run_ordered(const std::string& technique, const RawParams& params, const std::string& scene,
-                             const RawParams& scene_params, int size, const std::string& order = "original") {
-  RunResult r = run_ok(one_frame(technique, params, scene, scene_params, size, order));
+inline RunResult run_ordered(const RunSpec& spec) {
+  RunResult r = run_ok(spec);
   expect_no_lock_failures(r);
   return r;
 }

@@ -48,47 +48,17 @@ using test::passes_avoided;
 // One geometry pass per layer.
 uint64_t passes_for_depth(uint64_t depth) { return depth; }
 
-RunSpec spec_of(const RawParams& params, const std::string& scene, const RawParams& scene_params, int size,
-                const std::string& order = "original") {
-  return test::one_frame("depth_peeling", params, scene, scene_params, size, order);
-}
-
+const test::OneFrameOf spec_of{"depth_peeling"};
 using test::run_ok;
 
-std::string write_quads_gltf(const std::string& name, const std::vector<std::pair<float, glm::vec4>>& quads,
-                             double znear = 0.1) {
-  return test::write_quads_gltf("depth_peeling", name, quads, znear);
-}
-
 TEST(DepthPeeling, ExactOnThirtyTwoQuadLayers) {
-  for (const TieBreak& tie : kTieBreaks) {
-    for (const std::string order : {"original", "shuffled:7"}) {
-      SCOPED_TRACE(tie.name + " " + order);
-      const RunResult r = run_ok(spec_of({{"tie_break", tie.name}}, "quads", kQuads32, kSize, order));
-      ASSERT_TRUE(r.error.has_value());
-      // Layers are blended in float, the reference in double: only rounding separates them.
-      EXPECT_LT(r.error->max_abs, 1e-5);
-      EXPECT_EQ(r.counters.fragments_stored, 32u * kPixels);
-      EXPECT_EQ(r.counters.fragments_dropped, 0u);
-      EXPECT_EQ(r.counters.passes, 32u + tie.extra_passes);
-      EXPECT_EQ(r.counters.bytes_allocated, tie.bytes);
-    }
-  }
+  for (const TieBreak& tie : kTieBreaks)
+    test::expect_exact_on_thirty_two_quads("depth_peeling", tie.name, 32u + tie.extra_passes, tie.bytes, kSize);
 }
 
 TEST(DepthPeeling, ExactOnLitSpheresInAnySubmissionOrder) {
-  for (const TieBreak& tie : kTieBreaks) {
-    for (const std::string order : {"original", "shuffled:7"}) {
-      SCOPED_TRACE(tie.name + " " + order);
-      const RunResult r = run_ok(spec_of({{"tie_break", tie.name}}, "spheres", {}, 48, order));
-      ASSERT_TRUE(r.error.has_value());
-      ASSERT_GE(r.max_depth_complexity, 4u) << "the spheres must overlap for this test to mean anything";
-      EXPECT_LT(r.error->max_abs, 1e-5);
-      EXPECT_EQ(r.counters.fragments_stored, r.scene_fragments);
-      EXPECT_EQ(r.counters.fragments_dropped, 0u);
-      EXPECT_EQ(r.counters.passes, r.max_depth_complexity + tie.extra_passes);
-    }
-  }
+  for (const TieBreak& tie : kTieBreaks)
+    test::expect_exact_on_lit_spheres("depth_peeling", tie.name, tie.extra_passes, passes_for_depth);
 }
 
 TEST(DepthPeeling, EarlyExitStopsRightAfterTheLastLayer) {
@@ -109,21 +79,9 @@ TEST(DepthPeeling, PassesAvoidedOnThirtyTwoLayersAndUnevenDepth) {
 TEST(DepthPeeling, PassCapLeavesAnErrorThatShrinksWithMorePasses) {
   for (const TieBreak& tie : kTieBreaks) {
     SCOPED_TRACE(tie.name);
-    double previous_error = 2.0;
-    for (int cap : {4, 8, 16}) {
-      SCOPED_TRACE("max_passes=" + std::to_string(cap));
-      const RunResult r = run_ok(
-          spec_of({{"tie_break", tie.name}, {"max_passes", std::to_string(cap)}}, "quads", kQuads32, kSize));
-      ASSERT_TRUE(r.error.has_value());
-      EXPECT_GT(r.error->max_abs, 1e-4);
-      EXPECT_LT(r.error->max_abs, previous_error);
-      previous_error = r.error->max_abs;
-      EXPECT_EQ(r.counters.passes, uint64_t(cap));
-      // The nearest layers are peeled; the rest is counted as dropped.
-      const uint64_t peeled = uint64_t(cap) - tie.capped_layers_missing;
-      EXPECT_EQ(r.counters.fragments_stored, peeled * kPixels);
-      EXPECT_EQ(r.counters.fragments_dropped, (32u - peeled) * kPixels);
-    }
+    // The nearest layers are peeled; the rest is counted as dropped.
+    test::expect_error_shrinking_with_the_pass_cap(
+        "depth_peeling", tie.name, [&](uint64_t cap) { return cap - tie.capped_layers_missing; }, kSize);
     // The same cap without early exit gives the same image.
     const RunResult capped = run_ok(spec_of({{"tie_break", tie.name}, {"max_passes", "8"}}, "quads", kQuads32, kSize));
     const RunResult no_exit = run_ok(spec_of({{"tie_break", tie.name}, {"max_passes", "8"}, {"early_exit", "false"}},
@@ -146,9 +104,10 @@ TEST(DepthPeeling, SubmissionTieBreakPeelsCoplanarLayersCompletelyInSubmissionOr
 TEST(DepthPeeling, DepthTiesArePeeledCompletelyOnePerPass) {
   // One quad in front, then three coplanar quads of different colours whose
   // fragments tie exactly in depth (triangle ids ascend in this order).
-  const std::string path = write_quads_gltf(
-      "ties", {{-1.0f, {0.9f, 0.9f, 0.1f, 0.3f}}, {-2.0f, {0.9f, 0.1f, 0.1f, 0.5f}},
-               {-2.0f, {0.1f, 0.9f, 0.1f, 0.5f}}, {-2.0f, {0.1f, 0.1f, 0.9f, 0.5f}}});
+  const std::string path = test::write_quads_gltf(
+      "depth_peeling", "ties",
+      {{-1.0f, {0.9f, 0.9f, 0.1f, 0.3f}}, {-2.0f, {0.9f, 0.1f, 0.1f, 0.5f}},
+       {-2.0f, {0.1f, 0.9f, 0.1f, 0.5f}}, {-2.0f, {0.1f, 0.1f, 0.9f, 0.5f}}});
   constexpr int size = 16;
   constexpr uint64_t pixels = uint64_t(size) * size;
   for (const TieBreak& tie : kTieBreaks) {
@@ -174,8 +133,8 @@ TEST(DepthPeeling, DepthTiesArePeeledCompletelyOnePerPass) {
 TEST(DepthPeeling, RefusesACameraWhoseNearPlaneIsAtTheEye) {
   // By submission, depths <= 0 cannot be ordered by the depth test; rather
   // than merging layers silently the run fails, naming the technique and the range.
-  const std::string path = write_quads_gltf("near_zero", {{-1.0f, {0.9f, 0.1f, 0.1f, 0.5f}},
-                                                          {-2.0f, {0.1f, 0.1f, 0.9f, 0.5f}}}, 0.0);
+  const std::string path = test::write_quads_gltf(
+      "depth_peeling", "near_zero", {{-1.0f, {0.9f, 0.1f, 0.1f, 0.5f}}, {-2.0f, {0.1f, 0.1f, 0.9f, 0.5f}}}, 0.0);
   const RunResult r = test::harness().run(spec_of({{"tie_break", "submission"}}, path, {}, 8));
   EXPECT_EQ(r.status, RunStatus::error);
   EXPECT_NE(r.message.find("depth_peeling"), std::string::npos) << r.message;
@@ -187,17 +146,7 @@ TEST(DepthPeeling, RefusesACameraWhoseNearPlaneIsAtTheEye) {
 }
 
 TEST(DepthPeeling, RejectsOutOfRangeParametersNamingThem) {
-  for (const std::string bad : {"0", "4097", "many"}) {
-    const RunResult r = test::harness().run(spec_of({{"max_passes", bad}}, "quads", {{"layers", "2"}}, 8));
-    EXPECT_EQ(r.status, RunStatus::error);
-    EXPECT_NE(r.message.find("max_passes"), std::string::npos) << r.message;
-    EXPECT_NE(r.message.find("depth_peeling"), std::string::npos) << r.message;
-  }
-  for (const auto& [name, bad] : {std::pair{"early_exit", "maybe"}, std::pair{"tie_break", "depth"}}) {
-    const RunResult r = test::harness().run(spec_of({{name, bad}}, "quads", {{"layers", "2"}}, 8));
-    EXPECT_EQ(r.status, RunStatus::error);
-    EXPECT_NE(r.message.find(name), std::string::npos) << r.message;
-  }
+  test::expect_bad_parameters_rejected_by_name("depth_peeling");
 }
 
 }  // namespace

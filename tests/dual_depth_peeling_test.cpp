@@ -46,32 +46,12 @@ using test::passes_avoided;
 // Two layers per geometry pass, front and back.
 uint64_t passes_for_depth(uint64_t depth) { return (depth + 1) / 2; }
 
-RunSpec spec_of(const RawParams& params, const std::string& scene, const RawParams& scene_params, int size,
-                const std::string& order = "original") {
-  return test::one_frame("dual_depth_peeling", params, scene, scene_params, size, order);
-}
-
+const test::OneFrameOf spec_of{"dual_depth_peeling"};
 using test::run_ok;
 
-std::string write_quads_gltf(const std::string& name, const std::vector<std::pair<float, glm::vec4>>& quads,
-                             double znear = 0.1) {
-  return test::write_quads_gltf("dual_depth_peeling", name, quads, znear);
-}
-
 TEST(DualDepthPeeling, ExactOnThirtyTwoQuadLayersInHalfThePasses) {
-  for (const TieBreak& tie : kTieBreaks) {
-    for (const std::string order : {"original", "shuffled:7"}) {
-      SCOPED_TRACE(tie.name + " " + order);
-      const RunResult r = run_ok(spec_of({{"tie_break", tie.name}}, "quads", kQuads32, kSize, order));
-      ASSERT_TRUE(r.error.has_value());
-      // Front and back are blended in float, the reference in double.
-      EXPECT_LT(r.error->max_abs, 1e-5);
-      EXPECT_EQ(r.counters.fragments_stored, 32u * kPixels);
-      EXPECT_EQ(r.counters.fragments_dropped, 0u);
-      EXPECT_EQ(r.counters.passes, 16u + tie.extra_passes);  // 16 passes of 2 layers
-      EXPECT_EQ(r.counters.bytes_allocated, tie.bytes);
-    }
-  }
+  for (const TieBreak& tie : kTieBreaks)  // 16 passes of 2 layers
+    test::expect_exact_on_thirty_two_quads("dual_depth_peeling", tie.name, 16u + tie.extra_passes, tie.bytes, kSize);
 }
 
 TEST(DualDepthPeeling, OddLayerCountCompositesTheMiddleLayerOnce) {
@@ -88,18 +68,8 @@ TEST(DualDepthPeeling, OddLayerCountCompositesTheMiddleLayerOnce) {
 }
 
 TEST(DualDepthPeeling, ExactOnLitSpheresInAnySubmissionOrder) {
-  for (const TieBreak& tie : kTieBreaks) {
-    for (const std::string order : {"original", "shuffled:7"}) {
-      SCOPED_TRACE(tie.name + " " + order);
-      const RunResult r = run_ok(spec_of({{"tie_break", tie.name}}, "spheres", {}, 48, order));
-      ASSERT_TRUE(r.error.has_value());
-      ASSERT_GE(r.max_depth_complexity, 4u) << "the spheres must overlap for this test to mean anything";
-      EXPECT_LT(r.error->max_abs, 1e-5);
-      EXPECT_EQ(r.counters.fragments_stored, r.scene_fragments);
-      EXPECT_EQ(r.counters.fragments_dropped, 0u);
-      EXPECT_EQ(r.counters.passes, (r.max_depth_complexity + 1u) / 2u + tie.extra_passes);
-    }
-  }
+  for (const TieBreak& tie : kTieBreaks)
+    test::expect_exact_on_lit_spheres("dual_depth_peeling", tie.name, tie.extra_passes, passes_for_depth);
 }
 
 TEST(DualDepthPeeling, WithoutEarlyExitRunsExactlyMaxPasses) {
@@ -121,21 +91,9 @@ TEST(DualDepthPeeling, PassesAvoidedOnThirtyTwoLayersAndUnevenDepth) {
 TEST(DualDepthPeeling, PassCapLeavesAnErrorThatShrinksWithMorePasses) {
   for (const TieBreak& tie : kTieBreaks) {
     SCOPED_TRACE(tie.name);
-    double previous_error = 2.0;
-    for (int cap : {4, 8, 16}) {
-      SCOPED_TRACE("max_passes=" + std::to_string(cap));
-      const RunResult r = run_ok(
-          spec_of({{"tie_break", tie.name}, {"max_passes", std::to_string(cap)}}, "quads", kQuads32, kSize));
-      ASSERT_TRUE(r.error.has_value());
-      EXPECT_GT(r.error->max_abs, 1e-4);
-      EXPECT_LT(r.error->max_abs, previous_error);
-      previous_error = r.error->max_abs;
-      EXPECT_EQ(r.counters.passes, uint64_t(cap));
-      // Each compositing pass takes 2 layers; the middle rest is counted as dropped.
-      const uint64_t peeled_layers = 2u * (uint64_t(cap) - tie.passes_not_compositing);
-      EXPECT_EQ(r.counters.fragments_stored, peeled_layers * kPixels);
-      EXPECT_EQ(r.counters.fragments_dropped, (32u - peeled_layers) * kPixels);
-    }
+    // Each compositing pass takes 2 layers; the middle rest is counted as dropped.
+    test::expect_error_shrinking_with_the_pass_cap(
+        "dual_depth_peeling", tie.name, [&](uint64_t cap) { return 2u * (cap - tie.passes_not_compositing); }, kSize);
     // Passes that composite nothing: nothing stored, all counted.
     const RunResult nothing = run_ok(spec_of(
         {{"tie_break", tie.name}, {"max_passes", std::to_string(tie.passes_not_compositing)}}, "quads", kQuads32, kSize));
@@ -161,9 +119,9 @@ TEST(DualDepthPeeling, TriangleIdTieBreakOrdersTiesAtTheFrontTheBackAndInTheMidd
   const glm::vec4 yellow{0.9f, 0.9f, 0.1f, 0.3f}, cyan{0.1f, 0.8f, 0.8f, 0.6f}, white{0.8f, 0.8f, 0.8f, 0.4f};
   // Ties of 3 at the front and 2 at the back, one layer alone and a tie of 2
   // in the middle: selections meet inside a tie and cross tie boundaries.
-  const std::string mixed = write_quads_gltf(
-      "mixed_ties", {{-1.0f, red}, {-1.0f, green}, {-1.0f, blue}, {-1.5f, yellow}, {-2.0f, cyan},
-                     {-2.0f, white}, {-3.0f, green}, {-3.0f, red}});
+  const std::string mixed = test::write_quads_gltf("dual_depth_peeling", "mixed_ties",
+                                                   {{-1.0f, red}, {-1.0f, green}, {-1.0f, blue}, {-1.5f, yellow},
+                                                    {-2.0f, cyan}, {-2.0f, white}, {-3.0f, green}, {-3.0f, red}});
   for (const std::string order : {"original", "reversed", "shuffled:3", "shuffled:5"}) {
     SCOPED_TRACE(order);
     const RunResult r = run_ok(spec_of({{"tie_break", "triangle_id"}}, mixed, {}, size, order));
@@ -181,8 +139,8 @@ TEST(DualDepthPeeling, DepthTiesAreAllCompositedInSubmissionOrder) {
   const glm::vec4 red{0.9f, 0.1f, 0.1f, 0.5f}, green{0.1f, 0.9f, 0.1f, 0.5f}, blue{0.1f, 0.1f, 0.9f, 0.5f};
   const glm::vec4 yellow{0.9f, 0.9f, 0.1f, 0.3f};
   // Three coplanar quads in front (their fragments tie exactly in depth), one behind.
-  const std::string front_tie =
-      write_quads_gltf("front_tie", {{-1.0f, red}, {-1.0f, green}, {-1.0f, blue}, {-2.0f, yellow}});
+  const std::string front_tie = test::write_quads_gltf(
+      "dual_depth_peeling", "front_tie", {{-1.0f, red}, {-1.0f, green}, {-1.0f, blue}, {-2.0f, yellow}});
   // The tied fragments all sit at the nearest depth: each is blended under
   // the front in rasterisation order, which in id order is the reference's.
   const RunResult in_order = run_ok(spec_of(by_submission, front_tie, {}, size));
@@ -197,8 +155,8 @@ TEST(DualDepthPeeling, DepthTiesAreAllCompositedInSubmissionOrder) {
   EXPECT_GT(reversed.error->max_abs, 0.05);
   // A tie at the farthest depth is blended over the back in rasterisation
   // order, so there submission in id order is the reversed one: still nothing lost.
-  const std::string back_tie =
-      write_quads_gltf("back_tie", {{-1.0f, yellow}, {-2.0f, red}, {-2.0f, green}, {-2.0f, blue}});
+  const std::string back_tie = test::write_quads_gltf(
+      "dual_depth_peeling", "back_tie", {{-1.0f, yellow}, {-2.0f, red}, {-2.0f, green}, {-2.0f, blue}});
   for (const std::string order : {"original", "reversed"}) {
     SCOPED_TRACE(order);
     const RunResult r = run_ok(spec_of(by_submission, back_tie, {}, size, order));
@@ -224,17 +182,7 @@ TEST(DualDepthPeeling, DepthTiesAreAllCompositedInSubmissionOrder) {
 }
 
 TEST(DualDepthPeeling, RejectsOutOfRangeParametersNamingThem) {
-  for (const std::string bad : {"0", "4097", "many"}) {
-    const RunResult r = test::harness().run(spec_of({{"max_passes", bad}}, "quads", {{"layers", "2"}}, 8));
-    EXPECT_EQ(r.status, RunStatus::error);
-    EXPECT_NE(r.message.find("max_passes"), std::string::npos) << r.message;
-    EXPECT_NE(r.message.find("dual_depth_peeling"), std::string::npos) << r.message;
-  }
-  for (const auto& [name, bad] : {std::pair{"early_exit", "maybe"}, std::pair{"tie_break", "depth"}}) {
-    const RunResult r = test::harness().run(spec_of({{name, bad}}, "quads", {{"layers", "2"}}, 8));
-    EXPECT_EQ(r.status, RunStatus::error);
-    EXPECT_NE(r.message.find(name), std::string::npos) << r.message;
-  }
+  test::expect_bad_parameters_rejected_by_name("dual_depth_peeling");
 }
 
 }  // namespace

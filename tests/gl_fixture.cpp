@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "harness/core/image.h"
+#include "harness/core/prepared_run.h"
 #include "harness/gl/check.h"
 #include "scenes/scene.h"
 #include "scenes/scene_library.h"
@@ -85,10 +86,16 @@ RunResult render_once(const std::string& technique, const RawParams& params, con
   return result;
 }
 
-std::string write_quads_gltf(const std::string& folder, const std::string& name,
-                             const std::vector<std::pair<float, glm::vec4>>& quads, double znear) {
+std::string write_test_file(const std::string& folder, const std::string& name, const std::string& bytes) {
   const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/" + folder;
   std::filesystem::create_directories(dir);
+  const std::string path = dir + "/" + name;
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  return path;
+}
+
+std::string write_quads_gltf(const std::string& folder, const std::string& name,
+                             const std::vector<std::pair<float, glm::vec4>>& quads, double znear) {
   std::vector<float> positions;
   for (const auto& quad : quads) {
     const float corners[4][2] = {{-1.5f, -1.5f}, {1.5f, -1.5f}, {1.5f, 1.5f}, {-1.5f, 1.5f}};
@@ -98,7 +105,7 @@ std::string write_quads_gltf(const std::string& folder, const std::string& name,
   std::string bin(positions.size() * 4 + sizeof(indices), '\0');
   std::memcpy(bin.data(), positions.data(), positions.size() * 4);
   std::memcpy(bin.data() + positions.size() * 4, indices, sizeof(indices));
-  std::ofstream(dir + "/" + name + ".bin", std::ios::binary) << bin;
+  write_test_file(folder, name + ".bin", bin);
 
   using nlohmann::json;
   json nodes = json::array(), meshes = json::array(), materials = json::array(), accessors = json::array(),
@@ -133,28 +140,24 @@ std::string write_quads_gltf(const std::string& folder, const std::string& name,
       {"bufferViews", views},
       {"buffers", {{{"uri", name + ".bin"}, {"byteLength", bin.size()}}}},
   };
-  const std::string path = dir + "/" + name + ".gltf";
-  std::ofstream(path) << gltf.dump(2);
-  return path;
+  return write_test_file(folder, name + ".gltf", gltf.dump(2));
 }
 
 std::vector<DiagnosticImage> diagnostic_images_once(const std::string& technique, const RawParams& params,
                                                     const std::string& scene, const RawParams& scene_params,
                                                     int width, int height) {
   gl_context();
-  const TechniqueDescriptor& descriptor = builtin_techniques().get(technique);
-  const ParamSet values(descriptor.params, params, technique);
+  PreparedRun prepared(builtin_techniques(), technique, params);
   const Scene loaded = load_scene(scene, scene_params);
   const SceneGpu gpu(loaded);
   const Camera camera = resolve_camera(gpu, "default");
-  std::unique_ptr<Technique> instance = descriptor.create(values);
-  instance->resize(width, height);
+  prepared.create(untiled_plan(width, height));
   RenderTarget target(width, height);
   StageClock clock(ClockKind::wall);
   const Frame frame{gpu, camera.view, camera.projection(float(width) / float(height)), width, height,
                     glm::vec3(0.0f), target.framebuffer.id(), clock};
-  render_frame(*instance, frame, false);
-  return instance->diagnostic_images();
+  prepared.render_frame(frame, false, true);
+  return prepared.technique().diagnostic_images();
 }
 
 const DiagnosticImage* find_diagnostic(const std::vector<DiagnosticImage>& images, const std::string& name) {

@@ -15,11 +15,32 @@ Harness& harness();
 RunSpec one_frame(const std::string& technique, const RawParams& params, const std::string& scene,
                   const RawParams& scene_params, int size, const std::string& order = "original");
 
+// one_frame() of the technique a test file is about, so the file names it
+// once: `const test::OneFrameOf spec_of{"kbuffer"};` then
+// spec_of(params, scene, scene_params, size[, order]), or without the size
+// when `size` is given here.
+struct OneFrameOf {
+  std::string technique;
+  int size = 0;
+  RunSpec operator()(const RawParams& params, const std::string& scene, const RawParams& scene_params, int frame_size,
+                     const std::string& order = "original") const {
+    return one_frame(technique, params, scene, scene_params, frame_size, order);
+  }
+  RunSpec operator()(const RawParams& params, const std::string& scene, const RawParams& scene_params,
+                     const std::string& order = "original") const {
+    return one_frame(technique, params, scene, scene_params, size, order);
+  }
+};
+
 // Runs `spec`, which must end `ok` and compared with the reference.
 RunResult run_ok(const RunSpec& spec);
 
 // The largest difference between two images' channel values.
 double max_abs_difference(const Image& a, const Image& b);
+
+// Writes `bytes` to <build>/test_output/<folder>/<name> (replacing it);
+// returns the path.
+std::string write_test_file(const std::string& folder, const std::string& name, const std::string& bytes);
 
 // Writes <build>/test_output/<folder>/<name>.gltf (and .bin): full-screen
 // unlit quads (view-space z, colour) in this order, seen by an orthographic

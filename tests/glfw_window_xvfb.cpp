@@ -6,6 +6,7 @@
 #include "harness/core/runner.h"
 #include "harness/gl/glfw_window.h"
 #include "scenes/stacked_quads.h"
+#include "tests/gl_fixture.h"
 
 namespace oit {
 namespace {
@@ -15,13 +16,7 @@ TEST(GlfwWindow, HarnessRendersTheExactReferenceInAWindowContext) {
   EXPECT_FALSE(window.device().renderer.empty());
   EXPECT_EQ(window.device().platform, "glfw");
   Harness harness(window, builtin_techniques());
-  RunSpec spec;
-  spec.technique = "reference";
-  spec.scene_params = {{"layers", "8"}};
-  spec.width = spec.height = 32;
-  spec.warmup = 0;
-  spec.frames = 1;
-  const RunResult r = harness.run(spec);
+  const RunResult r = harness.run(test::one_frame("reference", {}, "quads", {{"layers", "8"}}, 32));
   ASSERT_EQ(r.status, RunStatus::ok) << r.message;
   StackedQuadsParams p;
   p.layers = 8;

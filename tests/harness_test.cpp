@@ -13,17 +13,8 @@
 namespace oit {
 namespace {
 
-RunSpec small_run(const std::string& technique, RawParams params = {}) {
-  RunSpec spec;
-  spec.technique = technique;
-  spec.params = std::move(params);
-  spec.scene = "quads";
-  spec.scene_params = {{"layers", "4"}};
-  spec.width = 16;
-  spec.height = 16;
-  spec.warmup = 0;
-  spec.frames = 1;
-  return spec;
+RunSpec small_run(const std::string& technique, const RawParams& params = {}) {
+  return test::one_frame(technique, params, "quads", {{"layers", "4"}}, 16);
 }
 
 // tests/CMakeLists.txt gives every discovered test both variables (through

@@ -15,11 +15,7 @@ namespace {
 constexpr int kSize = 32;
 const RawParams kQuads32 = {{"layers", "32"}};
 
-RunSpec spec_of(const RawParams& params, const std::string& scene, const RawParams& scene_params, int size,
-                const std::string& order = "original") {
-  return test::one_frame("kbuffer", params, scene, scene_params, size, order);
-}
-
+const test::OneFrameOf spec_of{"kbuffer"};
 using test::run_ok;
 
 double named(const std::vector<Figure>& values, const std::string& name) {

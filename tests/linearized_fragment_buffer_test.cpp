@@ -109,17 +109,8 @@ TEST(LinearizedFragmentBuffer, EveryOptionMatchesTheReferenceOnSpheresAndUnevenL
 
 TEST(LinearizedFragmentBuffer, EveryOptionIsOrderIndependent) {
   for (const RawParams& params : kOptions) {
-    RunSpec spec;
-    spec.technique = "linearized_fragment_buffer";
-    spec.params = params;
-    spec.scene = "quads";
-    spec.scene_params = {{"layers", "32"}};
-    spec.submission_order = "shuffled:7";
-    spec.width = 48;
-    spec.height = 48;
-    spec.warmup = 0;
-    spec.frames = 1;
-    const RunResult r = test::harness().run(spec);
+    const RunResult r = test::harness().run(
+        test::one_frame("linearized_fragment_buffer", params, "quads", {{"layers", "32"}}, 48, "shuffled:7"));
     ASSERT_EQ(r.status, RunStatus::ok) << r.message;
     EXPECT_LT(r.error->max_abs, kFloatTolerance) << describe(params);
   }

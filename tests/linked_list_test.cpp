@@ -129,17 +129,8 @@ TEST(LinkedList, EverySortMatchesTheReferenceOnSpheres) {
 
 TEST(LinkedList, EverySortIsOrderIndependent) {
   for (const std::string& sort : kSorts) {
-    RunSpec spec;
-    spec.technique = "linked_list";
-    spec.params = {{"sort", sort}};
-    spec.scene = "quads";
-    spec.scene_params = {{"layers", "32"}};
-    spec.submission_order = "shuffled:7";
-    spec.width = 48;
-    spec.height = 48;
-    spec.warmup = 0;
-    spec.frames = 1;
-    const RunResult r = test::harness().run(spec);
+    const RunResult r = test::harness().run(
+        test::one_frame("linked_list", {{"sort", sort}}, "quads", {{"layers", "32"}}, 48, "shuffled:7"));
     ASSERT_EQ(r.status, RunStatus::ok) << r.message;
     EXPECT_LT(r.error->max_abs, kFloatTolerance) << sort;
   }
@@ -237,14 +228,7 @@ TEST(LinkedList, NetworkFallsBackForListsLongerThanItsLargestNetwork) {
 }
 
 TEST(LinkedList, UnknownSortIsAnErrorNamingTheParameter) {
-  RunSpec spec;
-  spec.technique = "linked_list";
-  spec.params = {{"sort", "bubble"}};
-  spec.width = 8;
-  spec.height = 8;
-  spec.warmup = 0;
-  spec.frames = 1;
-  const RunResult r = test::harness().run(spec);
+  const RunResult r = test::harness().run(test::one_frame("linked_list", {{"sort", "bubble"}}, "quads", {}, 8));
   EXPECT_EQ(r.status, RunStatus::error);
   EXPECT_NE(r.message.find("sort"), std::string::npos) << r.message;
   EXPECT_NE(r.message.find("bubble"), std::string::npos) << r.message;
@@ -419,12 +403,8 @@ TEST(LinkedListAdaptive, WorkSavedByLengthClassesMatchesTheMeasuredListLengths) 
 }
 
 TEST(LinkedList, UnknownPoolSizingIsAnErrorNamingTheParameter) {
-  RunSpec spec;
-  spec.technique = "linked_list";
-  spec.params = {{"pool_sizing", "guess"}};
-  spec.width = 8;
-  spec.height = 8;
-  const RunResult r = test::harness().run(spec);
+  const RunResult r =
+      test::harness().run(test::one_frame("linked_list", {{"pool_sizing", "guess"}}, "quads", {}, 8));
   EXPECT_EQ(r.status, RunStatus::error);
   EXPECT_NE(r.message.find("pool_sizing"), std::string::npos) << r.message;
   EXPECT_NE(r.message.find("guess"), std::string::npos) << r.message;

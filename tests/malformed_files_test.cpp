@@ -11,23 +11,16 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <random>
 
 #include "scenes/scene_library.h"
+#include "tests/gl_fixture.h"
 
 namespace oit {
 namespace {
 
 const std::string kDir = std::string(OIT_BINARY_DIR) + "/test_output/malformed";
-
-std::string write_file(const std::string& name, const std::string& bytes) {
-  std::filesystem::create_directories(kDir);
-  const std::string path = kDir + "/" + name;
-  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
-  return path;
-}
 
 // Loads `path`; true when it loaded. A rejection must be an invalid_argument
 // whose message names the file (and contains `problem` when given).
@@ -48,7 +41,7 @@ bool loads_or_rejects_cleanly(const std::string& path, const std::string& proble
 }
 
 void expect_rejected(const std::string& name, const std::string& bytes, const std::string& problem) {
-  EXPECT_FALSE(loads_or_rejects_cleanly(write_file(name, bytes), problem)) << name << " loaded";
+  EXPECT_FALSE(loads_or_rejects_cleanly(test::write_test_file("malformed", name, bytes), problem)) << name << " loaded";
 }
 
 std::string floats(std::initializer_list<float> values) {
@@ -184,7 +177,7 @@ std::string triangle_bin(float corner_x = 1.0f) {
 TEST(MalformedFiles, GltfFilesAreRejectedNamingFileAndProblem) {
   const std::string bin = triangle_bin();
   const nlohmann::json good = triangle_json(bin.size());
-  ASSERT_TRUE(loads_or_rejects_cleanly(write_file("good.glb", glb(good, bin))));
+  ASSERT_TRUE(loads_or_rejects_cleanly(test::write_test_file("malformed", "good.glb", glb(good, bin))));
   expect_rejected("empty.glb", "", "cannot load glTF");
   expect_rejected("empty.gltf", "", "cannot load glTF");
   const std::string whole = glb(good, bin);
@@ -260,9 +253,10 @@ std::vector<std::pair<std::string, std::string>> valid_samples() {
 
 TEST(MalformedFiles, EveryTruncationLoadsOrIsRejectedCleanly) {
   for (const auto& [format, bytes] : valid_samples()) {
-    ASSERT_TRUE(loads_or_rejects_cleanly(write_file("whole." + format, bytes))) << format;
+    ASSERT_TRUE(loads_or_rejects_cleanly(test::write_test_file("malformed", "whole." + format, bytes))) << format;
     for (size_t length = 0; length < bytes.size(); ++length)
-      loads_or_rejects_cleanly(write_file("cut_" + std::to_string(length) + "." + format, bytes.substr(0, length)));
+      loads_or_rejects_cleanly(
+          test::write_test_file("malformed", "cut_" + std::to_string(length) + "." + format, bytes.substr(0, length)));
   }
 }
 
@@ -284,7 +278,7 @@ TEST(MalformedFiles, SeededMutationsLoadOrAreRejectedCleanly) {
         }
       }
       const std::string name = "mutant_" + std::to_string(round % 8) + "." + format;
-      (loads_or_rejects_cleanly(write_file(name, mutated)) ? loaded : rejected) += 1;
+      (loads_or_rejects_cleanly(test::write_test_file("malformed", name, mutated)) ? loaded : rejected) += 1;
     }
   }
   // Both outcomes occur: the mutations are neither all harmless nor all fatal.

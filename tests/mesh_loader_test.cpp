@@ -5,7 +5,6 @@
 
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <set>
 
 #include "harness/core/complexity.h"
@@ -18,13 +17,6 @@ namespace oit {
 namespace {
 
 const std::string kDir = std::string(OIT_BINARY_DIR) + "/test_output/mesh_loader";
-
-std::string write_file(const std::string& name, const std::string& bytes) {
-  std::filesystem::create_directories(kDir);
-  const std::string path = kDir + "/" + name;
-  std::ofstream(path, std::ios::binary) << bytes;
-  return path;
-}
 
 // A unit quad in z = 0 (one polygon, corners 1 2 3 4 counter-clockwise seen
 // from +z), a separate triangle at z = 1, and one vertex no face uses.
@@ -71,7 +63,7 @@ std::string two_triangles_stl_binary() {
 }
 
 TEST(MeshLoader, ObjPolygonsComponentsAndSharedIndices) {
-  const Scene scene = load_scene(write_file("two_parts.obj", kTwoPartsObj), {});
+  const Scene scene = load_scene(test::write_test_file("mesh_loader", "two_parts.obj", kTwoPartsObj), {});
   // The unused vertex is dropped; the quad is a fan of 2 triangles.
   EXPECT_EQ(scene.vertices.size(), 7u);
   ASSERT_EQ(scene.triangle_count(), 3u);
@@ -110,9 +102,9 @@ void expect_outward_tetrahedron(const Scene& scene, const std::string& what) {
 }
 
 TEST(MeshLoader, OffAndPlyTetrahedraAreTheSame) {
-  const Scene off = load_scene(write_file("tetra.off", kTetraOff), {});
+  const Scene off = load_scene(test::write_test_file("mesh_loader", "tetra.off", kTetraOff), {});
   expect_outward_tetrahedron(off, "off");
-  const Scene ply = load_scene(write_file("tetra.ply", tetra_ply_binary()), {});
+  const Scene ply = load_scene(test::write_test_file("mesh_loader", "tetra.ply", tetra_ply_binary()), {});
   expect_outward_tetrahedron(ply, "binary ply");
   EXPECT_EQ(off.indices, ply.indices);
   for (size_t v = 0; v < 4; ++v) EXPECT_EQ(off.vertices[v].position, ply.vertices[v].position);
@@ -130,7 +122,7 @@ TEST(MeshLoader, StlCornersAreMergedIntoSharedVertices) {
       "endsolid two\n";
   for (const auto& [name, bytes] : {std::pair<std::string, std::string>{"two_ascii.stl", ascii},
                                     {"two_binary.stl", two_triangles_stl_binary()}}) {
-    const Scene scene = load_scene(write_file(name, bytes), {});
+    const Scene scene = load_scene(test::write_test_file("mesh_loader", name, bytes), {});
     EXPECT_EQ(scene.vertices.size(), 4u) << name;
     ASSERT_EQ(scene.triangle_count(), 2u) << name;
     EXPECT_EQ(scene.object_count, 1u) << name;
@@ -143,11 +135,12 @@ TEST(MeshLoader, StlCornersAreMergedIntoSharedVertices) {
 }
 
 TEST(MeshLoader, ExtensionsAreCaseInsensitive) {
-  const Scene scene = load_scene(write_file("TETRA_UPPER.OFF", kTetraOff), {});
+  const Scene scene = load_scene(test::write_test_file("mesh_loader", "TETRA_UPPER.OFF", kTetraOff), {});
   EXPECT_EQ(scene.triangle_count(), 4u);
   EXPECT_TRUE(is_mesh_file("a/b.Ply"));
   EXPECT_FALSE(is_mesh_file("a/b.plyx"));
-  EXPECT_THROW(load_scene(write_file("tetra.off", kTetraOff), {{"alpha", "0.5"}}), std::invalid_argument);
+  EXPECT_THROW(load_scene(test::write_test_file("mesh_loader", "tetra.off", kTetraOff), {{"alpha", "0.5"}}),
+               std::invalid_argument);
 }
 
 TEST(MeshLoader, ZeroAreaTrianglesAreKeptAndChangeNothing) {
@@ -156,8 +149,8 @@ TEST(MeshLoader, ZeroAreaTrianglesAreKeptAndChangeNothing) {
   const std::string degenerate =
       "OFF\n5 6 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n0.5 0 0\n"
       "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 0 1 1\n3 0 4 1\n";
-  const std::string with_path = write_file("tetra_degenerate.off", degenerate);
-  const std::string without_path = write_file("tetra_plain.off", kTetraOff);
+  const std::string with_path = test::write_test_file("mesh_loader", "tetra_degenerate.off", degenerate);
+  const std::string without_path = test::write_test_file("mesh_loader", "tetra_plain.off", kTetraOff);
   const Scene with = load_scene(with_path, {});
   EXPECT_EQ(with.triangle_count(), 6u);
   const RunResult a = test::render_once("reference", {}, with_path, {}, 32, 32);

@@ -9,16 +9,11 @@ namespace {
 
 using test::garbage_values;
 using test::max_abs_difference;
-using test::one_frame;
 using test::run_ok;
 
 constexpr int kSize = 32;
+const test::OneFrameOf spec_of{"moment_oit", kSize};
 const char* const kConfigurations[] = {"power4", "power6", "power8", "trig2", "trig3", "trig4"};
-
-RunResult moments_run(const RawParams& params, const std::string& scene, const RawParams& scene_params,
-                      const std::string& order = "original") {
-  return run_ok(one_frame("moment_oit", params, scene, scene_params, kSize, order));
-}
 
 // One fragment per pixel: b0 = A = -ln(1 - a), and compose writes
 // (T a c / T a) * (1 - e^-A) = c a whatever transmittance T was
@@ -29,10 +24,10 @@ RunResult moments_run(const RawParams& params, const std::string& scene, const R
 // 8.8e-4, times the coverage 0.3: 2.6e-4; together below 4e-4.
 TEST(MomentOit, SingleLayerEqualsOverCompositingUpToStoragePrecision) {
   for (const char* moments : kConfigurations) {
-    const RunResult full = moments_run({{"moments", moments}}, "quads", {{"layers", "1"}});
+    const RunResult full = run_ok(spec_of({{"moments", moments}}, "quads", {{"layers", "1"}}));
     ASSERT_TRUE(full.error.has_value());
     EXPECT_LT(full.error->max_abs, 1e-6) << moments;
-    const RunResult half = moments_run({{"moments", moments}, {"precision", "half"}}, "quads", {{"layers", "1"}});
+    const RunResult half = run_ok(spec_of({{"moments", moments}, {"precision", "half"}}, "quads", {{"layers", "1"}}));
     ASSERT_TRUE(half.error.has_value());
     EXPECT_LT(half.error->max_abs, 4e-4) << moments;
   }
@@ -45,11 +40,11 @@ TEST(MomentOit, FiniteAndBoundedOnQuadsAndSpheres) {
   for (const char* moments : kConfigurations) {
     for (const char* precision : {"float", "half"}) {
       const RawParams params = {{"moments", moments}, {"precision", precision}};
-      const RunResult quads = moments_run(params, "quads", {{"layers", "32"}});
+      const RunResult quads = run_ok(spec_of(params, "quads", {{"layers", "32"}}));
       ASSERT_TRUE(quads.error.has_value());
       EXPECT_EQ(garbage_values(quads.image), 0u) << moments << " " << precision;
       EXPECT_LT(quads.error->max_abs, 0.15) << moments << " " << precision;
-      const RunResult spheres = moments_run(params, "spheres", {});
+      const RunResult spheres = run_ok(spec_of(params, "spheres", {}));
       ASSERT_TRUE(spheres.error.has_value());
       EXPECT_EQ(garbage_values(spheres.image), 0u) << moments << " " << precision;
       EXPECT_LT(spheres.error->max_abs, 0.15) << moments << " " << precision;
@@ -73,8 +68,8 @@ TEST(MomentOit, ErrorFallsWithMoreMoments) {
 
 TEST(MomentOit, IsIndependentOfSubmissionOrder) {
   for (const char* moments : {"power6", "trig3"}) {
-    const RunResult original = moments_run({{"moments", moments}}, "quads", {{"layers", "16"}});
-    const RunResult shuffled = moments_run({{"moments", moments}}, "quads", {{"layers", "16"}}, "shuffled:3");
+    const RunResult original = run_ok(spec_of({{"moments", moments}}, "quads", {{"layers", "16"}}));
+    const RunResult shuffled = run_ok(spec_of({{"moments", moments}}, "quads", {{"layers", "16"}}, "shuffled:3"));
     EXPECT_LT(max_abs_difference(original.image, shuffled.image), 1e-5) << moments;
   }
 }
@@ -83,10 +78,11 @@ TEST(MomentOit, IsIndependentOfSubmissionOrder) {
 // the upper bound (1) of the absorbance in front: each fragment is
 // attenuated more, and the counters report the configuration's bias.
 TEST(MomentOit, OverestimationAndBiasAreApplied) {
-  const RunResult lower = moments_run({{"overestimation", "0"}}, "quads", {{"layers", "8"}});
-  const RunResult upper = moments_run({{"overestimation", "1"}}, "quads", {{"layers", "8"}});
+  const RunResult lower = run_ok(spec_of({{"overestimation", "0"}}, "quads", {{"layers", "8"}}));
+  const RunResult upper = run_ok(spec_of({{"overestimation", "1"}}, "quads", {{"layers", "8"}}));
   EXPECT_GT(max_abs_difference(lower.image, upper.image), 1e-3);
-  const RunResult power8 = moments_run({{"moments", "power8"}, {"moment_bias_scale", "2"}}, "quads", {{"layers", "2"}});
+  const RunResult power8 =
+      run_ok(spec_of({{"moments", "power8"}, {"moment_bias_scale", "2"}}, "quads", {{"layers", "2"}}));
   EXPECT_NEAR(test::extra_counter(power8, "moment_bias"), 1e-4, 1e-12);
   EXPECT_EQ(power8.counters.passes, 2u);
   // b0 + 8 moments + RGBA accumulation, 32-bit.
@@ -94,9 +90,8 @@ TEST(MomentOit, OverestimationAndBiasAreApplied) {
 }
 
 TEST(MomentOit, RejectsABiasThatDiscardsTheMoments) {
-  const RunResult r = test::harness().run(
-      one_frame("moment_oit", {{"moments", "power8"}, {"precision", "half"}, {"moment_bias_scale", "1000"}}, "quads",
-                {{"layers", "2"}}, kSize));
+  const RunResult r = test::harness().run(spec_of(
+      {{"moments", "power8"}, {"precision", "half"}, {"moment_bias_scale", "1000"}}, "quads", {{"layers", "2"}}));
   EXPECT_EQ(r.status, RunStatus::error);
   EXPECT_NE(r.message.find("moment_bias_scale=1000"), std::string::npos) << r.message;
 }

@@ -13,15 +13,11 @@ namespace {
 
 constexpr int kSize = 32;
 const char* const kTechnique = "multi_layer_alpha_blending";
-
-RunResult mlab(const RawParams& params, const std::string& scene, const RawParams& scene_params,
-               const std::string& order = "original") {
-  return test::run_ordered(kTechnique, params, scene, scene_params, kSize, order);
-}
+const test::OneFrameOf spec_of{kTechnique, kSize};
 
 TEST(MultiLayerAlphaBlending, ExactWhenKCoversTheDepthComplexityInAnyOrder) {
   for (const char* order : {"original", "reversed", "shuffled:4"}) {
-    const RunResult r = mlab({{"k", "8"}}, "quads", {{"layers", "8"}}, order);
+    const RunResult r = test::run_ordered(spec_of({{"k", "8"}}, "quads", {{"layers", "8"}}, order));
     ASSERT_TRUE(r.error.has_value());
     EXPECT_LT(r.error->max_abs, 1e-5) << order;
     EXPECT_EQ(test::extra_counter(r, "merges"), 0.0) << order;
@@ -35,15 +31,16 @@ TEST(MultiLayerAlphaBlending, ExactWhenKCoversTheDepthComplexityInAnyOrder) {
 // one merged layer); a random order is not.
 TEST(MultiLayerAlphaBlending, ExactForSortedSubmission) {
   for (const char* k : {"1", "2"}) {
-    const RunResult r = mlab({{"k", k}}, "random_quads", {{"order", "front_to_back"}});
+    const RunResult r = test::run_ordered(spec_of({{"k", k}}, "random_quads", {{"order", "front_to_back"}}));
     ASSERT_TRUE(r.error.has_value());
     EXPECT_LT(r.error->max_abs, 1e-5) << k;
     EXPECT_GT(r.max_depth_complexity, 4u);
     EXPECT_GT(test::extra_counter(r, "merges"), 0.0) << k;
   }
-  const RunResult back_to_front = mlab({{"k", "1"}}, "random_quads", {{"order", "back_to_front"}});
+  const RunResult back_to_front =
+      test::run_ordered(spec_of({{"k", "1"}}, "random_quads", {{"order", "back_to_front"}}));
   EXPECT_LT(back_to_front.error->max_abs, 1e-5);
-  const RunResult random = mlab({{"k", "1"}}, "random_quads", {{"order", "random"}});
+  const RunResult random = test::run_ordered(spec_of({{"k", "1"}}, "random_quads", {{"order", "random"}}));
   EXPECT_GT(random.error->max_abs, 0.05);
 }
 
@@ -54,7 +51,7 @@ TEST(MultiLayerAlphaBlending, ErrorFallsAsKGrows) {
 }
 
 TEST(MultiLayerAlphaBlending, FiniteAndBoundedOnSpheres) {
-  const RunResult r = mlab({}, "spheres", {});
+  const RunResult r = test::run_ordered(spec_of({}, "spheres", {}));
   ASSERT_TRUE(r.error.has_value());
   EXPECT_EQ(test::garbage_values(r.image), 0u);
   EXPECT_LT(r.error->max_abs, 0.05);

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tests/gl_fixture.h"
@@ -99,6 +101,83 @@ inline void expect_submission_ties_in_submission_order(const std::string& techni
     EXPECT_EQ(r.counters.passes, passes);
     if (order == "original") original = r.image;
     else EXPECT_GT(max_abs_difference(r.image, original), 0.05);
+  }
+}
+
+// 32 quad layers, in the original and a shuffled order: exact against the
+// reference, every fragment peeled and counted, in `passes` passes with
+// `bytes` allocated.
+inline void expect_exact_on_thirty_two_quads(const std::string& technique, const std::string& tie_break,
+                                             uint64_t passes, uint64_t bytes, int size) {
+  const uint64_t pixels = uint64_t(size) * uint64_t(size);
+  for (const std::string order : {"original", "shuffled:7"}) {
+    SCOPED_TRACE(tie_break + " " + order);
+    const RunResult r =
+        run_ok(one_frame(technique, {{"tie_break", tie_break}}, "quads", {{"layers", "32"}}, size, order));
+    ASSERT_TRUE(r.error.has_value());
+    // Layers are blended in float, the reference in double: only rounding separates them.
+    EXPECT_LT(r.error->max_abs, 1e-5);
+    EXPECT_EQ(r.counters.fragments_stored, 32u * pixels);
+    EXPECT_EQ(r.counters.fragments_dropped, 0u);
+    EXPECT_EQ(r.counters.passes, passes);
+    EXPECT_EQ(r.counters.bytes_allocated, bytes);
+  }
+}
+
+// The lit spheres (48 x 48), in the original and a shuffled order: exact,
+// every fragment counted, passes_for(depth complexity) + extra passes.
+inline void expect_exact_on_lit_spheres(const std::string& technique, const std::string& tie_break, uint64_t extra,
+                                        PassesForDepth passes_for) {
+  for (const std::string order : {"original", "shuffled:7"}) {
+    SCOPED_TRACE(tie_break + " " + order);
+    const RunResult r = run_ok(one_frame(technique, {{"tie_break", tie_break}}, "spheres", {}, 48, order));
+    ASSERT_TRUE(r.error.has_value());
+    ASSERT_GE(r.max_depth_complexity, 4u) << "the spheres must overlap for this test to mean anything";
+    EXPECT_LT(r.error->max_abs, 1e-5);
+    EXPECT_EQ(r.counters.fragments_stored, r.scene_fragments);
+    EXPECT_EQ(r.counters.fragments_dropped, 0u);
+    EXPECT_EQ(r.counters.passes, passes_for(r.max_depth_complexity) + extra);
+  }
+}
+
+// Layers of 32 quads a pass cap of `cap` passes composites.
+using LayersUnderCap = std::function<uint64_t(uint64_t cap)>;
+
+// 32 quad layers under caps of 4, 8 and 16 passes: exactly `cap` passes, an
+// error that shrinks strictly as the cap grows, and the layers the cap
+// leaves out counted as dropped.
+inline void expect_error_shrinking_with_the_pass_cap(const std::string& technique, const std::string& tie_break,
+                                                     const LayersUnderCap& layers_under, int size) {
+  const uint64_t pixels = uint64_t(size) * uint64_t(size);
+  double previous_error = 2.0;
+  for (int cap : {4, 8, 16}) {
+    SCOPED_TRACE(tie_break + " max_passes=" + std::to_string(cap));
+    const RunResult r = run_ok(one_frame(technique, {{"tie_break", tie_break}, {"max_passes", std::to_string(cap)}},
+                                         "quads", {{"layers", "32"}}, size));
+    ASSERT_TRUE(r.error.has_value());
+    EXPECT_GT(r.error->max_abs, 1e-4);
+    EXPECT_LT(r.error->max_abs, previous_error);
+    previous_error = r.error->max_abs;
+    EXPECT_EQ(r.counters.passes, uint64_t(cap));
+    const uint64_t layers = layers_under(uint64_t(cap));
+    EXPECT_EQ(r.counters.fragments_stored, layers * pixels);
+    EXPECT_EQ(r.counters.fragments_dropped, (32u - layers) * pixels);
+  }
+}
+
+// max_passes, early_exit and tie_break out of range: an error row naming
+// the parameter (and, for max_passes, the technique).
+inline void expect_bad_parameters_rejected_by_name(const std::string& technique) {
+  for (const std::string bad : {"0", "4097", "many"}) {
+    const RunResult r = harness().run(one_frame(technique, {{"max_passes", bad}}, "quads", {{"layers", "2"}}, 8));
+    EXPECT_EQ(r.status, RunStatus::error);
+    EXPECT_NE(r.message.find("max_passes"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find(technique), std::string::npos) << r.message;
+  }
+  for (const auto& [name, bad] : {std::pair{"early_exit", "maybe"}, std::pair{"tie_break", "depth"}}) {
+    const RunResult r = harness().run(one_frame(technique, {{name, bad}}, "quads", {{"layers", "2"}}, 8));
+    EXPECT_EQ(r.status, RunStatus::error);
+    EXPECT_NE(r.message.find(name), std::string::npos) << r.message;
   }
 }
 

@@ -83,14 +83,8 @@ TEST_F(ProgramCacheTest, OffCompilesEveryTime) {
 // Two runs of one technique in one harness: the second builds every program
 // from the binaries of the first, compiles nothing, and renders the same image.
 void expect_second_run_reuses(const std::string& technique) {
-  RunSpec spec;
-  spec.technique = technique;
-  spec.scene = "quads";
-  spec.scene_params = {{"layers", "4"}, {"objects", "2"}};
-  spec.width = 24;
+  RunSpec spec = test::one_frame(technique, {}, "quads", {{"layers", "4"}, {"objects", "2"}}, 24);
   spec.height = 16;
-  spec.warmup = 0;
-  spec.frames = 1;
   const ProgramCacheStats start = ProgramCache::instance().stats();
   const RunResult first = test::harness().run(spec);
   ASSERT_EQ(first.status, RunStatus::ok) << first.message;

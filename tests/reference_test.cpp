@@ -44,14 +44,7 @@ TEST(Reference, EqualsClosedFormOnStackedQuadsExactly) {
 }
 
 TEST(Reference, EqualsClosedFormOverAColouredBackground) {
-  RunSpec spec;
-  spec.technique = "reference";
-  spec.scene = "quads";
-  spec.scene_params = {{"layers", "8"}, {"alpha", "0.5"}};
-  spec.width = 16;
-  spec.height = 16;
-  spec.warmup = 0;
-  spec.frames = 1;
+  RunSpec spec = test::one_frame("reference", {}, "quads", {{"layers", "8"}, {"alpha", "0.5"}}, 16);
   spec.background = glm::vec3(0.25f, 0.5f, 1.0f);
   const RunResult r = test::harness().run(spec);
   ASSERT_EQ(r.status, RunStatus::ok) << r.message;

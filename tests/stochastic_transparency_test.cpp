@@ -11,20 +11,15 @@ namespace {
 
 using test::garbage_values;
 using test::max_abs_difference;
-using test::one_frame;
 using test::run_ok;
 
 constexpr int kSize = 32;
-
-RunResult stochastic(const RawParams& params, const std::string& scene, const RawParams& scene_params,
-                     const std::string& order = "original") {
-  return run_ok(one_frame("stochastic_transparency", params, scene, scene_params, kSize, order));
-}
+const test::OneFrameOf spec_of{"stochastic_transparency", kSize};
 
 // One fragment: every sample estimate of its transmittance is 1 (nothing
 // lies in front), and compose writes (a c / a) * (1 - (1 - a)) = c a.
 TEST(StochasticTransparency, SingleLayerIsExactThroughTheAlphaCorrection) {
-  const RunResult r = stochastic({}, "quads", {{"layers", "1"}});
+  const RunResult r = run_ok(spec_of({}, "quads", {{"layers", "1"}}));
   ASSERT_TRUE(r.error.has_value());
   EXPECT_LT(r.error->max_abs, 1e-6);
 }
@@ -48,8 +43,8 @@ TEST(StochasticTransparency, SampleCountsTheDeviceLacksAreSkippedRowsThatSaySo) 
   glGetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &max_depth_samples);
   std::map<int, double> rmse;
   for (int samples : {4, 8, 16}) {
-    const RunResult r = test::harness().run(one_frame("stochastic_transparency", {{"samples", std::to_string(samples)}},
-                                                      "quads", {{"layers", "8"}}, kSize));
+    const RunResult r =
+        test::harness().run(spec_of({{"samples", std::to_string(samples)}}, "quads", {{"layers", "8"}}));
     if (samples <= max_samples && samples <= max_depth_samples) {
       ASSERT_EQ(r.status, RunStatus::ok) << samples << ": " << r.message;
       EXPECT_EQ(test::extra_counter(r, "effective_samples"), double(samples));
@@ -68,23 +63,23 @@ TEST(StochasticTransparency, SampleCountsTheDeviceLacksAreSkippedRowsThatSaySo) 
 }
 
 TEST(StochasticTransparency, SeededDeterministicAndOrderIndependent) {
-  const RunResult first = stochastic({{"seed", "7"}}, "quads", {{"layers", "8"}});
-  const RunResult again = stochastic({{"seed", "7"}}, "quads", {{"layers", "8"}});
-  const RunResult other_seed = stochastic({{"seed", "8"}}, "quads", {{"layers", "8"}});
+  const RunResult first = run_ok(spec_of({{"seed", "7"}}, "quads", {{"layers", "8"}}));
+  const RunResult again = run_ok(spec_of({{"seed", "7"}}, "quads", {{"layers", "8"}}));
+  const RunResult other_seed = run_ok(spec_of({{"seed", "8"}}, "quads", {{"layers", "8"}}));
   // The masks hash the stable triangle id, not the arrival order.
-  const RunResult shuffled = stochastic({{"seed", "7"}}, "quads", {{"layers", "8"}}, "shuffled:2");
+  const RunResult shuffled = run_ok(spec_of({{"seed", "7"}}, "quads", {{"layers", "8"}}, "shuffled:2"));
   EXPECT_EQ(max_abs_difference(first.image, again.image), 0.0);
   EXPECT_GT(max_abs_difference(first.image, other_seed.image), 1e-3);
   EXPECT_LT(max_abs_difference(first.image, shuffled.image), 1e-5);
 }
 
 TEST(StochasticTransparency, FiniteAndBoundedOnQuadsAndSpheres) {
-  const RunResult quads = stochastic({{"passes", "2"}}, "quads", {{"layers", "32"}});
+  const RunResult quads = run_ok(spec_of({{"passes", "2"}}, "quads", {{"layers", "32"}}));
   ASSERT_TRUE(quads.error.has_value());
   EXPECT_EQ(garbage_values(quads.image), 0u);
   EXPECT_LT(quads.error->max_abs, 0.3);
   EXPECT_EQ(quads.counters.passes, 5u);  // 2 x (depth, accumulation) + total transmittance
-  const RunResult spheres = stochastic({}, "spheres", {});
+  const RunResult spheres = run_ok(spec_of({}, "spheres", {}));
   ASSERT_TRUE(spheres.error.has_value());
   EXPECT_EQ(garbage_values(spheres.image), 0u);
   EXPECT_LT(spheres.error->max_abs, 0.3);

@@ -152,13 +152,8 @@ struct TiledCase {
 };
 
 RunSpec spec_of(const std::string& technique, const TiledCase& c) {
-  RunSpec spec;
-  spec.technique = technique;
-  spec.scene = c.scene;
-  spec.scene_params = c.scene_params;
-  spec.width = 96;
+  RunSpec spec = test::one_frame(technique, {}, c.scene, c.scene_params, 96);
   spec.height = 80;
-  spec.warmup = 0;
   spec.frames = 2;
   return spec;
 }

@@ -139,14 +139,7 @@ TEST(Viewer, ErrorDisplayIsTheHarnessErrorHeatmap) {
   // compares), on a headless context of this process.
   auto context = create_headless_context();
   Harness harness(*context, builtin_techniques());
-  RunSpec spec;
-  spec.technique = "kbuffer";
-  spec.params = {{"k", "2"}};
-  spec.scene = "quads";
-  spec.scene_params = {{"layers", "8"}};
-  spec.width = spec.height = 64;
-  spec.warmup = 0;
-  spec.frames = 1;
+  const RunSpec spec = test::one_frame("kbuffer", {{"k", "2"}}, "quads", {{"layers", "8"}}, 64);
   const RunResult result = harness.run(spec);
   ASSERT_EQ(result.status, RunStatus::ok) << result.message;
   ASSERT_GT(result.error->max_abs, 0.0) << "k=2 on 8 layers should be approximate";

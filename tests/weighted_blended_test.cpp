@@ -13,11 +13,7 @@ namespace {
 constexpr int kSize = 32;
 const char* const kWeights[] = {"eq7", "eq8", "eq9", "eq10"};
 
-RunSpec spec_of(const RawParams& params, const std::string& scene, const RawParams& scene_params,
-                const std::string& order = "original") {
-  return test::one_frame("weighted_blended", params, scene, scene_params, kSize, order);
-}
-
+const test::OneFrameOf spec_of{"weighted_blended", kSize};
 using test::run_ok;
 
 using test::max_abs_difference;

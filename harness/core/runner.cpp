@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "harness/core/memory_failure.h"
+#include "harness/core/prepared_run.h"
 #include "harness/core/system_load.h"
 #include "harness/gl/check.h"
 #include "scenes/model_files.h"
@@ -191,7 +192,8 @@ const Image& Harness::reference_image(const std::string& scene_spec, const RawPa
     ++references_loaded_;
     return references_.emplace(key.str(), std::move(*cached)).first->second;
   }
-  RunSpec spec;
+  RunResult result;
+  RunSpec& spec = result.spec;
   spec.technique = registry_.reference().id;
   spec.scene = scene_spec;
   spec.scene_params = scene_params;
@@ -200,38 +202,45 @@ const Image& Harness::reference_image(const std::string& scene_spec, const RawPa
   spec.height = height;
   spec.warmup = 0;
   spec.frames = 1;
-  spec.clock = ClockKind::wall;
+  spec.clock = result.clock = ClockKind::wall;
   spec.background = background;
   spec.scene_rect = false;  // the reference does not depend on the harness's shortcuts
   spec.memory_budget = memory_budget;
-  RunResult result;
-  result.spec = spec;
-  execute(spec, result);
+  PreparedRun prepared(registry_, spec.technique, spec.params);
+  execute(prepared, loaded, result);
   ++references_rendered_;
   reference_cache_.store(key.str(), result.image);
   return references_.emplace(key.str(), std::move(result.image)).first->second;
 }
+
+namespace {
+
+void check_run_size(const RunSpec& spec) {
+  if (spec.width < 1 || spec.height < 1 || spec.width > 16384 || spec.height > 16384) {
+    throw std::invalid_argument("size " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                                " is outside 1x1 .. 16384x16384");
+  }
+  if (spec.frames < 1 || spec.warmup < 0) throw std::invalid_argument("frames must be >= 1 and warmup >= 0");
+}
+
+}  // namespace
 
 RunResult Harness::run(const RunSpec& spec) {
   RunResult result;
   result.spec = spec;
   result.clock = spec.clock.value_or(default_clock());
   try {
-    const TechniqueDescriptor& technique = registry_.get(spec.technique);
-    const ParamSet params(technique.params, spec.params, "technique '" + spec.technique + "'");
-    result.technique_params = params.canonical();
-    if (spec.width < 1 || spec.height < 1 || spec.width > 16384 || spec.height > 16384) {
-      throw std::invalid_argument("size " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                                  " is outside 1x1 .. 16384x16384");
-    }
-    if (spec.frames < 1 || spec.warmup < 0) throw std::invalid_argument("frames must be >= 1 and warmup >= 0");
+    // The one resolution of the technique: execute() and the viewer reuse it.
+    PreparedRun prepared(registry_, spec.technique, spec.params);
+    result.technique_params = prepared.params().canonical();
+    check_run_size(spec);
     // Known before the scene loads, so a skipped row (a model not
     // installed) carries it too and `bench --resume` can find it.
     result.scene_params = canonical_scene_params(spec.scene, spec.scene_params);
     LoadedScene& loaded = scene(spec.scene, spec.scene_params, spec.submission_order, spec.camera);
     result.scene_params = loaded.scene.params;
     const SceneFacts facts{loaded.scene.triangle_count(), loaded.scene.object_count, true};
-    if (std::string reason = supports(technique, params, device(), facts); !reason.empty()) {
+    if (std::string reason = prepared.unsupported(device(), facts); !reason.empty()) {
       result.status = RunStatus::skipped;
       result.message = reason;
       return result;
@@ -246,7 +255,7 @@ RunResult Harness::run(const RunSpec& spec) {
     result.psi = depth.psi;
     OtherProcessLoad load;
     load.start();
-    execute(spec, result, &target);
+    execute(prepared, loaded, result, &target);
     result.other_process_load = load.stop();
     result.noisy = result.other_process_load > kNoisyLoadThreshold;
     // The scene's size goes with every row so plots against triangles or
@@ -292,51 +301,53 @@ const DepthComplexity& Harness::complexity(LoadedScene& loaded, int width, int h
 }
 
 TilePlan Harness::tile_plan(const RunSpec& spec) {
-  const TechniqueDescriptor& descriptor = registry_.get(spec.technique);
-  const ParamSet params(descriptor.params, spec.params, "technique '" + spec.technique + "'");
+  const PreparedRun prepared(registry_, spec.technique, spec.params);
   LoadedScene& loaded = scene(spec.scene, spec.scene_params, spec.submission_order, spec.camera);
-  std::function<StorageNeed(const FrameContent&)> need;
-  if (descriptor.storage_need)
-    need = [&](const FrameContent& content) { return descriptor.storage_need(params, content); };
-  const int halo = descriptor.tile_halo ? descriptor.tile_halo(params) : 0;
-  return plan_tiles(need, halo, complexity(loaded, spec.width, spec.height), query_device_limits(spec.memory_budget));
+  return prepared.plan(complexity(loaded, spec.width, spec.height), query_device_limits(spec.memory_budget));
 }
 
-void Harness::execute(const RunSpec& spec, RunResult& result, RenderTarget* given_target) {
-  const TechniqueDescriptor& descriptor = registry_.get(spec.technique);
-  const ParamSet params(descriptor.params, spec.params, "technique '" + spec.technique + "'");
-  LoadedScene& loaded = scene(spec.scene, spec.scene_params, spec.submission_order, spec.camera);
-  const ClockKind clock_kind = spec.clock.value_or(default_clock());
-  result.clock = clock_kind;
+namespace {
 
-  const Tiling tiling(tile_plan(spec));
-  std::unique_ptr<Technique> technique = descriptor.create(params);
-  technique->resize(tiling.plan().frame_width(), tiling.plan().frame_height());
+// The stage rows of a run from its clock: wall and/or gl samples and their
+// summaries, and how far the two clocks' totals disagree when both ran.
+void record_stages(StageClock& clock, RunResult& result) {
+  result.stages.clear();
+  for (auto& [name, samples] : clock.results()) {
+    if (result.clock != ClockKind::gl)
+      result.stages.push_back({name, "wall", summarize(samples.wall_ms), samples.wall_ms});
+    if (result.clock != ClockKind::wall)
+      result.stages.push_back({name, "gl", summarize(samples.gl_ms), samples.gl_ms});
+  }
+  if (result.clock == ClockKind::both) {
+    const StageResult* wall = result.stage("total", "wall");
+    const StageResult* gl = result.stage("total", "gl");
+    if (wall && gl && wall->summary.median > 0.0)
+      result.clock_disagreement = std::abs(gl->summary.median - wall->summary.median) / wall->summary.median;
+  }
+}
+
+}  // namespace
+
+void Harness::execute(PreparedRun& prepared, LoadedScene& loaded, RunResult& result, RenderTarget* given_target) {
+  const RunSpec& spec = result.spec;
+  prepared.create(
+      prepared.plan(complexity(loaded, spec.width, spec.height), query_device_limits(spec.memory_budget)));
   std::optional<RenderTarget> own_target;
   if (!given_target) own_target.emplace(spec.width, spec.height);
   RenderTarget& target = given_target ? *given_target : *own_target;
-  StageClock clock(clock_kind, descriptor.stages);
+  StageClock clock(result.clock, prepared.descriptor().stages);
   const float aspect = float(spec.width) / float(spec.height);
   const Frame frame{*loaded.gpu,  loaded.scene.camera.view,   loaded.scene.camera.projection(aspect),
                     spec.width,   spec.height,                spec.background,
                     target.framebuffer.id(), clock};
   ScreenRect rect;
   for (int i = 0; i < spec.warmup + spec.frames; ++i) {
-    rect = render_frame(*technique, frame, i >= spec.warmup, spec.scene_rect, &tiling);
+    rect = prepared.render_frame(frame, i >= spec.warmup, spec.scene_rect);
     gl_check("frame " + std::to_string(i) + " of " + spec.technique);
   }
-  result.tiles = tiling.plan().count();
-  if (tiling.plan().tiled()) {
-    // Counters describe the technique's last frame: one more frame, not
-    // timed, reads them tile by tile.
-    std::vector<TechniqueCounters> tiles;
-    render_frame(*technique, frame, false, spec.scene_rect, &tiling,
-                 [&](int) { tiles.push_back(technique->counters()); });
-    gl_check("the counters frame of " + spec.technique);
-    result.counters = combine_tile_counters(tiles);
-  } else {
-    result.counters = technique->counters();
-  }
+  result.tiles = prepared.tiling().plan().count();
+  // Counters describe the technique's last frame.
+  result.counters = prepared.counters(frame, spec.scene_rect);
   // The harness's own adaptive path: pixels every full-screen pass skipped.
   if (spec.scene_rect) {
     result.counters.work_saved.push_back(
@@ -344,19 +355,7 @@ void Harness::execute(const RunSpec& spec, RunResult& result, RenderTarget* give
   }
   result.image = read_texture_rgba32f(target.color.id(), spec.width, spec.height);
   gl_check("reading back the image of " + spec.technique);
-
-  result.stages.clear();
-  for (auto& [name, samples] : clock.results()) {
-    if (clock_kind != ClockKind::gl)
-      result.stages.push_back({name, "wall", summarize(samples.wall_ms), samples.wall_ms});
-    if (clock_kind != ClockKind::wall) result.stages.push_back({name, "gl", summarize(samples.gl_ms), samples.gl_ms});
-  }
-  if (clock_kind == ClockKind::both) {
-    const StageResult* wall = result.stage("total", "wall");
-    const StageResult* gl = result.stage("total", "gl");
-    if (wall && gl && wall->summary.median > 0.0)
-      result.clock_disagreement = std::abs(gl->summary.median - wall->summary.median) / wall->summary.median;
-  }
+  record_stages(clock, result);
 }
 
 }  // namespace oit

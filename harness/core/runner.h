@@ -136,6 +136,8 @@ ScreenRect render_frame(Technique& technique, const Frame& frame, bool record, b
 // The scene's projected rectangle for this frame's camera and size.
 ScreenRect scene_rect_of(const Frame& frame);
 
+class PreparedRun;
+
 class Harness {
  public:
   Harness(GlContext& context, const TechniqueRegistry& registry);
@@ -165,8 +167,10 @@ class Harness {
   struct LoadedScene;
   LoadedScene& scene(const std::string& spec, const RawParams& params, const std::string& order = "original",
                      const std::string& camera = "default");
-  // Renders into `target` (the run's image, width x height) or a target of its own.
-  void execute(const RunSpec& spec, RunResult& result, RenderTarget* target = nullptr);
+  // Renders result.spec with the technique `prepared` resolved, on the
+  // clock result.clock, into `target` (the run's image, width x height) or
+  // a target of its own.
+  void execute(PreparedRun& prepared, LoadedScene& loaded, RunResult& result, RenderTarget* target = nullptr);
   const DepthComplexity& complexity(LoadedScene& loaded, int width, int height);
   // Sets result.error, or says in result.message why there is no reference.
   void compare_with_reference(const RunSpec& spec, RunResult& result);

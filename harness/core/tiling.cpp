@@ -129,15 +129,20 @@ ScreenRect TilePlan::window(const ScreenRect& tile) const {
   return {std::clamp(tile.x - halo, 0, width - w), std::clamp(tile.y - halo, 0, height - h), w, h};
 }
 
+TilePlan untiled_plan(int width, int height, int halo) {
+  TilePlan plan;
+  plan.width = width;
+  plan.height = height;
+  plan.halo = std::max(halo, 0);
+  plan.tile_width = width;
+  plan.tile_height = height;
+  plan.tiles = {{0, 0, width, height}};
+  return plan;
+}
+
 TilePlan plan_tiles(const std::function<StorageNeed(const FrameContent&)>& need, int halo,
                     const DepthComplexity& complexity, const DeviceLimits& limits) {
-  TilePlan plan;
-  plan.width = complexity.width;
-  plan.height = complexity.height;
-  plan.halo = std::max(halo, 0);
-  plan.tile_width = plan.width;
-  plan.tile_height = plan.height;
-  plan.tiles = {{0, 0, plan.width, plan.height}};
+  TilePlan plan = untiled_plan(complexity.width, complexity.height, halo);
   if (!need) return plan;
   for (;;) {
     // Every tile's storage is sized for its window (tile and halo); the

@@ -62,6 +62,9 @@ struct TilePlan {
   ScreenRect window(const ScreenRect& tile) const;
 };
 
+// One tile, the whole width x height image (the technique's frame is the image).
+TilePlan untiled_plan(int width, int height, int halo = 0);
+
 // The fewest tiles (splitting the longer tile side in two each step) whose
 // storage fits `limits`, from the frame's per-pixel fragment counts. One
 // tile when `need` is empty or the whole frame fits. Throws naming the need

@@ -81,6 +81,17 @@ const char* stage_name(GLenum stage) {
   }
 }
 
+// The info log of a shader or program, read with its pair of getters
+// (glGetShaderiv/glGetShaderInfoLog or glGetProgramiv/glGetProgramInfoLog).
+template <typename GetParameter, typename GetLog>
+std::string info_log(GLuint id, GetParameter get_parameter, GetLog get_log) {
+  GLint length = 0;
+  get_parameter(id, GL_INFO_LOG_LENGTH, &length);
+  std::string log(static_cast<size_t>(std::max(length, 1)), '\0');
+  get_log(id, length, nullptr, log.data());
+  return log;
+}
+
 Shader compile(const ShaderStageSource& stage, const PreprocessedShader& pre) {
   Shader shader(glCreateShader(stage.stage));
   const char* text = pre.text.c_str();
@@ -89,10 +100,7 @@ Shader compile(const ShaderStageSource& stage, const PreprocessedShader& pre) {
   GLint ok = GL_FALSE;
   glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
   if (ok != GL_TRUE) {
-    GLint length = 0;
-    glGetShaderiv(shader.id(), GL_INFO_LOG_LENGTH, &length);
-    std::string log(static_cast<size_t>(std::max(length, 1)), '\0');
-    glGetShaderInfoLog(shader.id(), length, nullptr, log.data());
+    const std::string log = info_log(shader.id(), glGetShaderiv, glGetShaderInfoLog);
     throw ShaderError(std::string("failed to compile ") + stage_name(stage.stage) + " shader '" + stage.path +
                       "':\n" + translate_shader_log(log, pre.files));
   }
@@ -164,10 +172,7 @@ Program build_program(const std::vector<ShaderStageSource>& stages, const Shader
   GLint ok = GL_FALSE;
   glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
   if (ok != GL_TRUE) {
-    GLint length = 0;
-    glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
-    std::string log(static_cast<size_t>(std::max(length, 1)), '\0');
-    glGetProgramInfoLog(program.id(), length, nullptr, log.data());
+    const std::string log = info_log(program.id(), glGetProgramiv, glGetProgramInfoLog);
     std::string names;
     for (const auto& stage : stages) names += (names.empty() ? "" : " + ") + stage.path;
     throw ShaderError("failed to link program (" + names + "):\n" + log);

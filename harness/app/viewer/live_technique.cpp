@@ -10,33 +10,28 @@ LiveTechnique::LiveTechnique(const TechniqueRegistry& registry, const DeviceInfo
 std::string LiveTechnique::configure(const std::string& id, const RawParams& params, const SceneFacts& facts,
                                      int width, int height) {
   try {
-    const TechniqueDescriptor& descriptor = registry_.get(id);
-    const ParamSet values(descriptor.params, params, "technique '" + id + "'");
-    if (std::string reason = supports(descriptor, values, device_, facts); !reason.empty()) {
+    auto prepared = std::make_unique<PreparedRun>(registry_, id, params);
+    if (std::string reason = prepared->unsupported(device_, facts); !reason.empty()) {
       return id + " cannot run here: " + reason;
     }
     // Build everything first so a failure leaves the running one intact.
     // Sized for the whole image as a start (so counters and diagnostics
     // are valid before the first frame); the first frame's tile plan
     // resizes it when the frame must be tiled.
-    std::unique_ptr<Technique> technique = descriptor.create(values);
-    technique->resize(width, height);
+    prepared->create(untiled_plan(width, height));
     auto target = std::make_unique<RenderTarget>(width, height);
     gl_check("creating " + id);
-    technique_ = std::move(technique);
-    descriptor_ = &descriptor;
-    values_ = std::make_unique<ParamSet>(values);
-    tiling_ = std::make_unique<Tiling>(TilePlan{width, height, width, height, 0, {{0, 0, width, height}}, {}});
+    prepared_ = std::move(prepared);
     planned_scene_ = nullptr;
     target_ = std::move(target);
-    clock_ = std::make_unique<StageClock>(clock_kind_, descriptor_->stages);
+    clock_ = std::make_unique<StageClock>(clock_kind_, prepared_->descriptor().stages);
     frames_in_window_ = 0;
     timings_.clear();
     timed_frames_ = 0;
     warmup_left_ = kWarmup;
     id_ = id;
     params_ = params;
-    canonical_ = values.canonical();
+    canonical_ = prepared_->params().canonical();
     width_ = width;
     height_ = height;
     return "";
@@ -48,14 +43,14 @@ std::string LiveTechnique::configure(const std::string& id, const RawParams& par
 
 void LiveTechnique::render(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection,
                            const glm::vec3& background) {
-  if (!technique_) return;
+  if (!prepared_) return;
   plan_for(scene, view, projection);
   const Frame frame{scene, view, projection, width_, height_, background, target_->framebuffer.id(), *clock_};
   // Warm-up frames (the first after configure compiles shaders and
   // allocates; the first after a re-plan reallocates) are rendered but not
   // timed, as bench's --warmup frames are not.
   const bool record = warmup_left_ == 0;
-  const ScreenRect rect = render_frame(*technique_, frame, record, scene_rect_, tiling_.get());
+  const ScreenRect rect = prepared_->render_frame(frame, record, scene_rect_);
   pixels_outside_ = scene_rect_ ? uint64_t(width_) * uint64_t(height_) - rect.pixels() : 0;
   gl_check("a viewer frame of " + id_);
   if (!record) {
@@ -66,30 +61,23 @@ void LiveTechnique::render(const SceneGpu& scene, const glm::mat4& view, const g
   // short --frames run shows what it timed); then it changes once per window.
   ++frames_in_window_;
   if (frames_in_window_ == kWindow || timed_frames_ < kWindow) show_window();
-  if (frames_in_window_ == kWindow) {
-    clock_ = std::make_unique<StageClock>(clock_kind_, descriptor_->stages);
-    frames_in_window_ = 0;
-  }
+  if (frames_in_window_ == kWindow) restart_clock();
+}
+
+void LiveTechnique::restart_clock() {
+  clock_ = std::make_unique<StageClock>(clock_kind_, prepared_->descriptor().stages);
+  frames_in_window_ = 0;
 }
 
 void LiveTechnique::plan_for(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection) {
   if (planned_scene_ == &scene && planned_view_ == view && planned_projection_ == projection) return;
-  std::function<StorageNeed(const FrameContent&)> need;
-  if (descriptor_->storage_need)
-    need = [this](const FrameContent& content) { return descriptor_->storage_need(*values_, content); };
-  const int halo = descriptor_->tile_halo ? descriptor_->tile_halo(*values_) : 0;
-  TilePlan plan = plan_tiles(need, halo, measure_depth_complexity(scene, view, projection, width_, height_),
-                             query_device_limits());
-  if (plan.frame_width() != tiling_->plan().frame_width() ||
-      plan.frame_height() != tiling_->plan().frame_height() || plan.count() != tiling_->plan().count()) {
-    technique_->resize(plan.frame_width(), plan.frame_height());
+  if (prepared_->replan(
+          prepared_->plan(measure_depth_complexity(scene, view, projection, width_, height_), query_device_limits()))) {
     // Timings of the old plan do not mix with the new one's.
-    clock_ = std::make_unique<StageClock>(clock_kind_, descriptor_->stages);
-    frames_in_window_ = 0;
+    restart_clock();
     timed_frames_ = 0;
     warmup_left_ = kWarmup;
   }
-  tiling_ = std::make_unique<Tiling>(std::move(plan));
   planned_scene_ = &scene;
   planned_view_ = view;
   planned_projection_ = projection;

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/runner.h"
+#include "harness/core/prepared_run.h"
 
 namespace oit {
 
@@ -25,7 +25,7 @@ class LiveTechnique {
   // failure the technique that ran before keeps running unchanged.
   std::string configure(const std::string& id, const RawParams& params, const SceneFacts& facts, int width,
                         int height);
-  bool ready() const { return technique_ != nullptr; }
+  bool ready() const { return prepared_ != nullptr; }
 
   // Renders one frame into target(); throws what the technique throws.
   // Whenever the view changes, the storage need is measured again (the
@@ -40,10 +40,10 @@ class LiveTechnique {
   const std::string& id() const { return id_; }
   const RawParams& params() const { return params_; }  // as applied
   const std::string& canonical_params() const { return canonical_; }
-  TechniqueCounters counters() const { return technique_ ? technique_->counters() : TechniqueCounters{}; }
+  TechniqueCounters counters() const { return prepared_ ? prepared_->technique().counters() : TechniqueCounters{}; }
   // The technique's diagnostic fields of its last frame (none by default).
   std::vector<DiagnosticImage> diagnostic_images() const {
-    return technique_ ? technique_->diagnostic_images() : std::vector<DiagnosticImage>{};
+    return prepared_ ? prepared_->technique().diagnostic_images() : std::vector<DiagnosticImage>{};
   }
   // Per-stage timings of the last complete window of kWindow timed frames,
   // or, before the first is complete, of the timed frames so far (empty
@@ -66,6 +66,7 @@ class LiveTechnique {
   // kWindow: medians over a few frames are steadier than single frames yet
   // still follow parameter changes within a second or so.
   void show_window();  // timings_ from the clock's frames so far
+  void restart_clock();  // a new window: the clock's frames so far are dropped
 
   const TechniqueRegistry& registry_;
   const DeviceInfo& device_;
@@ -73,10 +74,9 @@ class LiveTechnique {
   // Plans tiles for this view and resizes the technique when the plan changes.
   void plan_for(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection);
 
-  std::unique_ptr<Technique> technique_;
-  const TechniqueDescriptor* descriptor_ = nullptr;
-  std::unique_ptr<ParamSet> values_;
-  std::unique_ptr<Tiling> tiling_;  // one tile until the first frame plans it
+  // The technique as a bench run resolves it; one tile until the first
+  // frame plans it.
+  std::unique_ptr<PreparedRun> prepared_;
   glm::mat4 planned_view_{0.0f}, planned_projection_{0.0f};
   const SceneGpu* planned_scene_ = nullptr;
   std::unique_ptr<RenderTarget> target_;
