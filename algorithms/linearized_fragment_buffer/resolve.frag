@@ -17,19 +17,19 @@
 
 layout(location = 0) out vec4 out_color;
 #if defined(LFB_BLOCKS)
-layout(binding = 0, rg32ui) uniform uimageBuffer u_nodes;
+layout(binding = LFB_NODES_IMAGE_UNIT, rg32ui) uniform uimageBuffer u_nodes;
 #else
-layout(binding = 0, rg32ui) readonly uniform uimageBuffer u_nodes;
+layout(binding = LFB_NODES_IMAGE_UNIT, rg32ui) readonly uniform uimageBuffer u_nodes;
 #endif
 uvec2 key_of(uint slot) { return imageLoad(u_nodes, lfb_key_texel(slot)).xy; }
 vec4 color_of(uint slot) {
   const int at = lfb_key_texel(slot);
   return uintBitsToFloat(uvec4(imageLoad(u_nodes, at + 1).xy, imageLoad(u_nodes, at + 2).xy));
 }
-layout(binding = 1) uniform usamplerBuffer u_offsets;
+layout(binding = LFB_OFFSETS_UNIT) uniform usamplerBuffer u_offsets;
 // The list lengths (lengths.comp); classify.comp reads them too.
-layout(binding = 2) uniform usamplerBuffer u_lengths;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_width;
+layout(binding = LFB_LENGTHS_UNIT) uniform usamplerBuffer u_lengths;
+layout(location = LFB_WIDTH_LOCATION) uniform int u_width;
 
 vec3 accumulated = vec3(0.0);
 float transmittance = 1.0;
