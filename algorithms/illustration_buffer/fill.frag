@@ -8,13 +8,13 @@
 #include "shaders/shading.glsl"
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 2) uniform uint u_capacity;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 3) uniform uint u_max_per_pixel;
+layout(location = IB_CAPACITY_LOCATION) uniform uint u_capacity;
+layout(location = IB_MAX_PER_PIXEL_LOCATION) uniform uint u_max_per_pixel;
 
 #ifdef IB_MEASURE
 // Ground truth for the neighbour accuracy only (parameter measure_accuracy):
 // x: surface id, yz: (u, v) bits, w: uv footprint of one pixel (fwidth, half2).
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 6) buffer IbTruth { uvec4 ib_truth[]; };
+layout(std430, binding = IB_TRUTH_BINDING) buffer IbTruth { uvec4 ib_truth[]; };
 #endif
 
 void main() {

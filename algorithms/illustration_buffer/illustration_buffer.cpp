@@ -1,39 +1,31 @@
 // illustration_buffer: the registry entry and the parameter schema. The
 // technique itself is in technique.cpp; see README.md.
-#include <stdexcept>
-
 #include "algorithms/illustration_buffer/settings.h"
 
 namespace oit {
 namespace illustration_buffer {
 namespace {
 
-template <typename Enum>
-Enum pick(const std::string& name, const std::string& value, std::initializer_list<std::pair<const char*, Enum>> options) {
-  for (const auto& [text, option] : options)
-    if (value == text) return option;
-  throw std::invalid_argument("illustration_buffer: parameter '" + name + "' has no variant '" + value + "'");
-}
+const Choices<NeighborSearch> kNeighborSearches{{NeighborSearch::heuristic, "heuristic"},
+                                                 {NeighborSearch::triangle_index, "triangle_index"}};
+const Choices<Modulation> kModulations{{Modulation::none, "none"},
+                                       {Modulation::silhouette, "silhouette"},
+                                       {Modulation::halo, "halo"},
+                                       {Modulation::silhouette_halo, "silhouette_halo"}};
+const Choices<Profile> kProfiles{{Profile::none, "none"}, {Profile::exponential, "exponential"}, {Profile::power, "power"}};
 
 }  // namespace
 
 Settings settings_from(const ParamSet& p) {
   Settings s;
-  s.neighbors = pick<NeighborSearch>("neighbors", p.choice("neighbors"),
-                                     {{"heuristic", NeighborSearch::heuristic},
-                                      {"triangle_index", NeighborSearch::triangle_index}});
-  s.modulation = pick<Modulation>("modulation", p.choice("modulation"),
-                                  {{"none", Modulation::none},
-                                   {"silhouette", Modulation::silhouette},
-                                   {"halo", Modulation::halo},
-                                   {"silhouette_halo", Modulation::silhouette_halo}});
+  s.neighbors = p.choice("neighbors", kNeighborSearches);
+  s.modulation = p.choice("modulation", kModulations);
   s.adaptive_alpha = p.boolean("adaptive_alpha");
   s.iterations = int(p.integer("iterations"));
   s.lambda_alpha = float(p.real("lambda_alpha"));
   s.lambda_beta = float(p.real("lambda_beta"));
   s.lambda_gamma = float(p.real("lambda_gamma"));
-  s.profile = pick<Profile>("profile", p.choice("profile"),
-                            {{"none", Profile::none}, {"exponential", Profile::exponential}, {"power", Profile::power}});
+  s.profile = p.choice("profile", kProfiles);
   s.exponential_p = float(p.real("exponential_p"));
   s.power_p = float(p.real("power_p"));
   s.weight_z = float(p.real("weight_z"));
@@ -54,19 +46,21 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
   d.display_name = "Illustration buffer (linked lists + geodesic neighbours, non-local opacity)";
   d.paper = "Carnecky et al. 2013 (IEEE TVCG 19(5)); Pastyrik & Cmolik 2016 (CESCG)";
   d.params = {
-      ParamSpec::choice("neighbors", "triangle_index", {"heuristic", "triangle_index"},
-                        "neighbour search: carnecky2013 Algorithm 2 (continuity measure eq. 1-3, mutual check) or "
-                        "pastyrik2016 Algorithm 3 (triangles sharing a vertex index)"),
-      ParamSpec::choice("modulation", "silhouette_halo", {"none", "silhouette", "halo", "silhouette_halo"},
-                        "opacity modulation (carnecky2013 section 5): none = plain alpha blending (no neighbour "
-                        "search, no stylize), silhouette = beta field, halo = gamma field, or both"),
+      illustration_buffer::kNeighborSearches.spec(
+          "neighbors", illustration_buffer::NeighborSearch::triangle_index,
+          "neighbour search: carnecky2013 Algorithm 2 (continuity measure eq. 1-3, mutual check) or "
+          "pastyrik2016 Algorithm 3 (triangles sharing a vertex index)"),
+      illustration_buffer::kModulations.spec(
+          "modulation", illustration_buffer::Modulation::silhouette_halo,
+          "opacity modulation (carnecky2013 section 5): none = plain alpha blending (no neighbour "
+          "search, no stylize), silhouette = beta field, halo = gamma field, or both"),
       ParamSpec::boolean("adaptive_alpha", false, "initial alpha 1-(1-s)^(1/n) (eq. 5) instead of s (eq. 4)"),
       ParamSpec::integer("iterations", 20, 0, 1000, "diffusion iterations of alpha (eq. 8) and beta/gamma (eq. 9)"),
       ParamSpec::real("lambda_alpha", 1.0, 0.0, 1.0, "diffusion coefficient of alpha (eq. 8, normalised Laplacian)"),
       ParamSpec::real("lambda_beta", 0.05, 0.0, 1.0, "decrement per step of the silhouette field (eq. 9)"),
       ParamSpec::real("lambda_gamma", 0.1, 0.0, 1.0, "decrement per step of the halo field (eq. 9)"),
-      ParamSpec::choice("profile", "none", {"none", "exponential", "power"},
-                        "profile applied to beta and gamma before compositing: eq. 10 or eq. 11"),
+      illustration_buffer::kProfiles.spec("profile", illustration_buffer::Profile::none,
+                                          "profile applied to beta and gamma before compositing: eq. 10 or eq. 11"),
       ParamSpec::real("exponential_p", 3.0, 0.01, 50.0, "p of the exponential profile (eq. 10)"),
       ParamSpec::real("power_p", 0.3, 0.01, 10.0, "p of the power profile (eq. 11)"),
       ParamSpec::real("weight_z", 1.0, 0.0, 1000.0, "w_z of the continuity measure (eq. 3; heuristic)"),
@@ -85,7 +79,9 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
   d.stages = {"clear", "fill", "sort", "neighbors", "stylize", "compose"};
   d.exactness = Exactness::approximate;  // exact (float blend) only with modulation=none
   d.extra_support_check = [](const ParamSet& params, const SceneFacts& scene) -> std::string {
-    if (params.choice("modulation") != "none" && params.choice("neighbors") == "triangle_index" && !scene.indexed)
+    const illustration_buffer::Settings s = illustration_buffer::settings_from(params);
+    if (s.modulation != illustration_buffer::Modulation::none &&
+        s.neighbors == illustration_buffer::NeighborSearch::triangle_index && !scene.indexed)
       return "neighbors=triangle_index needs indexed geometry (shared vertex indices)";
     return "";
   };

@@ -17,8 +17,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 // fragData (3 RGBA32UI texels per IbFragment) and fragNext read as buffer
 // textures: gathers on llvmpipe, where SSBO loads at per-invocation
 // addresses run lane by lane (see views.glsl).
-layout(binding = 0) uniform usamplerBuffer ib_fragment_view;
-layout(binding = 1) uniform usamplerBuffer ib_next_view;
+layout(binding = IB_FRAGMENT_UNIT) uniform usamplerBuffer ib_fragment_view;
+layout(binding = IB_NEXT_UNIT) uniform usamplerBuffer ib_next_view;
 
 // x: depth order bits, y: stable triangle id, z: fill record index.
 uvec3 items[IB_ARRAY];

@@ -13,9 +13,9 @@
 #include "algorithms/illustration_buffer/fields.glsl"
 #include "algorithms/illustration_buffer/views.glsl"
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 11) uniform float u_lambda_alpha;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 12) uniform float u_lambda_beta;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 13) uniform float u_lambda_gamma;
+layout(location = IB_LAMBDA_ALPHA_LOCATION) uniform float u_lambda_alpha;
+layout(location = IB_LAMBDA_BETA_LOCATION) uniform float u_lambda_beta;
+layout(location = IB_LAMBDA_GAMMA_LOCATION) uniform float u_lambda_gamma;
 
 float alpha_sum = 0.0, neighbors = 0.0, beta_max = 0.0, gamma_max = 0.0;
 

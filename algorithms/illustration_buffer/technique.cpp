@@ -14,9 +14,10 @@
 #include "harness/core/passes.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
+#include "harness/gl/uniforms.h"
 #include "algorithms/illustration_buffer/settings.h"
 #include "algorithms/illustration_buffer/triangle_table.h"
-#include "shaders/bindings.h"
+#include "algorithms/illustration_buffer/bindings.h"
 
 namespace oit::illustration_buffer {
 namespace {
@@ -27,26 +28,9 @@ constexpr GLsizeiptr kSearchBytes = 32, kShadeBytes = 32;
 // The largest per-record buffer (fragData; it also holds both field ranges) bounds the pool.
 constexpr GLsizeiptr kLargestRecordBytes = std::max({kFragmentBytes, kSearchBytes, kShadeBytes, 2 * kFieldBytes});
 constexpr GLsizeiptr kCounterBytes = 20;  // produced, longest, dropped, truncated, allocated
-constexpr GLuint kBinding = OIT_FIRST_TECHNIQUE_BINDING;
-enum : GLuint {
-  kHead = kBinding, kCount, kNext, kData, kData2, kCounters, kTruth, kTriangles, kFieldsIn, kFieldsOut, kData3
-};
-// Texture units of views.glsl.
-constexpr GLuint kSearchUnit = 0, kTrianglesUnit = 1, kFieldsUnit = 2, kShadeUnit = 3;
-constexpr GLuint kFragmentUnit = 0, kNextUnit = 1;  // the sort's views (sort.comp)
 constexpr uint32_t kSmallestArray = 8;
 // Keeps both field ranges inside fragData for any storage-offset alignment up to 4 KiB.
 constexpr uint64_t kSmallestPool = 256;
-
-void set(GLuint program, const char* name, float value) {
-  if (GLint at = glGetUniformLocation(program, name); at >= 0) glProgramUniform1f(program, at, value);
-}
-void set(GLuint program, const char* name, int value) {
-  if (GLint at = glGetUniformLocation(program, name); at >= 0) glProgramUniform1i(program, at, value);
-}
-void set(GLuint program, const char* name, uint32_t value) {
-  if (GLint at = glGetUniformLocation(program, name); at >= 0) glProgramUniform1ui(program, at, value);
-}
 
 uint64_t bytes_per_fragment(const Settings& s) {
   return uint64_t(kNextBytes + kFragmentBytes + kSearchBytes + kShadeBytes + (s.measure_accuracy ? kTruthBytes : 0));
@@ -61,25 +45,30 @@ class IllustrationBuffer final : public Technique {
               [this](uint64_t capacity) { allocate_pool(capacity); }, kSmallestPool) {
     const ShaderDefines measure = s_.measure_accuracy ? ShaderDefines{{"IB_MEASURE", "1"}} : ShaderDefines{};
     fill_ = build_geometry_program("algorithms/illustration_buffer/fill.frag", measure);
-    set(fill_.id(), "u_max_per_pixel", s_.max_per_pixel);
+    if (uniform_active(fill_.id(), "u_max_per_pixel"))
+      set_uniform(fill_.id(), IB_MAX_PER_PIXEL_LOCATION, s_.max_per_pixel);
     compose_ = build_fullscreen_program("algorithms/illustration_buffer/compose.frag",
                                         modulated() ? ShaderDefines{{"IB_MODULATE", "1"}} : ShaderDefines{});
     if (!modulated()) return;
     const bool heuristic = s_.neighbors == NeighborSearch::heuristic;
     neighbors_ = build_compute_program("algorithms/illustration_buffer/neighbors.comp",
                                        {{heuristic ? "IB_HEURISTIC" : "IB_TRIANGLE_INDEX", "1"}});
-    set(neighbors_.id(), "u_weight_z", s_.weight_z);
-    set(neighbors_.id(), "u_weight_n", s_.weight_n);
+    const GLuint neighbors = neighbors_.id();
+    if (uniform_active(neighbors, "u_weight_z")) set_uniform(neighbors, IB_WEIGHT_Z_LOCATION, s_.weight_z);
+    if (uniform_active(neighbors, "u_weight_n")) set_uniform(neighbors, IB_WEIGHT_N_LOCATION, s_.weight_n);
     stylize_init_ = build_compute_program("algorithms/illustration_buffer/stylize_init.comp");
-    set(stylize_init_.id(), "u_adaptive", int(s_.adaptive_alpha));
-    set(stylize_init_.id(), "u_use_beta", int(s_.uses_beta()));
-    set(stylize_init_.id(), "u_use_gamma", int(s_.uses_gamma()));
+    const GLuint init = stylize_init_.id();
+    if (uniform_active(init, "u_adaptive")) set_uniform(init, IB_ADAPTIVE_LOCATION, int(s_.adaptive_alpha));
+    if (uniform_active(init, "u_use_beta")) set_uniform(init, IB_USE_BETA_LOCATION, int(s_.uses_beta()));
+    if (uniform_active(init, "u_use_gamma")) set_uniform(init, IB_USE_GAMMA_LOCATION, int(s_.uses_gamma()));
     stylize_diffuse_ = build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp");
-    set(stylize_diffuse_.id(), "u_lambda_alpha", s_.lambda_alpha);
-    set(stylize_diffuse_.id(), "u_lambda_beta", s_.lambda_beta);
-    set(stylize_diffuse_.id(), "u_lambda_gamma", s_.lambda_gamma);
-    set(compose_.id(), "u_profile", int(s_.profile));
-    set(compose_.id(), "u_profile_p", s_.profile == Profile::power ? s_.power_p : s_.exponential_p);
+    const GLuint diffuse = stylize_diffuse_.id();
+    if (uniform_active(diffuse, "u_lambda_alpha")) set_uniform(diffuse, IB_LAMBDA_ALPHA_LOCATION, s_.lambda_alpha);
+    if (uniform_active(diffuse, "u_lambda_beta")) set_uniform(diffuse, IB_LAMBDA_BETA_LOCATION, s_.lambda_beta);
+    if (uniform_active(diffuse, "u_lambda_gamma")) set_uniform(diffuse, IB_LAMBDA_GAMMA_LOCATION, s_.lambda_gamma);
+    const float profile_p = s_.profile == Profile::power ? s_.power_p : s_.exponential_p;
+    if (uniform_active(compose_.id(), "u_profile")) set_uniform(compose_.id(), IB_PROFILE_LOCATION, int(s_.profile));
+    if (uniform_active(compose_.id(), "u_profile_p")) set_uniform(compose_.id(), IB_PROFILE_P_LOCATION, profile_p);
   }
 
   void resize(int width, int height) override {
@@ -90,8 +79,8 @@ class IllustrationBuffer final : public Technique {
     pool_.reset(uint64_t(width) * uint64_t(height) * s_.initial_nodes_per_pixel);
     no_attachments_ = make_attachmentless_framebuffer(width, height);
     for (GLuint program : programs()) {
-      set(program, "u_width", width);
-      set(program, "u_height", height);
+      if (uniform_active(program, "u_width")) set_uniform(program, IB_WIDTH_LOCATION, width);
+      if (uniform_active(program, "u_height")) set_uniform(program, IB_HEIGHT_LOCATION, height);
     }
   }
 
@@ -125,19 +114,19 @@ class IllustrationBuffer final : public Technique {
       auto stage = frame.clock.stage("sort");
       const GLuint sort = sort_program(counts[1]);
       glUseProgram(sort);
-      glBindTextureUnit(kFragmentUnit, fragment_view_.id());
-      glBindTextureUnit(kNextUnit, next_view_.id());
+      glBindTextureUnit(IB_FRAGMENT_UNIT, fragment_view_.id());
+      glBindTextureUnit(IB_NEXT_UNIT, next_view_.id());
       glDispatchCompute(GLuint(width_ + 7) / 8, GLuint(height_ + 7) / 8, 1);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
     const GLintptr second_range = second_field_range();
     if (modulated()) {
-      glBindTextureUnit(kSearchUnit, search_view_.id());
-      glBindTextureUnit(kShadeUnit, shade_view_.id());
+      glBindTextureUnit(IB_SEARCH_UNIT, search_view_.id());
+      glBindTextureUnit(IB_SHADE_UNIT, shade_view_.id());
       {
         auto stage = frame.clock.stage("neighbors");
         prepare_scene_data(frame.scene.scene());
-        glBindTextureUnit(kTrianglesUnit, triangles_view_ ? triangles_view_.id() : 0);
+        glBindTextureUnit(IB_TRIANGLES_UNIT, triangles_view_ ? triangles_view_.id() : 0);
         run_per_fragment(neighbors_.id());
       }
       auto stage = frame.clock.stage("stylize");
@@ -160,7 +149,7 @@ class IllustrationBuffer final : public Technique {
     glUseProgram(compose_.id());
     frame.set_shared_uniforms(compose_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    for (GLuint unit : {kSearchUnit, kTrianglesUnit, kFieldsUnit, kShadeUnit}) glBindTextureUnit(unit, 0);
+    for (GLuint unit : {IB_SEARCH_UNIT, IB_TRIANGLES_UNIT, IB_FIELDS_UNIT, IB_SHADE_UNIT}) glBindTextureUnit(unit, 0);
   }
 
   TechniqueCounters counters() const override {
@@ -205,15 +194,16 @@ class IllustrationBuffer final : public Technique {
       it = sorts_.emplace(size, build_compute_program("algorithms/illustration_buffer/sort.comp",
                                                       {{"IB_ARRAY", std::to_string(size)}}))
                .first;
-      set(it->second.id(), "u_width", width_);
-      set(it->second.id(), "u_height", height_);
+      const GLuint sort = it->second.id();
+      if (uniform_active(sort, "u_width")) set_uniform(sort, IB_WIDTH_LOCATION, width_);
+      if (uniform_active(sort, "u_height")) set_uniform(sort, IB_HEIGHT_LOCATION, height_);
     }
     return it->second.id();
   }
 
   void run_per_fragment(GLuint program) const {
     glUseProgram(program);
-    set(program, "u_fragments", uint32_t(stored_));
+    if (uniform_active(program, "u_fragments")) set_uniform(program, IB_FRAGMENTS_LOCATION, uint32_t(stored_));
     const uint64_t groups = (stored_ + 63) / 64;
     if (groups > 0) {
       const uint64_t x = std::min<uint64_t>(groups, 65535);
@@ -224,9 +214,9 @@ class IllustrationBuffer final : public Technique {
 
   void bind_fields(GLintptr in, GLintptr out) const {
     const GLsizeiptr bytes = std::max<GLsizeiptr>(kFieldBytes * GLsizeiptr(stored_), kFieldBytes);
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kFieldsIn, data_.id(), in, bytes);
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kFieldsOut, data_.id(), out, bytes);
-    glBindTextureUnit(kFieldsUnit, in == 0 ? fields_view_[0].id() : fields_view_[1].id());
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, IB_FIELDS_IN_BINDING, data_.id(), in, bytes);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, IB_FIELDS_OUT_BINDING, data_.id(), out, bytes);
+    glBindTextureUnit(IB_FIELDS_UNIT, in == 0 ? fields_view_[0].id() : fields_view_[1].id());
   }
 
   // Start of the second field range in fragData: aligned for both the SSBO
@@ -250,7 +240,8 @@ class IllustrationBuffer final : public Technique {
     scene_hash_ = hash;
     if (s_.neighbors == NeighborSearch::heuristic) {
       const float radius = scene.bounds().radius;
-      set(neighbors_.id(), "u_inverse_radius", radius > 0.0f ? 1.0f / radius : 1.0f);
+      if (uniform_active(neighbors_.id(), "u_inverse_radius"))
+        set_uniform(neighbors_.id(), IB_INVERSE_RADIUS_LOCATION, radius > 0.0f ? 1.0f / radius : 1.0f);
       return;
     }
     const TriangleTable table = build_triangle_table(scene, s_.weld_vertices);
@@ -277,18 +268,19 @@ class IllustrationBuffer final : public Technique {
     fields_view_[0] = make_buffer_texture(data_, GL_RGBA32F, 0, field_bytes);
     fields_view_[1] = make_buffer_texture(data_, GL_RGBA32F, second_field_range(), field_bytes);
     gl_check("creating the illustration buffer's read-only views");
-    set(fill_.id(), "u_capacity", uint32_t(capacity));
+    if (uniform_active(fill_.id(), "u_capacity"))
+      set_uniform(fill_.id(), IB_CAPACITY_LOCATION, uint32_t(capacity));
   }
 
   void bind_storage() const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kHead, head_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCount, count_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNext, next_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kData, data_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kData2, data2_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kData3, data3_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCounters, counters_.id());
-    if (truth_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTruth, truth_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_HEAD_BINDING, head_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_COUNT_BINDING, count_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_NEXT_BINDING, next_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_DATA_BINDING, data_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_DATA2_BINDING, data2_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_DATA3_BINDING, data3_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_COUNTERS_BINDING, counters_.id());
+    if (truth_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_TRUTH_BINDING, truth_.id());
   }
 
   void append_neighbor_statistics(TechniqueCounters& c) const;

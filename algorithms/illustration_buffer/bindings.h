@@ -1,0 +1,49 @@
+// illustration_buffer's binding points, texture units and uniform locations,
+// included by its C++ and its GLSL alike so that no number is copied by hand
+// between the two (shaders/bindings.h: a technique's own start at
+// OIT_FIRST_TECHNIQUE_*).
+#ifndef OIT_ILLUSTRATION_BUFFER_BINDINGS_H
+#define OIT_ILLUSTRATION_BUFFER_BINDINGS_H
+
+#include "shaders/bindings.h"
+
+// Storage buffer binding points.
+#define IB_HEAD_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 0)
+#define IB_COUNT_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 1)
+#define IB_NEXT_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 2)
+#define IB_DATA_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 3)   // fragData
+#define IB_DATA2_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 4)  // fragData2: sorted key, geometry
+#define IB_COUNTERS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 5)
+#define IB_TRUTH_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 6)  // measure_accuracy
+#define IB_FIELDS_IN_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 8)
+#define IB_FIELDS_OUT_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 9)
+#define IB_DATA3_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 10)  // fragData3: sorted colour, links
+
+// Texture units of views.glsl.
+#define IB_SEARCH_UNIT 0
+#define IB_TRIANGLES_UNIT 1
+#define IB_FIELDS_UNIT 2
+#define IB_SHADE_UNIT 3
+// The sort's views (sort.comp).
+#define IB_FRAGMENT_UNIT 0
+#define IB_NEXT_UNIT 1
+
+// Uniform locations.
+#define IB_WIDTH_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 0)
+#define IB_HEIGHT_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 1)
+#define IB_CAPACITY_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 2)       // fill.frag
+#define IB_MAX_PER_PIXEL_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 3)  // fill.frag
+#define IB_FRAGMENTS_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 4)      // per_fragment.glsl
+#define IB_WEIGHT_Z_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 5)       // neighbors.comp
+#define IB_WEIGHT_N_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 6)
+#define IB_INVERSE_RADIUS_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 7)
+#define IB_ADAPTIVE_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 8)  // stylize_init.comp
+#define IB_USE_BETA_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 9)
+#define IB_USE_GAMMA_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 10)
+#define IB_LAMBDA_ALPHA_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 11)  // stylize_diffuse.comp
+#define IB_LAMBDA_BETA_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 12)
+#define IB_LAMBDA_GAMMA_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 13)
+#define IB_PROFILE_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 14)  // compose.frag
+#define IB_PROFILE_P_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 15)
+
+#endif
