@@ -63,8 +63,8 @@ class AdaptiveTransparency final : public Technique {
       const GLfloat transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f};
       glClearNamedFramebufferfv(accumulation_framebuffer_.id(), GL_COLOR, 0, transparent);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ADAPTIVE_TRANSPARENCY_NODES_BINDING, nodes_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ADAPTIVE_TRANSPARENCY_COUNTS_BINDING, counts_.id());
+    bind_storage_buffers({{ADAPTIVE_TRANSPARENCY_NODES_BINDING, &nodes_},
+                          {ADAPTIVE_TRANSPARENCY_COUNTS_BINDING, &counts_}});
     locks_.bind(ADAPTIVE_TRANSPARENCY_LOCKS_BINDING);
     {
       auto fill = frame.clock.stage("fill");

@@ -70,9 +70,9 @@ class HybridTransparency final : public Technique {
       glClearTexImage(tail_sum_.id(), 0, GL_RGBA, GL_FLOAT, transparent);
       glClearTexImage(tail_count_.id(), 0, GL_RED, GL_FLOAT, transparent);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_TRANSPARENCY_KEYS_BINDING, keys_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_TRANSPARENCY_COLORS_BINDING, colors_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_TRANSPARENCY_COUNTERS_BINDING, counters_.id());
+    bind_storage_buffers({{HYBRID_TRANSPARENCY_KEYS_BINDING, &keys_},
+                          {HYBRID_TRANSPARENCY_COLORS_BINDING, &colors_},
+                          {HYBRID_TRANSPARENCY_COUNTERS_BINDING, &counters_}});
     {
       auto fill = frame.clock.stage("fill");
       draw_scene_pass(frame, fill_, no_attachments_);

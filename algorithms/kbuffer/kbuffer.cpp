@@ -233,10 +233,10 @@ class KBuffer final : public Technique {
   }
 
   void bind_storage() const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, KBUFFER_KEYS_BINDING, keys_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, KBUFFER_OWNERS_BINDING, owners_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, KBUFFER_COLORS_BINDING, colors_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, KBUFFER_COUNTERS_BINDING, counters_.id());
+    bind_storage_buffers({{KBUFFER_KEYS_BINDING, &keys_},
+                          {KBUFFER_OWNERS_BINDING, &owners_},
+                          {KBUFFER_COLORS_BINDING, &colors_},
+                          {KBUFFER_COUNTERS_BINDING, &counters_}});
   }
 
   bool auto_k_;

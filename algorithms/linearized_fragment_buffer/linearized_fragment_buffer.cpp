@@ -158,9 +158,9 @@ class LinearizedFragmentBuffer final : public Technique {
     const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
     glUseProgram(lengths_.id());
     set_uniform(lengths_.id(), LFB_PIXELS_LOCATION, GLuint(pixels));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LFB_OFFSETS_BINDING, offsets_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LFB_CURSORS_BINDING, cursors_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LFB_MISMATCHED_BINDING, mismatched_.id());
+    bind_storage_buffers({{LFB_OFFSETS_BINDING, &offsets_},
+                          {LFB_CURSORS_BINDING, &cursors_},
+                          {LFB_MISMATCHED_BINDING, &mismatched_}});
     glDispatchCompute(GLuint((pixels + 255) / 256), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     GLuint mismatched = 0;

@@ -41,8 +41,7 @@ uint64_t PrefixSum::bytes_allocated() const {
 void PrefixSum::dispatch(GLuint program, const Buffer& values, uint64_t count, const Buffer& sums, uint64_t groups) {
   glUseProgram(program);
   set_uniform(program, LFB_PREFIX_SUM_COUNT_LOCATION, GLuint(count));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LFB_PREFIX_SUM_VALUES_BINDING, values.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LFB_PREFIX_SUM_SUMS_BINDING, sums.id());
+  bind_storage_buffers({{LFB_PREFIX_SUM_VALUES_BINDING, &values}, {LFB_PREFIX_SUM_SUMS_BINDING, &sums}});
   glDispatchCompute(GLuint(groups), 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }

@@ -100,8 +100,8 @@ void LengthClasses::draw(const Frame& frame, const std::vector<uint32_t>& sizes,
   const GLuint classify = classify_program(sizes);
   glUseProgram(classify);
   set_uniform(classify, LINKED_LIST_SIZE_LOCATION, glm::ivec2(width_, height_));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LINKED_LIST_CLASS_COMMANDS_BINDING, commands_.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LINKED_LIST_CLASS_TILES_BINDING, class_tiles_.id());
+  bind_storage_buffers({{LINKED_LIST_CLASS_COMMANDS_BINDING, &commands_},
+                        {LINKED_LIST_CLASS_TILES_BINDING, &class_tiles_}});
   glDispatchCompute((tile_count_ + kClassifyGroup - 1) / kClassifyGroup, 1, 1);
   glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 

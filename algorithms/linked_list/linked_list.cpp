@@ -305,10 +305,10 @@ class LinkedList final : public Technique {
   }
 
   void bind_storage() const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LINKED_LIST_HEADS_BINDING, heads_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LINKED_LIST_NODES_BINDING, nodes_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LINKED_LIST_COUNTERS_BINDING, counters_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LINKED_LIST_LENGTHS_BINDING, lengths_.id());
+    bind_storage_buffers({{LINKED_LIST_HEADS_BINDING, &heads_},
+                          {LINKED_LIST_NODES_BINDING, &nodes_},
+                          {LINKED_LIST_COUNTERS_BINDING, &counters_},
+                          {LINKED_LIST_LENGTHS_BINDING, &lengths_}});
   }
 
   Sort sort_;

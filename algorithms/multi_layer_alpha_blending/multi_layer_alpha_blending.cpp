@@ -56,9 +56,9 @@ class MultiLayerAlphaBlending final : public Technique {
       fill_buffer_u32(counts_, 0);
       locks_.clear();
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, MULTI_LAYER_ALPHA_BLENDING_COLORS_BINDING, colors_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, MULTI_LAYER_ALPHA_BLENDING_DEPTHS_BINDING, depths_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, MULTI_LAYER_ALPHA_BLENDING_COUNTS_BINDING, counts_.id());
+    bind_storage_buffers({{MULTI_LAYER_ALPHA_BLENDING_COLORS_BINDING, &colors_},
+                          {MULTI_LAYER_ALPHA_BLENDING_DEPTHS_BINDING, &depths_},
+                          {MULTI_LAYER_ALPHA_BLENDING_COUNTS_BINDING, &counts_}});
     locks_.bind(MULTI_LAYER_ALPHA_BLENDING_LOCKS_BINDING);
     {
       auto fill = frame.clock.stage("fill");

@@ -159,10 +159,10 @@ class Reference final : public Technique {
   }
 
   void bind_storage() const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, REFERENCE_HEADS_BINDING, heads_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, REFERENCE_NODES_BINDING, nodes_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, REFERENCE_COUNTER_BINDING, counter_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, REFERENCE_LENGTHS_BINDING, lengths_.id());
+    bind_storage_buffers({{REFERENCE_HEADS_BINDING, &heads_},
+                          {REFERENCE_NODES_BINDING, &nodes_},
+                          {REFERENCE_COUNTER_BINDING, &counter_},
+                          {REFERENCE_LENGTHS_BINDING, &lengths_}});
   }
 
   int64_t nodes_per_pixel_;
