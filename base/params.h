@@ -3,7 +3,9 @@
 // each parameter's type, default and range; user text ("k=16") is checked
 // against it once, at construction, and errors name the key and the range.
 #include <cstdint>
+#include <initializer_list>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <variant>
 #include <vector>
@@ -41,6 +43,50 @@ struct ParamSpec {
   std::string range_text() const;    // "[1, 64]", "{drop, blend}", "{true, false}", "path ..."
 };
 
+// The values of a choice parameter, declared once by its owner: each value
+// (an enum, or a number such as a sample count) with the text the user types
+// and canonical text shows. The table builds the ParamSpec, so the names are
+// not listed a second time, and ParamSet::choice(name, table) turns the
+// validated text back into the value, so no owner compares choice strings.
+template <typename E>
+class Choices {
+ public:
+  struct Entry {
+    E value;
+    const char* name;
+  };
+  Choices(std::initializer_list<Entry> entries) : entries_(entries) {}
+
+  // The schema entry: these names in this order, `default_value`'s as default.
+  ParamSpec spec(std::string param, E default_value, std::string description) const {
+    return ParamSpec::choice(std::move(param), name(default_value), names(), std::move(description));
+  }
+  // Every name, in table order (e.g. a quality sweep over all values).
+  std::vector<std::string> names() const {
+    std::vector<std::string> names;
+    for (const Entry& entry : entries_) names.emplace_back(entry.name);
+    return names;
+  }
+  const char* name(E value) const {
+    for (const Entry& entry : entries_)
+      if (entry.value == value) return entry.name;
+    throw std::logic_error("a choice value has no name in its table");
+  }
+  // The value named `text`, or nullptr.
+  const E* find(const std::string& text) const {
+    for (const Entry& entry : entries_)
+      if (text == entry.name) return &entry.value;
+    return nullptr;
+  }
+  E value(const std::string& text) const {
+    if (const E* found = find(text)) return *found;
+    throw std::invalid_argument("'" + text + "' is not " + spec("", entries_.begin()->value, "").range_text());
+  }
+
+ private:
+  std::vector<Entry> entries_;
+};
+
 using ParamSchema = std::vector<ParamSpec>;
 using RawParams = std::map<std::string, std::string>;
 using ParamValue = std::variant<int64_t, double, bool, std::string>;
@@ -57,7 +103,16 @@ class ParamSet {
   bool is_auto(const std::string& name) const;
   double real(const std::string& name) const;
   bool boolean(const std::string& name) const;
+  // The chosen text; owners read their own choices as values with the
+  // overload below.
   const std::string& choice(const std::string& name) const;
+  template <typename E>
+  E choice(const std::string& name, const Choices<E>& table) const {
+    const std::string& text = choice(name);
+    if (const E* value = table.find(text)) return *value;
+    // The schema entry was not built from this table (Choices::spec).
+    throw std::logic_error(owner_ + ": parameter '" + name + "' = '" + text + "' is not in the table it is read with");
+  }
   // A path parameter as given ("" when unset); it existed and was readable
   // when this set was built.
   const std::string& path(const std::string& name) const;

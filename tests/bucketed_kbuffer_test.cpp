@@ -327,8 +327,8 @@ TEST(BucketedKBuffer, TransferFunctionsStylizeFlatInteriorAndImageBorder) {
                                                  std::pair{"mean_curvature_shading", "identity"}}) {
     const RunResult r = run({{"k", "8"}, {"color_transfer", color_name}, {"opacity_transfer", opacity_name}}, "quads",
                             {{"layers", "8"}}, 64);
-    const bkb::ColorTransfer color = bkb::color_transfer_from_name(color_name);
-    const bkb::OpacityTransfer opacity = bkb::opacity_transfer_from_name(opacity_name);
+    const bkb::ColorTransfer color = bkb::kColorTransfers.value(color_name);
+    const bkb::OpacityTransfer opacity = bkb::kOpacityTransfers.value(opacity_name);
     const double near = extra(r, "depth_near"), far = extra(r, "depth_far");
     auto expected = [&](float kappa) {
       glm::dvec3 accumulated(0.0);

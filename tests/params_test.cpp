@@ -75,6 +75,45 @@ TEST(Params, MalformedValuesAreRejected) {
   EXPECT_NE(error_of({{"tail", "keep"}}).find("{drop, blend}"), std::string::npos);
 }
 
+enum class Tail { drop, blend };
+const Choices<Tail> kTails{{Tail::drop, "drop"}, {Tail::blend, "blend"}};
+
+TEST(Params, ChoicesBuildTheSpecAndReadBackTheValue) {
+  const ParamSpec spec = kTails.spec("tail", Tail::blend, "what happens beyond k");
+  EXPECT_EQ(spec.type, ParamType::choice);
+  EXPECT_EQ(spec.default_value, "blend");
+  EXPECT_EQ(spec.choices, (std::vector<std::string>{"drop", "blend"}));
+  EXPECT_EQ(spec.range_text(), "one of {drop, blend}");
+  const ParamSchema schema = {spec};
+  EXPECT_EQ(ParamSet(schema, {}, "t").choice("tail", kTails), Tail::blend);
+  const ParamSet set(schema, {{"tail", "drop"}}, "t");
+  EXPECT_EQ(set.choice("tail", kTails), Tail::drop);
+  EXPECT_EQ(set.canonical(), "tail=drop");  // the text, as before the table
+  EXPECT_STREQ(kTails.name(Tail::blend), "blend");
+  EXPECT_EQ(kTails.names(), (std::vector<std::string>{"drop", "blend"}));
+  // Numbers are choices too (a sample count): the value is the number.
+  const Choices<int> samples{{4, "4"}, {8, "8"}};
+  EXPECT_EQ(ParamSet({samples.spec("samples", 4, "")}, {{"samples", "8"}}, "t").choice("samples", samples), 8);
+}
+
+TEST(Params, ChoicesNameWhatTheyLack) {
+  try {
+    kTails.value("keep");
+    FAIL() << "accepted keep";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "'keep' is not one of {drop, blend}");
+  }
+  // A schema built without the table: reading it through the table is a programming error that names the owner.
+  const ParamSet set(kSchema, {{"tail", "blend"}}, "technique 'kbuffer'");
+  const Choices<Tail> other{{Tail::drop, "drop"}};
+  try {
+    set.choice("tail", other);
+    FAIL() << "read blend through a table without it";
+  } catch (const std::logic_error& e) {
+    EXPECT_EQ(std::string(e.what()), "technique 'kbuffer': parameter 'tail' = 'blend' is not in the table it is read with");
+  }
+}
+
 TEST(Params, AssignmentParsing) {
   RawParams raw;
   parse_assignment("k=8", raw);

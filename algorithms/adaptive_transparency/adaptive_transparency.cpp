@@ -14,6 +14,7 @@
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
+#include "harness/gl/uniforms.h"
 #include "algorithms/adaptive_transparency/bindings.h"
 
 namespace oit {
@@ -34,14 +35,14 @@ class AdaptiveTransparency final : public Technique {
         store_(build_geometry_program("algorithms/adaptive_transparency/store.frag")),
         compose_(build_fullscreen_program("algorithms/adaptive_transparency/compose.frag")) {
     for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
-      glProgramUniform1i(program, ADAPTIVE_TRANSPARENCY_NODES_LOCATION, k_);
+      set_uniform(program, ADAPTIVE_TRANSPARENCY_NODES_LOCATION, k_);
   }
 
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
     for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
-      glProgramUniform1i(program, ADAPTIVE_TRANSPARENCY_WIDTH_LOCATION, width);
+      set_uniform(program, ADAPTIVE_TRANSPARENCY_WIDTH_LOCATION, width);
     const uint64_t pixels = uint64_t(width) * uint64_t(height);
     nodes_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_ + 1) * kNodeBytes));
     counts_ = make_buffer(GLsizeiptr(4 + pixels * 4));
@@ -62,8 +63,8 @@ class AdaptiveTransparency final : public Technique {
       const GLfloat transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f};
       glClearNamedFramebufferfv(accumulation_framebuffer_.id(), GL_COLOR, 0, transparent);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ADAPTIVE_TRANSPARENCY_NODES_BINDING, nodes_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ADAPTIVE_TRANSPARENCY_COUNTS_BINDING, counts_.id());
+    bind_storage_buffers({{ADAPTIVE_TRANSPARENCY_NODES_BINDING, &nodes_},
+                          {ADAPTIVE_TRANSPARENCY_COUNTS_BINDING, &counts_}});
     locks_.bind(ADAPTIVE_TRANSPARENCY_LOCKS_BINDING);
     {
       auto fill = frame.clock.stage("fill");

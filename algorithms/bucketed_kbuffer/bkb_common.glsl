@@ -6,7 +6,7 @@
 // scenes: no hash table is built), BKB_BUCKETS_NONE (neighbour pass only,
 // buckets=off) is the brute force of murray2016 Figure 10. Every per-pixel array is pixel-major: slot i of
 // pixel p is element p * K + i, so one pixel's list is contiguous.
-#include "shaders/bindings.h"
+#include "algorithms/bucketed_kbuffer/bindings.h"
 
 #define BKB_EMPTY 0xffffffffu
 #define BKB_BUCKETS_NONE 0
@@ -29,30 +29,30 @@
 
 // Z: per slot a 32-bit key. After the fill pass: depth in the high bits
 // (atomicMin keeps the nearest); after the sort pass: shape id in the high bits.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) coherent buffer BkbZ { uint bkb_z[]; };
+layout(std430, binding = BKB_Z_BINDING) coherent buffer BkbZ { uint bkb_z[]; };
 // B: per pixel a hash table of K buckets: shape id << 16 | first << 8 | last
 // (BKB_BUCKETS_SINGLE: only the first word, the list's length).
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) coherent buffer BkbBuckets { uint bkb_buckets[]; };
+layout(std430, binding = BKB_BUCKETS_BINDING) coherent buffer BkbBuckets { uint bkb_buckets[]; };
 // D, split in two arrays: packed RGBA8 colour and packed normal.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 2) coherent buffer BkbColors { uint bkb_colors[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 3) coherent buffer BkbNormals { uint bkb_normals[]; };
+layout(std430, binding = BKB_COLORS_BINDING) coherent buffer BkbColors { uint bkb_colors[]; };
+layout(std430, binding = BKB_NORMALS_BINDING) coherent buffer BkbNormals { uint bkb_normals[]; };
 // Per slot: kappa as float16 (low 16 bits) | found-neighbour mask << 16.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 4) coherent buffer BkbFeatures { uint bkb_features[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 5) coherent buffer BkbCounters { uint bkb_dropped; };
+layout(std430, binding = BKB_FEATURES_BINDING) coherent buffer BkbFeatures { uint bkb_features[]; };
+layout(std430, binding = BKB_COUNTERS_BINDING) coherent buffer BkbCounters { uint bkb_dropped; };
 // Diagnostics, bound only with measure_accuracy: neighbour slot per direction
 // (8 bits each, 0xff = missing), the analytic and the estimated k1 + k2.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 6) coherent buffer BkbLinks { uint bkb_links[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 7) coherent buffer BkbExpected { float bkb_expected[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 8) coherent buffer BkbEstimated { float bkb_estimated[]; };
+layout(std430, binding = BKB_LINKS_BINDING) coherent buffer BkbLinks { uint bkb_links[]; };
+layout(std430, binding = BKB_EXPECTED_BINDING) coherent buffer BkbExpected { float bkb_expected[]; };
+layout(std430, binding = BKB_ESTIMATED_BINDING) coherent buffer BkbEstimated { float bkb_estimated[]; };
 // Ground truth of the link precision/recall, measure_accuracy only: per slot
 // surface id, (u, v) bits and the uv footprint of one pixel (fwidth, half2).
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 9) coherent buffer BkbTruth { uvec4 bkb_truth[]; };
+layout(std430, binding = BKB_TRUTH_BINDING) coherent buffer BkbTruth { uvec4 bkb_truth[]; };
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform int u_width;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_height;
+layout(location = BKB_WIDTH_LOCATION) uniform int u_width;
+layout(location = BKB_HEIGHT_LOCATION) uniform int u_height;
 // View-depth range mapped linearly onto [0, BKB_DEPTH_MAX].
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 2) uniform float u_depth_near;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 3) uniform float u_depth_far;
+layout(location = BKB_DEPTH_NEAR_LOCATION) uniform float u_depth_near;
+layout(location = BKB_DEPTH_FAR_LOCATION) uniform float u_depth_far;
 
 uint bkb_pixel_base(ivec2 pixel) { return (uint(pixel.y) * uint(u_width) + uint(pixel.x)) * uint(K); }
 uint bkb_pixel_base() { return bkb_pixel_base(ivec2(gl_FragCoord.xy)); }

@@ -22,15 +22,15 @@
 #include "harness/core/passes.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
+#include "harness/gl/uniforms.h"
+#include "algorithms/bucketed_kbuffer/choices.h"
 #include "algorithms/bucketed_kbuffer/transfer_functions.h"
-#include "shaders/bindings.h"
+#include "algorithms/bucketed_kbuffer/bindings.h"
 
 namespace oit {
 namespace {
 
-constexpr GLuint kBinding = OIT_FIRST_TECHNIQUE_BINDING;  // + 0..9, see bkb_common.glsl
-constexpr GLint kUniform = OIT_FIRST_TECHNIQUE_UNIFORM;   // + 0..5
-enum class BucketMode { automatic, on, off };
+using bkb::BucketMode;
 constexpr int kMaxK = 64;  // the parameter's maximum: the worst case k=auto is compared with
 
 // Every pass takes K as a compile-time define (local arrays, the hash
@@ -57,17 +57,17 @@ class BucketedKBuffer final : public Technique {
       : auto_k_(params.is_auto("k")),
         k_parameter_(auto_k_ ? 0 : int(params.integer("k"))),
         memory_cap_bytes_(uint64_t(params.integer("auto_k_memory_mb")) << 20),
-        depth_bits_(params.choice("depth_bits") == "24" ? 24 : 16),
-        color_texels_(bkb::color_transfer_texels(params.choice("color_transfer"), params.path("color_transfer_file"))),
-        opacity_texels_(
-            bkb::opacity_transfer_texels(params.choice("opacity_transfer"), params.path("opacity_transfer_file"))),
+        depth_bits_(params.choice("depth_bits", bkb::kDepthBits)),
+        color_texels_(bkb::color_transfer_texels(params.choice("color_transfer", bkb::kColorTransfers),
+                                                 params.path("color_transfer_file"))),
+        opacity_texels_(bkb::opacity_transfer_texels(params.choice("opacity_transfer", bkb::kOpacityTransfers),
+                                                     params.path("opacity_transfer_file"))),
         identity_(color_texels_.empty() && opacity_texels_.empty()),
         measure_(params.boolean("measure_accuracy")),
-        merge_search_(params.choice("neighbor_search") == "merge"),
+        merge_search_(params.choice("neighbor_search", bkb::kNeighborSearches) == bkb::NeighborSearch::merge),
         reverse_check_(params.boolean("reverse_check")),
-        curvature_scale_(params.real("curvature_scale")) {
-    const std::string& buckets = params.choice("buckets");
-    mode_ = buckets == "on" ? BucketMode::on : buckets == "off" ? BucketMode::off : BucketMode::automatic;
+        curvature_scale_(params.real("curvature_scale")),
+        mode_(params.choice("buckets", bkb::kBucketModes)) {
     counter_ = make_buffer(sizeof(GLuint));
     if (auto_k_) count_pass_.emplace();
     else programs_for(k_parameter_);  // compile errors surface at construction
@@ -158,8 +158,8 @@ class BucketedKBuffer final : public Technique {
       // Both identity: colour and alpha stay as stored; the stage does no work.
       auto stylize = frame.clock.stage("stylize");
       if (!identity_) {
-        if (color_transfer_) glBindTextureUnit(0, color_transfer_.id());
-        if (opacity_transfer_) glBindTextureUnit(1, opacity_transfer_.id());
+        if (color_transfer_) glBindTextureUnit(BKB_COLOR_TRANSFER_UNIT, color_transfer_.id());
+        if (opacity_transfer_) glBindTextureUnit(BKB_OPACITY_TRANSFER_UNIT, opacity_transfer_.id());
         run_fullscreen(frame, programs_->stylize.id());
       }
     }
@@ -343,18 +343,15 @@ class BucketedKBuffer final : public Technique {
                            p.stylize.id(), p.compose.id()}) {
       if (program == 0) continue;
       frame.set_shared_uniforms(program);
-      if (active(program, "u_width")) glProgramUniform1i(program, kUniform + 0, width_);
-      if (active(program, "u_height")) glProgramUniform1i(program, kUniform + 1, height_);
-      if (active(program, "u_depth_near")) glProgramUniform1f(program, kUniform + 2, depth_near_);
-      if (active(program, "u_depth_far")) glProgramUniform1f(program, kUniform + 3, depth_far_);
-      if (active(program, "u_inverse_projection"))
-        glProgramUniformMatrix4fv(program, kUniform + 4, 1, GL_FALSE, &inverse_projection[0][0]);
-      if (active(program, "u_curvature_scale")) glProgramUniform1f(program, kUniform + 5, float(curvature_scale_));
+      if (uniform_active(program, "u_width")) set_uniform(program, BKB_WIDTH_LOCATION, width_);
+      if (uniform_active(program, "u_height")) set_uniform(program, BKB_HEIGHT_LOCATION, height_);
+      if (uniform_active(program, "u_depth_near")) set_uniform(program, BKB_DEPTH_NEAR_LOCATION, depth_near_);
+      if (uniform_active(program, "u_depth_far")) set_uniform(program, BKB_DEPTH_FAR_LOCATION, depth_far_);
+      if (uniform_active(program, "u_inverse_projection"))
+        set_uniform(program, BKB_INVERSE_PROJECTION_LOCATION, inverse_projection);
+      if (uniform_active(program, "u_curvature_scale"))
+        set_uniform(program, BKB_CURVATURE_SCALE_LOCATION, float(curvature_scale_));
     }
-  }
-
-  static bool active(GLuint program, const char* name) {
-    return glGetProgramResourceIndex(program, GL_UNIFORM, name) != GL_INVALID_INDEX;
   }
 
   // The merge search reads whole sorted lists, so one program serves every
@@ -409,10 +406,10 @@ class BucketedKBuffer final : public Technique {
   }
 
   void bind_storage() const {
-    const Buffer* buffers[] = {&z_,       &buckets_, &colors_,   &normals_,    &features_,
-                               &counter_, &links_,   &expected_, &estimated_, &truth_};
-    for (GLuint i = 0; i < 10; ++i)
-      if (*buffers[i]) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBinding + i, buffers[i]->id());
+    const Buffer* buffers[BKB_BUFFER_COUNT] = {&z_,       &buckets_, &colors_,   &normals_,    &features_,
+                                               &counter_, &links_,   &expected_, &estimated_, &truth_};
+    for (GLuint i = 0; i < BKB_BUFFER_COUNT; ++i)
+      if (*buffers[i]) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BKB_Z_BINDING + i, buffers[i]->id());
   }
 
   static std::vector<uint32_t> read_uints(const Buffer& buffer, size_t count) {

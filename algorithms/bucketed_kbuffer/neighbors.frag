@@ -39,8 +39,8 @@
 // +1 concave). kappa = tanh(scale * (k1 + k2)); a missing neighbour gives -1.
 #include "algorithms/bucketed_kbuffer/bkb_common.glsl"
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 4) uniform mat4 u_inverse_projection;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 5) uniform float u_curvature_scale;
+layout(location = BKB_INVERSE_PROJECTION_LOCATION) uniform mat4 u_inverse_projection;
+layout(location = BKB_CURVATURE_SCALE_LOCATION) uniform float u_curvature_scale;
 
 const float kNoCandidate = 3.0e38;
 

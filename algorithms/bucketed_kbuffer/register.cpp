@@ -3,6 +3,8 @@
 
 #include "harness/core/fragment_pool.h"
 #include "harness/core/technique.h"
+#include "algorithms/bucketed_kbuffer/choices.h"
+#include "algorithms/bucketed_kbuffer/transfer_functions.h"
 
 namespace oit {
 
@@ -17,33 +19,33 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
       ParamSpec::integer_or_auto("k", "16", 1, 64,
                                  "slots per pixel: the k nearest fragments are kept; auto = the view's depth "
                                  "complexity, counted every frame (capped by auto_k_memory_mb)"),
-      ParamSpec::choice("buckets", "auto", {"auto", "on", "off"},
-                        "how store (and, with neighbor_search=bucket, the neighbour query) finds a shape's "
-                        "fragments: one hashed bucket (on), all fragments (off: brute force query, hashed store), "
-                        "or on unless the scene has a single object (auto), where each list is the one bucket: "
-                        "no bucket pass, no hash look-ups"),
-      ParamSpec::choice("neighbor_search", "merge", {"merge", "bucket"},
-                        "neighbour query: walk the two sorted lists from the depth-nearest fragment of the "
-                        "shape until the depth difference alone exceeds the best score (merge), or scan the "
-                        "bucket or list that buckets selects (bucket); both find the same links"),
+      bkb::kBucketModes.spec("buckets", bkb::BucketMode::automatic,
+                             "how store (and, with neighbor_search=bucket, the neighbour query) finds a shape's "
+                             "fragments: one hashed bucket (on), all fragments (off: brute force query, hashed "
+                             "store), or on unless the scene has a single object (auto), where each list is the "
+                             "one bucket: no bucket pass, no hash look-ups"),
+      bkb::kNeighborSearches.spec("neighbor_search", bkb::NeighborSearch::merge,
+                                  "neighbour query: walk the two sorted lists from the depth-nearest fragment of "
+                                  "the shape until the depth difference alone exceeds the best score (merge), or "
+                                  "scan the bucket or list that buckets selects (bucket); both find the same links"),
       ParamSpec::boolean("reverse_check", true,
                          "keep a link only if no other fragment of the pixel is closer to the candidate "
                          "(carnecky2013 Algorithm 2, murray2016 Figure 5); false links every best candidate, "
                          "mutual or not"),
-      ParamSpec::choice("color_transfer", "mean_curvature_shading",
-                        {"mean_curvature_shading", "curved_bright", "identity"},
-                        "1D colour transfer function of kappa: murray2016 Figure 6(a), 6(b), or colour unchanged"),
-      ParamSpec::choice("opacity_transfer", "front_focus", {"front_focus", "depth_range", "identity"},
-                        "2D opacity transfer function of |kappa| and depth: murray2016 Figure 7/8(a), 7/8(b), "
-                        "or alpha unchanged"),
+      bkb::kColorTransfers.spec(
+          "color_transfer", bkb::ColorTransfer::mean_curvature_shading,
+          "1D colour transfer function of kappa: murray2016 Figure 6(a), 6(b), or colour unchanged"),
+      bkb::kOpacityTransfers.spec("opacity_transfer", bkb::OpacityTransfer::front_focus,
+                                  "2D opacity transfer function of |kappa| and depth: murray2016 Figure 7/8(a), "
+                                  "7/8(b), or alpha unchanged"),
       ParamSpec::path("color_transfer_file", "",
                       "colour transfer function from a file, overriding color_transfer: text (m, r g b, kappa m "
                       "or kappa r g b per line) or PNG (first row, kappa -1 .. 1); see the technique README"),
       ParamSpec::path("opacity_transfer_file", "",
                       "opacity transfer function from a file, overriding opacity_transfer: text grid or PNG, "
                       "rows = depth (first/top = near), columns = |kappa| (first/left = 0); see the technique README"),
-      ParamSpec::choice("depth_bits", "16", {"16", "24"},
-                        "depth bits of the 32-bit key; the shape id gets the rest (24: at most 256 objects)"),
+      bkb::kDepthBits.spec("depth_bits", 16,
+                           "depth bits of the 32-bit key; the shape id gets the rest (24: at most 256 objects)"),
       ParamSpec::real("curvature_scale", 1.0, 1e-3, 1e3,
                       "kappa = tanh(curvature_scale * (k1 + k2)), curvatures in 1 / scene units"),
       ParamSpec::boolean("measure_accuracy", false,
@@ -68,10 +70,10 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
                                     "worst-case constant 64",
                           {{"k", "auto"}}, {{"k", "64"}}}};
   d.extra_support_check = [](const ParamSet& params, const SceneFacts& scene) -> std::string {
-    const bool wide = params.choice("depth_bits") == "24";
-    const uint32_t limit = wide ? 256u : 65536u;
+    const int depth_bits = params.choice("depth_bits", bkb::kDepthBits);
+    const uint32_t limit = 1u << (32 - depth_bits);
     if (scene.objects > limit)
-      return "bucketed_kbuffer: depth_bits=" + params.choice("depth_bits") + " leaves room for " +
+      return "bucketed_kbuffer: depth_bits=" + std::to_string(depth_bits) + " leaves room for " +
              std::to_string(limit) + " shape ids; the scene has " + std::to_string(scene.objects) + " objects";
     return "";
   };

@@ -9,8 +9,8 @@
 // with both 0 the pass does not run at all.
 #include "algorithms/bucketed_kbuffer/bkb_common.glsl"
 
-layout(binding = 0) uniform sampler1D u_color_transfer;
-layout(binding = 1) uniform sampler2D u_opacity_transfer;
+layout(binding = BKB_COLOR_TRANSFER_UNIT) uniform sampler1D u_color_transfer;
+layout(binding = BKB_OPACITY_TRANSFER_UNIT) uniform sampler2D u_opacity_transfer;
 
 float texel_centre(float x, float size) { return (0.5 + clamp(x, 0.0, 1.0) * (size - 1.0)) / size; }
 

@@ -21,20 +21,6 @@ void use_linear_clamped_filtering(GLuint texture) {
 
 }  // namespace
 
-ColorTransfer color_transfer_from_name(const std::string& name) {
-  if (name == "identity") return ColorTransfer::identity;
-  if (name == "mean_curvature_shading") return ColorTransfer::mean_curvature_shading;
-  if (name == "curved_bright") return ColorTransfer::curved_bright;
-  throw std::invalid_argument("bucketed_kbuffer: unknown colour transfer function '" + name + "'");
-}
-
-OpacityTransfer opacity_transfer_from_name(const std::string& name) {
-  if (name == "identity") return OpacityTransfer::identity;
-  if (name == "front_focus") return OpacityTransfer::front_focus;
-  if (name == "depth_range") return OpacityTransfer::depth_range;
-  throw std::invalid_argument("bucketed_kbuffer: unknown opacity transfer function '" + name + "'");
-}
-
 float color_multiplier(ColorTransfer function, float kappa) {
   kappa = std::clamp(kappa, -1.0f, 1.0f);
   switch (function) {
@@ -89,16 +75,14 @@ std::vector<float> opacity_texels(OpacityTransfer function) {
   return texels;
 }
 
-std::vector<float> color_transfer_texels(const std::string& choice, const std::string& file) {
+std::vector<float> color_transfer_texels(ColorTransfer choice, const std::string& file) {
   if (!file.empty()) return load_color_transfer_file(file);
-  const ColorTransfer function = color_transfer_from_name(choice);
-  return function == ColorTransfer::identity ? std::vector<float>{} : color_texels(function);
+  return choice == ColorTransfer::identity ? std::vector<float>{} : color_texels(choice);
 }
 
-std::vector<float> opacity_transfer_texels(const std::string& choice, const std::string& file) {
+std::vector<float> opacity_transfer_texels(OpacityTransfer choice, const std::string& file) {
   if (!file.empty()) return load_opacity_transfer_file(file);
-  const OpacityTransfer function = opacity_transfer_from_name(choice);
-  return function == OpacityTransfer::identity ? std::vector<float>{} : opacity_texels(function);
+  return choice == OpacityTransfer::identity ? std::vector<float>{} : opacity_texels(choice);
 }
 
 Texture make_color_texture(const std::vector<float>& texels) {

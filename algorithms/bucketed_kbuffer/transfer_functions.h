@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "base/params.h"
 #include "harness/gl/handles.h"
 #include "algorithms/bucketed_kbuffer/transfer_files.h"  // kColorTransferSize, kOpacityTransferSize
 
@@ -23,9 +24,13 @@ enum class OpacityTransfer {
   depth_range,  // Figures 7/8(b): less focus in front, curvature shown over a wider range of depth
 };
 
-// Parameter text <-> function; the names are the parameter's choices.
-ColorTransfer color_transfer_from_name(const std::string& name);
-OpacityTransfer opacity_transfer_from_name(const std::string& name);
+// The color_transfer and opacity_transfer parameters' choices.
+inline const Choices<ColorTransfer> kColorTransfers{{ColorTransfer::mean_curvature_shading, "mean_curvature_shading"},
+                                                   {ColorTransfer::curved_bright, "curved_bright"},
+                                                   {ColorTransfer::identity, "identity"}};
+inline const Choices<OpacityTransfer> kOpacityTransfers{{OpacityTransfer::front_focus, "front_focus"},
+                                                        {OpacityTransfer::depth_range, "depth_range"},
+                                                        {OpacityTransfer::identity, "identity"}};
 
 // Multiplier of the shaded rgb (the same for r, g, b); kappa in [-1, 1].
 float color_multiplier(ColorTransfer function, float kappa);
@@ -42,8 +47,8 @@ std::vector<float> opacity_texels(OpacityTransfer function);
 // overrides the choice; transfer_files.h), else of the built-in the choice
 // names; empty for the identity choice without a file (no texture: the
 // stylize pass leaves that part alone).
-std::vector<float> color_transfer_texels(const std::string& choice, const std::string& file);
-std::vector<float> opacity_transfer_texels(const std::string& choice, const std::string& file);
+std::vector<float> color_transfer_texels(ColorTransfer choice, const std::string& file);
+std::vector<float> opacity_transfer_texels(OpacityTransfer choice, const std::string& file);
 
 // The textures the stylize pass samples (linear filtering, clamped), from
 // texels laid out as color_texels() / opacity_texels().

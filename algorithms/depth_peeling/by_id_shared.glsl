@@ -13,10 +13,7 @@
 // (selected depth first, then next depth) plus the id, which GL_MIN
 // blending can reduce: the band and id as the bits of a positive normal
 // float, and positive normal floats order like their bits.
-#include "shaders/bindings.h"
-
-#define DP_ID_STATE_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 0)
-#define DP_ID_SELECT_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 1)
+#include "algorithms/depth_peeling/bindings.h"
 
 // Candidate bands: [0x00800000, 0x40000000) and [0x40000000, 0x7f800000):
 // each holds 0x3f800000 ids (the host checks the scene's ids fit).

@@ -23,13 +23,10 @@
 #include "harness/gl/check.h"
 #include "harness/gl/pass_queries.h"
 #include "harness/gl/shader_program.h"
-#include "shaders/bindings.h"
+#include "algorithms/depth_peeling/bindings.h"
 
 namespace oit {
 namespace {
-
-constexpr GLuint kStateUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kSelectUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
 
 // Per pixel: accumulation RGBA32F (16) + two RGBA32UI states (ping-pong,
 // 2 x 16; 12 bytes used, RGB32UI is not required to be renderable) + the
@@ -96,7 +93,7 @@ class DepthPeelingByTriangleId final : public TriangleIdPeeler {
         glBlendFuncSeparatei(0, GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
         glBlendEquationi(1, GL_MIN);
         glUseProgram(peel_.id());
-        glBindTextureUnit(kStateUnit, state_[previous].id());
+        glBindTextureUnit(DP_ID_STATE_UNIT, state_[previous].id());
         frame.scene.draw();
       }
       glDisable(GL_BLEND);
@@ -110,8 +107,8 @@ class DepthPeelingByTriangleId final : public TriangleIdPeeler {
   // returns whether any pixel selected a fragment (after pass 1: has a
   // fragment; waits for the pass when early exit needs to know).
   bool resolve(int current, int previous, int pass, const GLuint nothing_here[4]) {
-    glBindTextureUnit(kStateUnit, state_[previous].id());
-    glBindTextureUnit(kSelectUnit, select_.id());
+    glBindTextureUnit(DP_ID_STATE_UNIT, state_[previous].id());
+    glBindTextureUnit(DP_ID_SELECT_UNIT, select_.id());
     resolve_selection(state_targets_[current], nothing_here, resolve_, selected_queries_.at(size_t(pass)),
                       [] { glDrawArrays(GL_TRIANGLES, 0, 3); });
     return selected_anything(pass);

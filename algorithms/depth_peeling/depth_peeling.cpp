@@ -21,18 +21,10 @@
 #include "harness/gl/check.h"
 #include "harness/gl/pass_queries.h"
 #include "harness/gl/shader_program.h"
-#include "shaders/bindings.h"
+#include "algorithms/depth_peeling/bindings.h"
 
 namespace oit {
 namespace {
-
-constexpr GLuint kCounterBinding = OIT_FIRST_TECHNIQUE_BINDING + 0;
-// Geometry pass: the key of the layer peeled last.
-constexpr GLuint kPreviousKeysUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
-// Blend and compose passes.
-constexpr GLuint kLayerColorUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kLayerKeysUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
-constexpr GLuint kAccumulationUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
 
 // Per pixel: layer colour RGBA32F (16) + depth buffer DEPTH32F (4) + two
 // RG32UI layer keys (2 x 8) + accumulation RGBA32F (16).
@@ -103,7 +95,7 @@ class DepthPeelingBySubmission final : public Technique {
     // Where a pass finds nothing its key stays +infinity: every later pass discards everything there.
     const GLuint nothing_here[4] = {float_bits(std::numeric_limits<float>::infinity()), 0, 0, 0};
     const GLfloat farthest = 1.0f;
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCounterBinding, counter_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DEPTH_PEELING_COUNTER_BINDING, counter_.id());
     for (const Program* program : {&peel_, &peel_counting_, &blend_layer_, &compose_})
       frame.set_shared_uniforms(program->id());
     for (int pass = 1; pass <= max_passes_; ++pass) {
@@ -117,7 +109,7 @@ class DepthPeelingBySubmission final : public Technique {
       glEnable(GL_DEPTH_TEST);
       glDepthFunc(GL_LESS);
       glUseProgram(pass == max_passes_ ? peel_counting_.id() : peel_.id());
-      glBindTextureUnit(kPreviousKeysUnit, keys_[previous].id());
+      glBindTextureUnit(DEPTH_PEELING_PREVIOUS_KEYS_UNIT, keys_[previous].id());
       if (early_exit_) glBeginQuery(GL_ANY_SAMPLES_PASSED, any_samples_.id());
       frame.scene.draw();
       ++passes_;
@@ -134,7 +126,7 @@ class DepthPeelingBySubmission final : public Technique {
       auto compose = frame.clock.stage("compose");
       frame.bind_target();
       glUseProgram(compose_.id());
-      glBindTextureUnit(kAccumulationUnit, accumulation_.id());
+      glBindTextureUnit(DEPTH_PEELING_ACCUMULATION_UNIT, accumulation_.id());
       glDrawArrays(GL_TRIANGLES, 0, 3);
     }
   }
@@ -165,8 +157,8 @@ class DepthPeelingBySubmission final : public Technique {
     // alpha: transmittance * (1 - layer alpha).
     glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
     glUseProgram(blend_layer_.id());
-    glBindTextureUnit(kLayerColorUnit, layer_color_.id());
-    glBindTextureUnit(kLayerKeysUnit, keys_[current].id());
+    glBindTextureUnit(DEPTH_PEELING_LAYER_COLOR_UNIT, layer_color_.id());
+    glBindTextureUnit(DEPTH_PEELING_LAYER_KEYS_UNIT, keys_[current].id());
     glBeginQuery(GL_SAMPLES_PASSED, blend_queries_.at(size_t(pass - 1)).id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glEndQuery(GL_SAMPLES_PASSED);

@@ -5,16 +5,12 @@
 // peeled fragment's triangle); a view depth of +infinity marks "nothing
 // peeled here", -infinity "nothing peeled yet". Fragments are peeled in the
 // order (view depth, submission index).
-#include "shaders/bindings.h"
+#include "algorithms/depth_peeling/bindings.h"
 
-#define DEPTH_PEELING_PREVIOUS_KEYS_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 0)
-#define DEPTH_PEELING_LAYER_COLOR_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 0)
-#define DEPTH_PEELING_LAYER_KEYS_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 1)
-#define DEPTH_PEELING_ACCUMULATION_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 0)
 #define DEPTH_PEELING_EMPTY_DEPTH_BITS 0x7f800000u  // +infinity
 
 #if defined(COUNT_SURVIVORS) && COUNT_SURVIVORS
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) buffer DepthPeelingCounter {
+layout(std430, binding = DEPTH_PEELING_COUNTER_BINDING) buffer DepthPeelingCounter {
   uint survivors_of_last_pass;  // un-peeled fragments seen by the capped last pass
 };
 #endif

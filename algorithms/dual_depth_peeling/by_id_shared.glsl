@@ -14,12 +14,7 @@
 // can reduce: a band (the selected depth first, then the next depth) plus
 // the id (reversed for the back), as the bits of a positive normal float,
 // and positive normal floats order like their bits.
-#include "shaders/bindings.h"
-
-#define DUAL_ID_KEYS_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 0)
-#define DUAL_ID_NEXT_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 1)
-#define DUAL_ID_SELECT_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 2)
-#define DUAL_ID_COUNT_BACK_UNIFORM OIT_FIRST_TECHNIQUE_UNIFORM
+#include "algorithms/dual_depth_peeling/bindings.h"
 
 // Candidate bands: [0x00800000, 0x40000000) and [0x40000000, 0x7f800000):
 // each holds 0x3f800000 ids (the host checks the scene's ids fit).

@@ -23,15 +23,11 @@
 #include "harness/gl/check.h"
 #include "harness/gl/pass_queries.h"
 #include "harness/gl/shader_program.h"
-#include "shaders/bindings.h"
+#include "harness/gl/uniforms.h"
+#include "algorithms/dual_depth_peeling/bindings.h"
 
 namespace oit {
 namespace {
-
-constexpr GLuint kKeysUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kNextUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
-constexpr GLuint kSelectUnit = OIT_FIRST_TECHNIQUE_BINDING + 2;
-constexpr GLint kCountBackUniform = OIT_FIRST_TECHNIQUE_UNIFORM;
 
 // Per pixel: front and back accumulations RGBA32F (2 x 16) + two RGBA32UI
 // selected keys (2 x 16) + two RG32F next depths (2 x 8), both ping-pong +
@@ -110,8 +106,8 @@ class DualDepthPeelingByTriangleId final : public TriangleIdPeeler {
       glBlendFuncSeparatei(1, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
       glBlendEquationi(2, GL_MIN);
       glUseProgram(peel_.id());
-      glBindTextureUnit(kKeysUnit, keys_[previous].id());
-      glBindTextureUnit(kNextUnit, next_[previous].id());
+      glBindTextureUnit(DUAL_ID_KEYS_UNIT, keys_[previous].id());
+      glBindTextureUnit(DUAL_ID_NEXT_UNIT, next_[previous].id());
       frame.scene.draw();
       glDisable(GL_BLEND);
       if (!continue_after(pass, [&] { return resolve(current, previous, pass, nothing_here); })) break;
@@ -124,12 +120,12 @@ class DualDepthPeelingByTriangleId final : public TriangleIdPeeler {
   // returns whether any pixel selected a fragment (waits for the pass when
   // early exit needs to know).
   bool resolve(int current, int previous, int pass, const GLuint nothing_here[4]) {
-    glBindTextureUnit(kKeysUnit, keys_[previous].id());
-    glBindTextureUnit(kNextUnit, next_[previous].id());
-    glBindTextureUnit(kSelectUnit, select_.id());
+    glBindTextureUnit(DUAL_ID_KEYS_UNIT, keys_[previous].id());
+    glBindTextureUnit(DUAL_ID_NEXT_UNIT, next_[previous].id());
+    glBindTextureUnit(DUAL_ID_SELECT_UNIT, select_.id());
     resolve_selection(state_targets_[current], nothing_here, resolve_, selected_queries_.at(size_t(pass)), [this] {
       for (GLint count_back : {0, 1}) {
-        glProgramUniform1i(resolve_.id(), kCountBackUniform, count_back);
+        set_uniform(resolve_.id(), DUAL_ID_COUNT_BACK_UNIFORM, count_back);
         glDrawArrays(GL_TRIANGLES, 0, 3);
       }
     });

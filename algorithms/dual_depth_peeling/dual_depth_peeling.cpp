@@ -19,15 +19,10 @@
 #include "harness/core/peeling.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "shaders/bindings.h"
+#include "algorithms/dual_depth_peeling/bindings.h"
 
 namespace oit {
 namespace {
-
-constexpr GLuint kCounterBinding = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kRangeUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kFrontUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kBackUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
 
 // Per pixel: two RG32F depth ranges (ping-pong, 2 x 8) + front and back
 // accumulations RGBA32F (2 x 16).
@@ -77,7 +72,7 @@ class DualDepthPeelingBySubmission final : public Technique {
       glClearNamedFramebufferfv(peel_targets_[0].id(), GL_COLOR, 2, nothing_accumulated);
       fill_buffer_u32(counter_, 0);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCounterBinding, counter_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DUAL_PEELING_COUNTER_BINDING, counter_.id());
     for (const Program* program : {&init_[0], &init_[1], &peel_[0], &peel_[1], &range_check_, &compose_})
       frame.set_shared_uniforms(program->id());
     glViewport(0, 0, width_, height_);
@@ -106,7 +101,7 @@ class DualDepthPeelingBySubmission final : public Technique {
         glBlendEquationi(2, GL_FUNC_ADD);
         glBlendFuncSeparatei(2, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
         glUseProgram(peel_[last_allowed ? 1 : 0].id());
-        glBindTextureUnit(kRangeUnit, ranges_[previous].id());
+        glBindTextureUnit(DUAL_PEELING_RANGE_UNIT, ranges_[previous].id());
         frame.scene.draw();
       }
       ++passes_;
@@ -117,8 +112,8 @@ class DualDepthPeelingBySubmission final : public Technique {
       auto compose = frame.clock.stage("compose");
       frame.bind_target();
       glUseProgram(compose_.id());
-      glBindTextureUnit(kFrontUnit, front_.id());
-      glBindTextureUnit(kBackUnit, back_.id());
+      glBindTextureUnit(DUAL_PEELING_FRONT_UNIT, front_.id());
+      glBindTextureUnit(DUAL_PEELING_BACK_UNIT, back_.id());
       glDrawArrays(GL_TRIANGLES, 0, 3);
     }
   }
@@ -143,7 +138,7 @@ class DualDepthPeelingBySubmission final : public Technique {
     glBindFramebuffer(GL_FRAMEBUFFER, no_attachments_.id());
     glDisable(GL_BLEND);
     glUseProgram(range_check_.id());
-    glBindTextureUnit(kRangeUnit, ranges_[range].id());
+    glBindTextureUnit(DUAL_PEELING_RANGE_UNIT, ranges_[range].id());
     glBeginQuery(GL_ANY_SAMPLES_PASSED, any_range_query_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glEndQuery(GL_ANY_SAMPLES_PASSED);

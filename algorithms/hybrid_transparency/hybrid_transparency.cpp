@@ -13,6 +13,7 @@
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
+#include "harness/gl/uniforms.h"
 #include "algorithms/hybrid_transparency/bindings.h"
 
 namespace oit {
@@ -36,12 +37,12 @@ class HybridTransparency final : public Technique {
         compose_(build_fullscreen_program("algorithms/hybrid_transparency/compose.frag")),
         counters_(make_buffer(kCounterBytes, kZeroCounters)) {
     for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
-      glProgramUniform1i(program, HYBRID_TRANSPARENCY_SLOTS_LOCATION, k_);
+      set_uniform(program, HYBRID_TRANSPARENCY_SLOTS_LOCATION, k_);
   }
 
   void resize(int width, int height) override {
     for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
-      glProgramUniform1i(program, HYBRID_TRANSPARENCY_WIDTH_LOCATION, width);
+      set_uniform(program, HYBRID_TRANSPARENCY_WIDTH_LOCATION, width);
     const uint64_t slots = uint64_t(width) * uint64_t(height) * uint64_t(k_);
     check_fits(slots * 4, width, height);
     keys_ = make_buffer(GLsizeiptr(slots * 4));
@@ -69,9 +70,9 @@ class HybridTransparency final : public Technique {
       glClearTexImage(tail_sum_.id(), 0, GL_RGBA, GL_FLOAT, transparent);
       glClearTexImage(tail_count_.id(), 0, GL_RED, GL_FLOAT, transparent);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_TRANSPARENCY_KEYS_BINDING, keys_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_TRANSPARENCY_COLORS_BINDING, colors_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_TRANSPARENCY_COUNTERS_BINDING, counters_.id());
+    bind_storage_buffers({{HYBRID_TRANSPARENCY_KEYS_BINDING, &keys_},
+                          {HYBRID_TRANSPARENCY_COLORS_BINDING, &colors_},
+                          {HYBRID_TRANSPARENCY_COUNTERS_BINDING, &counters_}});
     {
       auto fill = frame.clock.stage("fill");
       draw_scene_pass(frame, fill_, no_attachments_);

@@ -1,47 +1,40 @@
 // illustration_buffer: the registry entry and the parameter schema. The
 // technique itself is in technique.cpp; see README.md.
-#include <stdexcept>
-
 #include "algorithms/illustration_buffer/settings.h"
 
 namespace oit {
 namespace illustration_buffer {
 namespace {
 
-template <typename Enum>
-Enum pick(const std::string& name, const std::string& value, std::initializer_list<std::pair<const char*, Enum>> options) {
-  for (const auto& [text, option] : options)
-    if (value == text) return option;
-  throw std::invalid_argument("illustration_buffer: parameter '" + name + "' has no variant '" + value + "'");
-}
+const Choices<NeighborSearch> kNeighborSearches{{NeighborSearch::heuristic, "heuristic"},
+                                                 {NeighborSearch::heuristic_merge, "heuristic_merge"},
+                                                 {NeighborSearch::triangle_index, "triangle_index"}};
+const Choices<Modulation> kModulations{{Modulation::none, "none"},
+                                       {Modulation::silhouette, "silhouette"},
+                                       {Modulation::halo, "halo"},
+                                       {Modulation::silhouette_halo, "silhouette_halo"},
+                                       {Modulation::angle, "angle"},
+                                       {Modulation::normal_variation, "normal_variation"}};
+const Choices<SortMethod> kSorts{{SortMethod::automatic, "auto"}, {SortMethod::array, "array"},
+                                 {SortMethod::dynamic, "dynamic"}};
+const Choices<Profile> kProfiles{{Profile::none, "none"}, {Profile::exponential, "exponential"}, {Profile::power, "power"}};
 
 }  // namespace
 
 Settings settings_from(const ParamSet& p) {
   Settings s;
-  s.neighbors = pick<NeighborSearch>("neighbors", p.choice("neighbors"),
-                                     {{"heuristic", NeighborSearch::heuristic},
-                                      {"heuristic_merge", NeighborSearch::heuristic_merge},
-                                      {"triangle_index", NeighborSearch::triangle_index}});
-  s.modulation = pick<Modulation>("modulation", p.choice("modulation"),
-                                  {{"none", Modulation::none},
-                                   {"silhouette", Modulation::silhouette},
-                                   {"halo", Modulation::halo},
-                                   {"silhouette_halo", Modulation::silhouette_halo},
-                                   {"angle", Modulation::angle},
-                                   {"normal_variation", Modulation::normal_variation}});
+  s.neighbors = p.choice("neighbors", kNeighborSearches);
+  s.modulation = p.choice("modulation", kModulations);
   s.adaptive_alpha = p.boolean("adaptive_alpha");
   s.iterations = int(p.integer("iterations"));
   s.skip_converged = p.boolean("skip_converged");
   s.diffusion_tolerance = float(p.real("diffusion_tolerance"));
-  s.sort = pick<SortMethod>("sort", p.choice("sort"),
-                            {{"auto", SortMethod::automatic}, {"array", SortMethod::array}, {"dynamic", SortMethod::dynamic}});
+  s.sort = p.choice("sort", kSorts);
   s.normal_variation_scale = float(p.real("normal_variation_scale"));
   s.lambda_alpha = float(p.real("lambda_alpha"));
   s.lambda_beta = float(p.real("lambda_beta"));
   s.lambda_gamma = float(p.real("lambda_gamma"));
-  s.profile = pick<Profile>("profile", p.choice("profile"),
-                            {{"none", Profile::none}, {"exponential", Profile::exponential}, {"power", Profile::power}});
+  s.profile = p.choice("profile", kProfiles);
   s.exponential_p = float(p.real("exponential_p"));
   s.power_p = float(p.real("power_p"));
   s.weight_z = float(p.real("weight_z"));
@@ -62,16 +55,17 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
   d.display_name = "Illustration buffer (linked lists + geodesic neighbours, non-local opacity)";
   d.paper = "Carnecky et al. 2013 (IEEE TVCG 19(5)); Pastyrik & Cmolik 2016 (CESCG)";
   d.params = {
-      ParamSpec::choice("neighbors", "triangle_index", {"heuristic", "heuristic_merge", "triangle_index"},
-                        "neighbour search: carnecky2013 Algorithm 2 (continuity measure eq. 1-3, mutual check), "
-                        "the same links found by a walk from the predicted depth in the depth-sorted list "
-                        "(heuristic_merge), or pastyrik2016 Algorithm 3 (triangles sharing a vertex index)"),
-      ParamSpec::choice("modulation", "silhouette_halo",
-                        {"none", "silhouette", "halo", "silhouette_halo", "angle", "normal_variation"},
-                        "opacity modulation (carnecky2013 section 5): none = plain alpha blending (no neighbour "
-                        "search, no stylize), silhouette = beta field, halo = gamma field, or both; angle and "
-                        "normal_variation = the purely local baselines of carnecky2013 Fig. 11 (opacity from the "
-                        "angle between normal and view ray, or from the normal's screen-space variation)"),
+      illustration_buffer::kNeighborSearches.spec(
+          "neighbors", illustration_buffer::NeighborSearch::triangle_index,
+          "neighbour search: carnecky2013 Algorithm 2 (continuity measure eq. 1-3, mutual check), the same "
+          "links found by a walk from the predicted depth in the depth-sorted list (heuristic_merge), or "
+          "pastyrik2016 Algorithm 3 (triangles sharing a vertex index)"),
+      illustration_buffer::kModulations.spec(
+          "modulation", illustration_buffer::Modulation::silhouette_halo,
+          "opacity modulation (carnecky2013 section 5): none = plain alpha blending (no neighbour search, no "
+          "stylize), silhouette = beta field, halo = gamma field, or both; angle and normal_variation = the "
+          "purely local baselines of carnecky2013 Fig. 11 (opacity from the angle between normal and view ray, "
+          "or from the normal's screen-space variation)"),
       ParamSpec::boolean("adaptive_alpha", false, "initial alpha 1-(1-s)^(1/n) (eq. 5) instead of s (eq. 4)"),
       ParamSpec::integer("iterations", 20, 0, 1000, "diffusion iterations of alpha (eq. 8) and beta/gamma (eq. 9)"),
       ParamSpec::boolean("skip_converged", true,
@@ -83,18 +77,19 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
       ParamSpec::real("lambda_alpha", 1.0, 0.0, 1.0, "diffusion coefficient of alpha (eq. 8, normalised Laplacian)"),
       ParamSpec::real("lambda_beta", 0.05, 0.0, 1.0, "decrement per step of the silhouette field (eq. 9)"),
       ParamSpec::real("lambda_gamma", 0.1, 0.0, 1.0, "decrement per step of the halo field (eq. 9)"),
-      ParamSpec::choice("profile", "none", {"none", "exponential", "power"},
-                        "profile applied to beta and gamma before compositing: eq. 10 or eq. 11"),
+      illustration_buffer::kProfiles.spec("profile", illustration_buffer::Profile::none,
+                                          "profile applied to beta and gamma before compositing: eq. 10 or eq. 11"),
       ParamSpec::real("exponential_p", 3.0, 0.01, 50.0, "p of the exponential profile (eq. 10)"),
       ParamSpec::real("power_p", 0.3, 0.01, 10.0, "p of the power profile (eq. 11)"),
       ParamSpec::real("weight_z", 1.0, 0.0, 1000.0, "w_z of the continuity measure (eq. 3; heuristic)"),
       ParamSpec::real("weight_n", 1.0, 0.0, 1000.0, "w_n of the continuity measure (eq. 3; heuristic)"),
       ParamSpec::boolean("weld_vertices", true,
                          "triangle_index: vertices at bitwise-equal positions count as one index (closes UV seams)"),
-      ParamSpec::choice("sort", "auto", {"auto", "array", "dynamic"},
-                        "array = rank sort in a local array (carnecky2013 4.3); dynamic = insertion sort of the "
-                        "linked list in the buffers (pastyrik2016 Algorithm 2); auto = dynamic when the frame's "
-                        "longest list has at most 4 fragments, else array; the same records either way"),
+      illustration_buffer::kSorts.spec(
+          "sort", illustration_buffer::SortMethod::automatic,
+          "array = rank sort in a local array (carnecky2013 4.3); dynamic = insertion sort of the linked list in "
+          "the buffers (pastyrik2016 Algorithm 2); auto = dynamic when the frame's longest list has at most 4 "
+          "fragments, else array; the same records either way"),
       ParamSpec::real("normal_variation_scale", 10.0, 0.0, 1000.0,
                       "modulation=normal_variation: opacity = min(1, scale * |grad n|), grad n the view normal's "
                       "change per pixel (dFdx, dFdy)"),

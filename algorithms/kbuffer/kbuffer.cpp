@@ -17,6 +17,7 @@
 #include "harness/core/passes.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
+#include "harness/gl/uniforms.h"
 #include "algorithms/kbuffer/bindings.h"
 
 namespace oit {
@@ -33,13 +34,17 @@ constexpr uint64_t kTailBytesPerPixel = 8 + 2;
 constexpr uint64_t kCounterBytes = 8;
 constexpr GLuint kZeroCounters[2] = {0, 0};  // stored, dropped: 0 until the first frame
 
+// Fragments beyond the k nearest: dropped (counted) or blended unsorted behind them.
+enum class Tail { drop, blend };
+const Choices<Tail> kTails{{Tail::drop, "drop"}, {Tail::blend, "blend"}};
+
 class KBuffer final : public Technique {
  public:
   explicit KBuffer(const ParamSet& params)
       : auto_k_(params.is_auto("k")),
         k_parameter_(auto_k_ ? 0 : int(params.integer("k"))),
         memory_cap_bytes_(uint64_t(params.integer("auto_k_memory_mb")) << 20),
-        tail_blend_(params.choice("tail") == "blend"),
+        tail_blend_(params.choice("tail", kTails) == Tail::blend),
         fill_(build_geometry_program("algorithms/kbuffer/fill.frag")),
         store_(build_geometry_program("algorithms/kbuffer/store.frag", tail_defines())),
         counters_(make_buffer(kCounterBytes, kZeroCounters)) {
@@ -50,8 +55,8 @@ class KBuffer final : public Technique {
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
-    for (const Program* program : {&fill_, &store_}) glProgramUniform1i(program->id(), KBUFFER_WIDTH_LOCATION, width);
-    for (const auto& [capacity, compose] : composes_) glProgramUniform1i(compose.id(), KBUFFER_WIDTH_LOCATION, width);
+    for (const Program* program : {&fill_, &store_}) set_uniform(program->id(), KBUFFER_WIDTH_LOCATION, width);
+    for (const auto& [capacity, compose] : composes_) set_uniform(compose.id(), KBUFFER_WIDTH_LOCATION, width);
     if (auto_k_) {
       count_pass_->resize(width, height);
       k_cap_ = auto_k_cap();
@@ -89,7 +94,7 @@ class KBuffer final : public Technique {
     }
     const Program& compose = compose_for(k);
     for (GLuint program : {fill_.id(), store_.id(), compose.id()})
-      glProgramUniform1i(program, KBUFFER_SLOTS_LOCATION, k);
+      set_uniform(program, KBUFFER_SLOTS_LOCATION, k);
     {
       auto clear = frame.clock.stage("clear");
       if (k != allocated_k_) allocate_slots(k);  // k=auto: storage follows the view
@@ -195,7 +200,7 @@ class KBuffer final : public Technique {
       ShaderDefines defines = tail_defines();
       defines.push_back({"K", std::to_string(capacity)});
       it = composes_.emplace(capacity, build_fullscreen_program("algorithms/kbuffer/compose.frag", defines)).first;
-      glProgramUniform1i(it->second.id(), KBUFFER_WIDTH_LOCATION, width_);
+      set_uniform(it->second.id(), KBUFFER_WIDTH_LOCATION, width_);
     }
     return it->second;
   }
@@ -228,10 +233,10 @@ class KBuffer final : public Technique {
   }
 
   void bind_storage() const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, KBUFFER_KEYS_BINDING, keys_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, KBUFFER_OWNERS_BINDING, owners_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, KBUFFER_COLORS_BINDING, colors_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, KBUFFER_COUNTERS_BINDING, counters_.id());
+    bind_storage_buffers({{KBUFFER_KEYS_BINDING, &keys_},
+                          {KBUFFER_OWNERS_BINDING, &owners_},
+                          {KBUFFER_COLORS_BINDING, &colors_},
+                          {KBUFFER_COUNTERS_BINDING, &counters_}});
   }
 
   bool auto_k_;
@@ -259,20 +264,20 @@ void register_technique_kbuffer(TechniqueRegistry& registry) {
   d.params = {ParamSpec::integer_or_auto("k", "16", 1, kMaxK,
                                          "slots per pixel: the K nearest fragments are sorted exactly; auto = the "
                                          "view's depth complexity, counted every frame (capped by auto_k_memory_mb)"),
-              ParamSpec::choice("tail", "drop", {"drop", "blend"},
-                                "fragments beyond the K nearest: drop (counted) or blend unsorted behind them"),
+              kTails.spec("tail", Tail::drop,
+                          "fragments beyond the K nearest: drop (counted) or blend unsorted behind them"),
               ParamSpec::integer("auto_k_memory_mb", 1024, 1, 1 << 20,
                                  "k=auto only: most MiB of slot storage (24 bytes per slot); k is capped to fit")};
   d.stages = {"count", "clear", "fill", "store", "compose"};  // count: only with k=auto
   d.exactness = Exactness::exact;
-  d.quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32"}}, {"tail", {"drop", "blend"}}};
+  d.quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32"}}, {"tail", kTails.names()}};
   d.adaptive_switches = {{"k_auto", "sizes k from the view's depth complexity (a counting pass) instead of the "
                                     "worst-case constant 64",
                           {{"k", "auto"}}, {{"k", "64"}}}};
   d.create = [](const ParamSet& params) { return std::make_unique<KBuffer>(params); };
   d.storage_need = [](const ParamSet& params, const FrameContent& content) {
     const uint64_t slots = content.pixels() * fragment_pool::slots_per_pixel(content, params, kMaxK);
-    const uint64_t tail = params.choice("tail") == "blend" ? kTailBytesPerPixel : 0;
+    const uint64_t tail = params.choice("tail", kTails) == Tail::blend ? kTailBytesPerPixel : 0;
     return StorageNeed{slots * kColorBytes, slots * kSlotBytes + content.pixels() * (tail + 4)};
   };
   registry.add(std::move(d));

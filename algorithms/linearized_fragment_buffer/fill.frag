@@ -11,9 +11,9 @@
 
 // Pixel p owns slots [offset[p], offset[p+1]); its cursor starts at
 // offset[p] (a copy of the prefix sum), so the atomic returns the slot.
-layout(binding = 2, r32ui) uniform uimageBuffer u_cursors;
-layout(binding = 0, rg32ui) writeonly uniform uimageBuffer u_nodes;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_width;
+layout(binding = LFB_CURSORS_IMAGE_UNIT, r32ui) uniform uimageBuffer u_cursors;
+layout(binding = LFB_NODES_IMAGE_UNIT, rg32ui) writeonly uniform uimageBuffer u_nodes;
+layout(location = LFB_WIDTH_LOCATION) uniform int u_width;
 
 void main() {
   const int pixel = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);

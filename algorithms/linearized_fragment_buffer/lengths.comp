@@ -8,14 +8,14 @@
 // fill then wrote into the next pixel's range, so the host fails the frame.
 // One check per pixel here instead of a bounds check per fragment in the
 // fill, where it cost ~10% of the fill.
-#include "shaders/bindings.h"
+#include "algorithms/linearized_fragment_buffer/bindings.h"
 
 layout(local_size_x = 256) in;
 
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) readonly buffer LfbOffsets { uint lfb_offsets[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) buffer LfbCursors { uint lfb_cursors[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 6) coherent buffer LfbOverflow { uint lfb_mismatched_pixels; };
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 2) uniform uint u_pixels;
+layout(std430, binding = LFB_OFFSETS_BINDING) readonly buffer LfbOffsets { uint lfb_offsets[]; };
+layout(std430, binding = LFB_CURSORS_BINDING) buffer LfbCursors { uint lfb_cursors[]; };
+layout(std430, binding = LFB_MISMATCHED_BINDING) coherent buffer LfbOverflow { uint lfb_mismatched_pixels; };
+layout(location = LFB_PIXELS_LOCATION) uniform uint u_pixels;
 
 void main() {
   const uint pixel = gl_GlobalInvocationID.x;

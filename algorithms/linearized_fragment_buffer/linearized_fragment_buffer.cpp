@@ -24,8 +24,9 @@
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
+#include "harness/gl/uniforms.h"
+#include "algorithms/linearized_fragment_buffer/bindings.h"
 #include "algorithms/linearized_fragment_buffer/prefix_sum.h"
-#include "shaders/bindings.h"
 
 namespace oit {
 namespace {
@@ -38,31 +39,20 @@ constexpr uint64_t kNodeBytes = 24, kFlatNodeBytes = 8, kTexelBytes = 8;
 // Per pixel: the R32F count, the offset and the fill cursor; the offsets
 // have one more value (the total).
 constexpr uint64_t kPixelBytes = 12;
-constexpr GLuint kOffsetsBinding = OIT_FIRST_TECHNIQUE_BINDING + 0, kCursorsBinding = OIT_FIRST_TECHNIQUE_BINDING + 1,
-                 kMismatchedBinding = OIT_FIRST_TECHNIQUE_BINDING + 6;
-constexpr GLint kPixelsLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 2;
-// The nodes on image unit 0, the fill's cursors on image unit 2; the offsets
-// on texture unit 1 and, in the resolve, the cursors (the lengths) on texture
-// unit 2, where classify.comp reads them too; unit 3 holds tile.vert's class
-// tiles, unit 4 the scene's flat colours.
-constexpr GLuint kNodesImageUnit = 0, kCursorsImageUnit = 2, kOffsetsUnit = 1, kLengthsUnit = 2, kFlatColorsUnit = 4;
-constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
 // The smallest array compiled, as in linked_list: tiny lists are not worth a program each.
 constexpr uint32_t kSmallestArray = 8;
 // The largest whole-list network; longer arrays are sorted in register
 // blocks (llvmpipe compiles a 256-element network for minutes).
 constexpr uint32_t kLargestNetwork = 128;
 
-std::string macro_sequence(const std::string& macro, uint32_t count) {
-  std::string text;
-  for (uint32_t i = 0; i < count; ++i) text += macro + "(" + std::to_string(i) + ") ";
-  return text;
-}
+enum class Sort { network, register_block };
+const Choices<Sort> kSorts{{Sort::network, "network"}, {Sort::register_block, "register_block"}};
+const Choices<uint32_t> kBlockSizes{{8, "8"}, {16, "16"}, {32, "32"}};
 
 // The resolve's #defines for an array of `size` fragments: one network of
 // `size`, or blocks of `block` sorted by its network and merged.
 ShaderDefines resolve_defines(uint32_t size, bool blocks, uint32_t block, bool flat) {
-  ShaderDefines defines = linked_list::resolve_defines("network", blocks ? block : size);
+  ShaderDefines defines = linked_list::resolve_defines(linked_list::Sort::network, blocks ? block : size);
   if (flat) defines.push_back({"LFB_FLAT_COLOR", "1"});
   if (!blocks) {
     defines.push_back({"LFB_NETWORK", "1"});
@@ -70,19 +60,19 @@ ShaderDefines resolve_defines(uint32_t size, bool blocks, uint32_t block, bool f
   }
   const uint32_t count = (size + block - 1) / block;
   defines.push_back({"LFB_BLOCKS", std::to_string(count)});
-  defines.push_back({"LFB_FETCH_ALL", macro_sequence("LFB_FETCH", block)});
-  defines.push_back({"LFB_STORE_ALL", macro_sequence("LFB_STORE", block)});
-  defines.push_back({"LFB_HEAD_ALL", macro_sequence("LFB_HEAD", count)});
-  defines.push_back({"LFB_PICK_ALL", macro_sequence("LFB_PICK", count)});
-  defines.push_back({"LFB_ADVANCE_ALL", macro_sequence("LFB_ADVANCE", count)});
+  defines.push_back({"LFB_FETCH_ALL", linked_list::macro_sequence("LFB_FETCH", block)});
+  defines.push_back({"LFB_STORE_ALL", linked_list::macro_sequence("LFB_STORE", block)});
+  defines.push_back({"LFB_HEAD_ALL", linked_list::macro_sequence("LFB_HEAD", count)});
+  defines.push_back({"LFB_PICK_ALL", linked_list::macro_sequence("LFB_PICK", count)});
+  defines.push_back({"LFB_ADVANCE_ALL", linked_list::macro_sequence("LFB_ADVANCE", count)});
   return defines;
 }
 
 class LinearizedFragmentBuffer final : public Technique {
  public:
   explicit LinearizedFragmentBuffer(const ParamSet& params)
-      : register_blocks_(params.choice("sort") == "register_block"),
-        block_(uint32_t(std::stoul(params.choice("block_size")))),
+      : register_blocks_(params.choice("sort", kSorts) == Sort::register_block),
+        block_(params.choice("block_size", kBlockSizes)),
         backwards_allocation_(params.boolean("backwards_allocation")),
         flat_color_nodes_(params.boolean("flat_color_nodes")),
         fill_(build_geometry_program("algorithms/linearized_fragment_buffer/fill.frag")),
@@ -105,8 +95,8 @@ class LinearizedFragmentBuffer final : public Technique {
     pool_.reset(1);  // the prefix sum sizes it before every fill
     framebuffer_ = make_attachmentless_framebuffer(width, height);
     for (const Program* fill : {&fill_, &fill_flat_})
-      if (fill->id() != 0) glProgramUniform1i(fill->id(), kWidthLocation, width);
-    for (auto& [size, program] : programs_) glProgramUniform1i(program.id(), kWidthLocation, width);
+      if (fill->id() != 0) set_uniform(fill->id(), LFB_WIDTH_LOCATION, width);
+    for (auto& [size, program] : programs_) set_uniform(program.id(), LFB_WIDTH_LOCATION, width);
     gl_check("allocating the linearized fragment buffer's per-pixel storage");
   }
 
@@ -132,19 +122,19 @@ class LinearizedFragmentBuffer final : public Technique {
     auto compose = frame.clock.stage("compose");
     frame.bind_target();
     // Read-write: register blocks write their sorted blocks back.
-    glBindImageTexture(kNodesImageUnit, nodes_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32UI);
-    glBindImageTexture(kCursorsImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindTextureUnit(kOffsetsUnit, offsets_view_.id());
-    glBindTextureUnit(kLengthsUnit, cursors_view_.id());
-    if (flat_) glBindTextureUnit(kFlatColorsUnit, frame.scene.flat_colors_view());
+    glBindImageTexture(LFB_NODES_IMAGE_UNIT, nodes_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32UI);
+    glBindImageTexture(LFB_CURSORS_IMAGE_UNIT, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindTextureUnit(LFB_OFFSETS_UNIT, offsets_view_.id());
+    glBindTextureUnit(LFB_LENGTHS_UNIT, cursors_view_.id());
+    if (flat_) glBindTextureUnit(LFB_FLAT_COLORS_UNIT, frame.scene.flat_colors_view());
     const std::vector<uint32_t> sizes = class_sizes();
     if (sizes.size() > class_capacity_) {
       class_capacity_ = sizes.size();
       classes_.resize(width_, height_, class_capacity_);
     }
     classes_.draw(frame, sizes, [&](uint32_t size) { return program(size); });
-    for (GLuint unit : {kOffsetsUnit, kLengthsUnit, kFlatColorsUnit}) glBindTextureUnit(unit, 0);
-    glBindImageTexture(kNodesImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32UI);
+    for (GLuint unit : {LFB_OFFSETS_UNIT, LFB_LENGTHS_UNIT, LFB_FLAT_COLORS_UNIT}) glBindTextureUnit(unit, 0);
+    glBindImageTexture(LFB_NODES_IMAGE_UNIT, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32UI);
   }
 
   TechniqueCounters counters() const override {
@@ -162,11 +152,11 @@ class LinearizedFragmentBuffer final : public Technique {
  private:
   void fill(const Frame& frame) {
     auto fill = frame.clock.stage("fill");
-    glBindImageTexture(kNodesImageUnit, nodes_view_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32UI);
-    glBindImageTexture(kCursorsImageUnit, cursors_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(LFB_NODES_IMAGE_UNIT, nodes_view_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32UI);
+    glBindImageTexture(LFB_CURSORS_IMAGE_UNIT, cursors_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     if (flat_ && fill_flat_.id() == 0) {
       fill_flat_ = build_geometry_program("algorithms/linearized_fragment_buffer/fill.frag", {{"LFB_FLAT_COLOR", "1"}});
-      glProgramUniform1i(fill_flat_.id(), kWidthLocation, width_);
+      set_uniform(fill_flat_.id(), LFB_WIDTH_LOCATION, width_);
     }
     flat_table_bytes_ = flat_ ? frame.scene.flat_colors_bytes() : 0;
     draw_scene_pass(frame, flat_ ? fill_flat_ : fill_, framebuffer_);
@@ -180,10 +170,10 @@ class LinearizedFragmentBuffer final : public Technique {
   void cursors_to_lengths() {
     const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
     glUseProgram(lengths_.id());
-    glProgramUniform1ui(lengths_.id(), kPixelsLocation, GLuint(pixels));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOffsetsBinding, offsets_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCursorsBinding, cursors_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMismatchedBinding, mismatched_.id());
+    set_uniform(lengths_.id(), LFB_PIXELS_LOCATION, GLuint(pixels));
+    bind_storage_buffers({{LFB_OFFSETS_BINDING, &offsets_},
+                          {LFB_CURSORS_BINDING, &cursors_},
+                          {LFB_MISMATCHED_BINDING, &mismatched_}});
     glDispatchCompute(GLuint((pixels + 255) / 256), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     GLuint mismatched = 0;
@@ -219,7 +209,7 @@ class LinearizedFragmentBuffer final : public Technique {
                                      {GL_FRAGMENT_SHADER, "algorithms/linearized_fragment_buffer/resolve.frag"}},
                                     linked_list::tile_defines(resolve_defines(size, blocks, block_, flat_)));
       it = programs_.emplace(std::make_pair(size, flat_), std::move(built)).first;
-      glProgramUniform1i(it->second.id(), kWidthLocation, width_);
+      set_uniform(it->second.id(), LFB_WIDTH_LOCATION, width_);
     }
     return it->second.id();
   }
@@ -259,12 +249,12 @@ void register_technique_linearized_fragment_buffer(TechniqueRegistry& registry) 
   d.display_name = "Linearized fragment buffer (l-LFB), float blend";
   d.paper = "Knowles et al. 2012; register-based block sort and backwards memory allocation: Knowles et al. 2013, 2014";
   d.params = {
-      ParamSpec::choice("sort", "network", {"network", "register_block"},
-                        "network: the whole list in registers, sorted by an unrolled odd-even merge network "
-                        "(up to 128 fragments; longer lists use register blocks); register_block: blocks of "
-                        "block_size fragments sorted by their network in registers, written back sorted and "
-                        "merged (Knowles et al. 2014)"),
-      ParamSpec::choice("block_size", "16", {"8", "16", "32"}, "sort=register_block: fragments per register block"),
+      kSorts.spec("sort", Sort::network,
+                  "network: the whole list in registers, sorted by an unrolled odd-even merge network "
+                  "(up to 128 fragments; longer lists use register blocks); register_block: blocks of "
+                  "block_size fragments sorted by their network in registers, written back sorted and "
+                  "merged (Knowles et al. 2014)"),
+      kBlockSizes.spec("block_size", 16, "sort=register_block: fragments per register block"),
       ParamSpec::boolean("backwards_allocation", true,
                          "resolve each 4x4 tile with the smallest array that holds its longest list (backwards "
                          "memory allocation, Knowles et al. 2013; 0/1-fragment tiles unsorted); false: one "

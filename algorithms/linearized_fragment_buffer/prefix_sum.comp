@@ -8,19 +8,19 @@
 // PS_FROM_COUNTS: the level-0 values are read from the R32F per-pixel count
 // target of core/list_length_pass.h (pixel i at (i % width, i / width);
 // index width*height and beyond are 0) instead of ps_values.
-#include "shaders/bindings.h"
+#include "algorithms/linearized_fragment_buffer/bindings.h"
 
 #define PS_THREADS 256u
 #define PS_ITEMS 4u
 layout(local_size_x = 256) in;
 
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) buffer PrefixSumValues { uint ps_values[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) buffer PrefixSumSums { uint ps_sums[]; };
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform uint u_count;  // values at this level
+layout(std430, binding = LFB_PREFIX_SUM_VALUES_BINDING) buffer PrefixSumValues { uint ps_values[]; };
+layout(std430, binding = LFB_PREFIX_SUM_SUMS_BINDING) buffer PrefixSumSums { uint ps_sums[]; };
+layout(location = LFB_PREFIX_SUM_COUNT_LOCATION) uniform uint u_count;  // values at this level
 #if defined(PS_FROM_COUNTS)
-layout(binding = 0) uniform sampler2D u_counts;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_width;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 2) uniform uint u_pixels;
+layout(binding = LFB_PREFIX_SUM_COUNTS_UNIT) uniform sampler2D u_counts;
+layout(location = LFB_WIDTH_LOCATION) uniform int u_width;
+layout(location = LFB_PIXELS_LOCATION) uniform uint u_pixels;
 #endif
 
 uint value_at(uint i) {

@@ -2,16 +2,12 @@
 
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "shaders/bindings.h"
+#include "harness/gl/uniforms.h"
+#include "algorithms/linearized_fragment_buffer/bindings.h"
 
 namespace oit::lfb {
 namespace {
 
-constexpr GLuint kValuesBinding = OIT_FIRST_TECHNIQUE_BINDING + 0, kSumsBinding = OIT_FIRST_TECHNIQUE_BINDING + 1;
-constexpr GLint kCountLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
-constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
-constexpr GLint kPixelsLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 2;
-constexpr GLuint kCountsUnit = 0;
 constexpr uint64_t kAddGroup = 256;  // prefix_sum.comp's local size
 
 uint64_t blocks_of(uint64_t count) { return (count + PrefixSum::kBlock - 1) / PrefixSum::kBlock; }
@@ -44,24 +40,23 @@ uint64_t PrefixSum::bytes_allocated() const {
 
 void PrefixSum::dispatch(GLuint program, const Buffer& values, uint64_t count, const Buffer& sums, uint64_t groups) {
   glUseProgram(program);
-  glProgramUniform1ui(program, kCountLocation, GLuint(count));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kValuesBinding, values.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSumsBinding, sums.id());
+  set_uniform(program, LFB_PREFIX_SUM_COUNT_LOCATION, GLuint(count));
+  bind_storage_buffers({{LFB_PREFIX_SUM_VALUES_BINDING, &values}, {LFB_PREFIX_SUM_SUMS_BINDING, &sums}});
   glDispatchCompute(GLuint(groups), 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 void PrefixSum::scan_counts(const Texture& counts, int width, const Buffer& offsets) {
-  glProgramUniform1i(scan_counts_.id(), kWidthLocation, width);
-  glProgramUniform1ui(scan_counts_.id(), kPixelsLocation, GLuint(pixels_));
-  glBindTextureUnit(kCountsUnit, counts.id());
+  set_uniform(scan_counts_.id(), LFB_WIDTH_LOCATION, width);
+  set_uniform(scan_counts_.id(), LFB_PIXELS_LOCATION, GLuint(pixels_));
+  glBindTextureUnit(LFB_PREFIX_SUM_COUNTS_UNIT, counts.id());
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   // Up: every level scans its blocks and hands their totals to the next.
   for (size_t k = 0; k < levels_.size(); ++k) {
     dispatch(k == 0 ? scan_counts_.id() : scan_.id(), k == 0 ? offsets : sums_[k - 1], levels_[k], sums_[k],
              blocks_of(levels_[k]));
   }
-  glBindTextureUnit(kCountsUnit, 0);
+  glBindTextureUnit(LFB_PREFIX_SUM_COUNTS_UNIT, 0);
   // Down: every level adds the scanned totals of the blocks before its own.
   for (size_t k = levels_.size() - 1; k-- > 0;) {
     dispatch(add_.id(), k == 0 ? offsets : sums_[k - 1], levels_[k], sums_[k], (levels_[k] + kAddGroup - 1) / kAddGroup);

@@ -17,14 +17,14 @@
 
 layout(location = 0) out vec4 out_color;
 #if defined(LFB_BLOCKS)
-layout(binding = 0, rg32ui) uniform uimageBuffer u_nodes;
+layout(binding = LFB_NODES_IMAGE_UNIT, rg32ui) uniform uimageBuffer u_nodes;
 #else
-layout(binding = 0, rg32ui) readonly uniform uimageBuffer u_nodes;
+layout(binding = LFB_NODES_IMAGE_UNIT, rg32ui) readonly uniform uimageBuffer u_nodes;
 #endif
 uvec2 key_of(uint slot) { return imageLoad(u_nodes, lfb_key_texel(slot)).xy; }
 #if defined(LFB_FLAT_COLOR)
 // The scene's flat colour of each stable triangle id (storage.glsl).
-layout(binding = 4) uniform samplerBuffer u_flat_colors;  // unit 3: tile.vert's class tiles
+layout(binding = LFB_FLAT_COLORS_UNIT) uniform samplerBuffer u_flat_colors;
 #endif
 // The colour of element e (x: key, y: triangle id, z: slot; below).
 vec4 color_of(uvec3 e) {
@@ -35,10 +35,10 @@ vec4 color_of(uvec3 e) {
   return uintBitsToFloat(uvec4(imageLoad(u_nodes, at + 1).xy, imageLoad(u_nodes, at + 2).xy));
 #endif
 }
-layout(binding = 1) uniform usamplerBuffer u_offsets;
+layout(binding = LFB_OFFSETS_UNIT) uniform usamplerBuffer u_offsets;
 // The list lengths (lengths.comp); classify.comp reads them too.
-layout(binding = 2) uniform usamplerBuffer u_lengths;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_width;
+layout(binding = LFB_LENGTHS_UNIT) uniform usamplerBuffer u_lengths;
+layout(location = LFB_WIDTH_LOCATION) uniform int u_width;
 
 vec3 accumulated = vec3(0.0);
 float transmittance = 1.0;

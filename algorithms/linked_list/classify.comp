@@ -8,17 +8,17 @@
 // sizes, as a uint array) are injected by length_classes.cpp.
 layout(local_size_x = 64) in;
 
-#include "shaders/bindings.h"
+#include "algorithms/linked_list/bindings.h"
 
-layout(binding = 2) uniform usamplerBuffer u_lengths;
+layout(binding = LINKED_LIST_LENGTHS_UNIT) uniform usamplerBuffer u_lengths;
 
 // One DrawArraysIndirectCommand per class: vertex count (1), instance count
 // (its tiles, counted here), first vertex, base instance.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 4) coherent buffer LinkedListClassCommands { uvec4 ll_commands[]; };
+layout(std430, binding = LINKED_LIST_CLASS_COMMANDS_BINDING) coherent buffer LinkedListClassCommands { uvec4 ll_commands[]; };
 // Class c's tiles are ll_class_tiles[c * tile_count .. c * tile_count + instances).
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 5) writeonly buffer LinkedListClassTiles { uint ll_class_tiles[]; };
+layout(std430, binding = LINKED_LIST_CLASS_TILES_BINDING) writeonly buffer LinkedListClassTiles { uint ll_class_tiles[]; };
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 8) uniform ivec2 u_size;
+layout(location = LINKED_LIST_SIZE_LOCATION) uniform ivec2 u_size;
 
 const uint kClassSizes[LL_CLASS_COUNT] = LL_CLASS_SIZES;
 

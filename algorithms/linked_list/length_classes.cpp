@@ -4,16 +4,12 @@
 #include <stdexcept>
 
 #include "harness/gl/check.h"
-#include "shaders/bindings.h"
+#include "harness/gl/uniforms.h"
+#include "algorithms/linked_list/bindings.h"
 
 namespace oit::linked_list {
 namespace {
 
-constexpr GLuint kTilesUnit = 3;  // tile.vert's view of the class lists
-constexpr GLuint kCommandsBinding = OIT_FIRST_TECHNIQUE_BINDING + 4;
-constexpr GLuint kClassTilesBinding = OIT_FIRST_TECHNIQUE_BINDING + 5;
-constexpr GLint kSizeLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 8;
-constexpr GLint kFirstTileLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 9;
 constexpr GLuint kFullScreen = 0xffffffffu;  // u_first_tile of a full-screen draw
 constexpr GLsizeiptr kCommandBytes = 16;     // DrawArraysIndirectCommand
 constexpr GLuint kClassifyGroup = 64;        // classify.comp's local size
@@ -21,8 +17,8 @@ constexpr GLuint kClassifyGroup = 64;        // classify.comp's local size
 void draw_class(const Frame& frame, GLuint program, GLint width, GLint height, GLuint first_tile) {
   glUseProgram(program);
   frame.set_shared_uniforms(program);
-  glProgramUniform2i(program, kSizeLocation, width, height);
-  glProgramUniform1ui(program, kFirstTileLocation, first_tile);
+  set_uniform(program, LINKED_LIST_SIZE_LOCATION, glm::ivec2(width, height));
+  set_uniform(program, LINKED_LIST_FIRST_TILE_LOCATION, first_tile);
 }
 
 }  // namespace
@@ -103,9 +99,9 @@ void LengthClasses::draw(const Frame& frame, const std::vector<uint32_t>& sizes,
   glNamedBufferSubData(commands_.id(), 0, GLsizeiptr(commands.size() * 4), commands.data());
   const GLuint classify = classify_program(sizes);
   glUseProgram(classify);
-  glProgramUniform2i(classify, kSizeLocation, width_, height_);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCommandsBinding, commands_.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClassTilesBinding, class_tiles_.id());
+  set_uniform(classify, LINKED_LIST_SIZE_LOCATION, glm::ivec2(width_, height_));
+  bind_storage_buffers({{LINKED_LIST_CLASS_COMMANDS_BINDING, &commands_},
+                        {LINKED_LIST_CLASS_TILES_BINDING, &class_tiles_}});
   glDispatchCompute((tile_count_ + kClassifyGroup - 1) / kClassifyGroup, 1, 1);
   glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 
@@ -122,14 +118,14 @@ void LengthClasses::draw(const Frame& frame, const std::vector<uint32_t>& sizes,
   glEnable(GL_SCISSOR_TEST);
   glScissor(x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0));
   glEnable(GL_PROGRAM_POINT_SIZE);
-  glBindTextureUnit(kTilesUnit, class_tiles_view_.id());
+  glBindTextureUnit(LINKED_LIST_CLASS_TILES_UNIT, class_tiles_view_.id());
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, commands_.id());
   for (size_t c = 0; c < sizes.size(); ++c) {
     draw_class(frame, program_for(sizes[c]), width_, height_, GLuint(c) * tile_count_);
     glDrawArraysIndirect(GL_POINTS, reinterpret_cast<const void*>(c * kCommandBytes));
   }
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-  glBindTextureUnit(kTilesUnit, 0);
+  glBindTextureUnit(LINKED_LIST_CLASS_TILES_UNIT, 0);
   glDisable(GL_PROGRAM_POINT_SIZE);
   if (scissored) {
     glScissor(box[0], box[1], box[2], box[3]);

@@ -19,9 +19,10 @@
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
+#include "harness/gl/uniforms.h"
+#include "algorithms/linked_list/bindings.h"
 #include "algorithms/linked_list/length_classes.h"
 #include "algorithms/linked_list/sorting_network.h"
-#include "shaders/bindings.h"
 
 namespace oit {
 namespace {
@@ -29,21 +30,10 @@ namespace {
 // LinkedListNode in nodes.glsl; storage=compact: three words (LL_COMPACT).
 constexpr GLsizeiptr kNodeBytes = 32, kCompactNodeBytes = 12;
 constexpr GLsizeiptr kCounterBytes = 12;  // node_count, max_length, dropped
-// Interleaved lists per pixel (LL_HEADS in nodes.glsl): the resolve walks
-// them side by side so that their node loads overlap (README: 4 heads).
-constexpr GLsizeiptr kHeads = 4;
+// Interleaved lists per pixel (LL_HEADS, bindings.h).
+constexpr GLsizeiptr kHeads = LL_HEADS;
 // Per pixel: kHeads head pointers and the list length.
 constexpr uint64_t kPixelBytes = 4 * kHeads + 4;
-constexpr GLuint kHeadsBinding = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kNodesBinding = OIT_FIRST_TECHNIQUE_BINDING + 1;
-constexpr GLuint kCountersBinding = OIT_FIRST_TECHNIQUE_BINDING + 2;
-constexpr GLuint kLengthsBinding = OIT_FIRST_TECHNIQUE_BINDING + 3;
-// The resolve's read-only views: the nodes on image unit 0 (imageLoad), heads
-// and lengths on texture units 1 and 2 (texelFetch of buffer textures).
-constexpr GLuint kNodesImageUnit = 0, kHeadsUnit = 1, kLengthsUnit = 2;
-constexpr GLint kCapacityLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
-constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
-constexpr GLint kMaxPerPixelLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 2;
 // Smallest local array compiled: tiny lists are not worth a program each.
 constexpr uint32_t kSmallestArray = 8;
 // Largest unrolled network (and its program); longer arrays fall back to the
@@ -51,15 +41,14 @@ constexpr uint32_t kSmallestArray = 8;
 // of straight-line code that takes llvmpipe far too long to compile.
 constexpr uint32_t kLargestNetwork = 128;
 
-enum class PoolSizing { previous_frame, count, worst_case };
+using linked_list::kSorts;
+using linked_list::Sort;
 
-PoolSizing pool_sizing_from(const std::string& name) {
-  if (name == "previous_frame") return PoolSizing::previous_frame;
-  if (name == "count") return PoolSizing::count;
-  if (name == "worst_case") return PoolSizing::worst_case;
-  throw std::invalid_argument("linked_list: parameter 'pool_sizing' has no variant '" + name +
-                              "'; choose previous_frame, count or worst_case");
-}
+enum class PoolSizing { previous_frame, count, worst_case };
+const Choices<PoolSizing> kPoolSizings{
+    {PoolSizing::previous_frame, "previous_frame"}, {PoolSizing::count, "count"}, {PoolSizing::worst_case, "worst_case"}};
+enum class Storage { full, compact };  // 32- or 12-byte nodes
+const Choices<Storage> kStorages{{Storage::full, "full"}, {Storage::compact, "compact"}};
 
 FragmentPool::Sizing pool_kind(PoolSizing sizing) {
   switch (sizing) {
@@ -82,20 +71,19 @@ std::vector<uint32_t> classes_for(uint32_t array_size) {
 class LinkedList final : public Technique {
  public:
   explicit LinkedList(const ParamSet& params)
-      : sort_(params.choice("sort")),
-        pool_sizing_(pool_sizing_from(params.choice("pool_sizing"))),
+      : sort_(params.choice("sort", kSorts)),
+        pool_sizing_(params.choice("pool_sizing", kPoolSizings)),
         // Only the network: the insertion and selection sorts loop as far as
         // the pixel's list, and measured slower drawn by class (README).
-        length_classes_(params.boolean("length_classes") && sort_ == "network"),
+        length_classes_(params.boolean("length_classes") && sort_ == Sort::network),
         max_per_pixel_(uint32_t(params.integer("max_per_pixel"))),
         nodes_per_pixel_(uint64_t(params.integer("initial_nodes_per_pixel"))),
-        compact_(params.choice("storage") == "compact"),
+        compact_(params.choice("storage", kStorages) == Storage::compact),
         fill_(build_geometry_program("algorithms/linked_list/fill.frag", storage_defines())),
         counters_(make_buffer(kCounterBytes)),
         pool_("linked_list", pool_kind(pool_sizing_), node_bytes(), [this](uint64_t capacity) { allocate_pool(capacity); },
               1, compact_ ? 4 : 16) {
-    linked_list::resolve_defines(sort_, 1);  // rejects an unknown sort before any frame
-    glProgramUniform1ui(fill_.id(), kMaxPerPixelLocation, max_per_pixel_);
+    set_uniform(fill_.id(), LINKED_LIST_MAX_PER_PIXEL_LOCATION, max_per_pixel_);
     if (pool_sizing_ == PoolSizing::count) {
       count_ = build_geometry_program("algorithms/linked_list/count.frag");
       count_query_ = make_query(GL_SAMPLES_PASSED);
@@ -119,8 +107,8 @@ class LinkedList final : public Technique {
     dummy_framebuffer_ = make_framebuffer();
     glNamedFramebufferParameteri(dummy_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
     glNamedFramebufferParameteri(dummy_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
-    glProgramUniform1i(fill_.id(), kWidthLocation, width_);
-    for (auto& [key, program] : programs_) glProgramUniform1i(program.id(), kWidthLocation, width_);
+    set_uniform(fill_.id(), LINKED_LIST_WIDTH_LOCATION, width_);
+    for (auto& [key, program] : programs_) set_uniform(program.id(), LINKED_LIST_WIDTH_LOCATION, width_);
   }
 
   void render(const Frame& frame) override {
@@ -161,9 +149,9 @@ class LinkedList final : public Technique {
     frame.bind_target();
     bind_storage();
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    glBindImageTexture(kNodesImageUnit, nodes_view_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, node_format());
-    glBindTextureUnit(kHeadsUnit, heads_view_.id());
-    glBindTextureUnit(kLengthsUnit, lengths_view_.id());
+    glBindImageTexture(LINKED_LIST_NODES_IMAGE_UNIT, nodes_view_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, node_format());
+    glBindTextureUnit(LINKED_LIST_HEADS_UNIT, heads_view_.id());
+    glBindTextureUnit(LINKED_LIST_LENGTHS_UNIT, lengths_view_.id());
     sizes_ = {array_size_};
     if (length_classes_) {
       // Each tile runs the smallest array (and network) that holds its
@@ -178,12 +166,12 @@ class LinkedList final : public Technique {
       else if (array_size_ > kSmallestArray)
         sizes_ = classes;
     }
-    classes_.draw(frame, sizes_, [&](uint32_t size) { return program("resolve", sort_for(size), size); });
+    classes_.draw(frame, sizes_, [&](uint32_t size) { return program(Resolve::sorted, sort_for(size), size); });
     // Lists longer than max_per_pixel are left to a second draw that keeps
     // their nearest max_per_pixel fragments.
-    if (dropped_ > 0) draw_fullscreen(frame, program("truncated", "", max_per_pixel_));
-    for (GLuint unit : {kHeadsUnit, kLengthsUnit}) glBindTextureUnit(unit, 0);
-    glBindImageTexture(kNodesImageUnit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, node_format());
+    if (dropped_ > 0) draw_fullscreen(frame, program(Resolve::truncated, sort_, max_per_pixel_));
+    for (GLuint unit : {LINKED_LIST_HEADS_UNIT, LINKED_LIST_LENGTHS_UNIT}) glBindTextureUnit(unit, 0);
+    glBindImageTexture(LINKED_LIST_NODES_IMAGE_UNIT, 0, 0, GL_FALSE, 0, GL_READ_ONLY, node_format());
   }
 
   TechniqueCounters counters() const override {
@@ -232,8 +220,8 @@ class LinkedList final : public Technique {
 
   // The sort a resolve of `array_size` elements runs: the network only up to
   // kLargestNetwork.
-  std::string sort_for(uint32_t array_size) const {
-    return (sort_ == "network" && array_size > kLargestNetwork) ? "insertion" : sort_;
+  Sort sort_for(uint32_t array_size) const {
+    return (sort_ == Sort::network && array_size > kLargestNetwork) ? Sort::insertion : sort_;
   }
 
   // What pool_sizing and length_classes saved in the last frame against the
@@ -244,7 +232,7 @@ class LinkedList final : public Technique {
     const double bytes_not_allocated =
         pool_sizing_ == PoolSizing::worst_case ? 0.0 : (double(worst_case_nodes()) - double(pool_.capacity())) * double(node_bytes());
     c.work_saved.push_back({"bytes_not_allocated", bytes_not_allocated});
-    const bool network = sort_ == "network" && array_size_ <= kLargestNetwork;
+    const bool network = sort_ == Sort::network && array_size_ <= kLargestNetwork;
     uint64_t not_sorted = 0, short_groups = 0, exchanges_avoided = 0;
     if (length_classes_ && array_size_ > 0) {
       std::vector<uint32_t> lengths(size_t(width_) * size_t(height_));
@@ -288,22 +276,24 @@ class LinkedList final : public Technique {
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
 
-  // `kind` "resolve" (tile.vert + resolve.frag with `sort`, drawn by length
-  // class or full screen) or "truncated" (resolve_truncated.frag), compiled
-  // once per local array size.
-  GLuint program(const std::string& kind, const std::string& sort, uint32_t array_size) {
-    const std::string key = kind + ":" + sort + ":" + std::to_string(array_size);
+  // `kind` sorted (tile.vert + resolve.frag with `sort`, drawn by length
+  // class or full screen) or truncated (resolve_truncated.frag, which ignores
+  // `sort`), compiled once per local array size.
+  enum class Resolve { sorted, truncated };
+  GLuint program(Resolve kind, Sort sort, uint32_t array_size) {
+    const std::string key = std::string(kind == Resolve::sorted ? "resolve" : "truncated") + ":" +
+                            (kind == Resolve::sorted ? kSorts.name(sort) : "") + ":" + std::to_string(array_size);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
       Program built =
-          kind == "resolve"
+          kind == Resolve::sorted
               ? build_program({{GL_VERTEX_SHADER, "algorithms/linked_list/tile.vert"},
                                {GL_FRAGMENT_SHADER, "algorithms/linked_list/resolve.frag"}},
                               with_storage(linked_list::tile_defines(linked_list::resolve_defines(sort, array_size))))
               : build_fullscreen_program("algorithms/linked_list/resolve_truncated.frag",
                                          with_storage({{"LL_CAPACITY", std::to_string(array_size)}}));
       it = programs_.emplace(key, std::move(built)).first;
-      glProgramUniform1i(it->second.id(), kWidthLocation, width_);
+      set_uniform(it->second.id(), LINKED_LIST_WIDTH_LOCATION, width_);
     }
     return it->second.id();
   }
@@ -311,17 +301,17 @@ class LinkedList final : public Technique {
   void allocate_pool(uint64_t capacity) {
     nodes_ = make_buffer(GLsizeiptr(capacity) * node_bytes());
     nodes_view_ = make_buffer_texture(nodes_, node_format());
-    glProgramUniform1ui(fill_.id(), kCapacityLocation, GLuint(capacity));
+    set_uniform(fill_.id(), LINKED_LIST_CAPACITY_LOCATION, GLuint(capacity));
   }
 
   void bind_storage() const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kHeadsBinding, heads_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNodesBinding, nodes_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountersBinding, counters_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLengthsBinding, lengths_.id());
+    bind_storage_buffers({{LINKED_LIST_HEADS_BINDING, &heads_},
+                          {LINKED_LIST_NODES_BINDING, &nodes_},
+                          {LINKED_LIST_COUNTERS_BINDING, &counters_},
+                          {LINKED_LIST_LENGTHS_BINDING, &lengths_}});
   }
 
-  std::string sort_;
+  Sort sort_;
   PoolSizing pool_sizing_;
   bool length_classes_;
   uint32_t max_per_pixel_;
@@ -353,23 +343,23 @@ void register_technique_linked_list(TechniqueRegistry& registry) {
   d.display_name = "Per-pixel linked lists (A-buffer), float blend";
   d.paper = "Yang et al. 2010; Carnecky et al. 2013; Pastyrik & Kolingerova 2016";
   d.params = {
-      ParamSpec::choice("sort", "network", {"insertion", "selection", "network"},
-                        "resolve sort: insertion (Yang 2010), selection (Carnecky 2013) or an unrolled "
-                        "odd-even merge sorting network on registers"),
+      kSorts.spec("sort", Sort::network,
+                  "resolve sort: insertion (Yang 2010), selection (Carnecky 2013) or an unrolled "
+                  "odd-even merge sorting network on registers"),
       ParamSpec::integer("max_per_pixel", 64, 1, 1024,
                          "local array size; longer lists keep their nearest max_per_pixel fragments and count "
                          "the rest as dropped"),
       ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,
                          "first frame's pool per pixel with pool_sizing=previous_frame; later frames size it "
                          "from the last count"),
-      ParamSpec::choice("pool_sizing", "previous_frame", {"previous_frame", "count", "worst_case"},
+      kPoolSizings.spec("pool_sizing", PoolSizing::previous_frame,
                         "node pool: previous_frame (1.25 x the last frame's fragments, grown with a re-render "
                         "on overflow), count (a counting pass first, then exactly that many nodes; never "
                         "overflows) or worst_case (W x H x max_per_pixel nodes, allocated once)"),
-      ParamSpec::choice("storage", "full", {"full", "compact"},
-                        "node layout: full (32 bytes: float RGBA, view depth, triangle id, next; exact) or "
-                        "compact (12 bytes: view depth, RGBA8 colour, next; colour quantised to 1/255 and "
-                        "coplanar fragments ordered by allocation instead of triangle id)"),
+      kStorages.spec("storage", Storage::full,
+                     "node layout: full (32 bytes: float RGBA, view depth, triangle id, next; exact) or "
+                     "compact (12 bytes: view depth, RGBA8 colour, next; colour quantised to 1/255 and "
+                     "coplanar fragments ordered by allocation instead of triangle id)"),
       ParamSpec::boolean("length_classes", true,
                          "sort=network only: resolve each 4x4 tile with the smallest network that holds its "
                          "longest list: a compute pass classifies the tiles (1 = no sort, 8, 16, ... the frame's "
@@ -391,12 +381,12 @@ void register_technique_linked_list(TechniqueRegistry& registry) {
        {{"length_classes", "true"}}, {{"length_classes", "false"}}}};
   d.create = [](const ParamSet& params) { return std::make_unique<LinkedList>(params); };
   d.storage_need = [](const ParamSet& params, const FrameContent& content) {
-    const PoolSizing sizing = pool_sizing_from(params.choice("pool_sizing"));
+    const PoolSizing sizing = params.choice("pool_sizing", kPoolSizings);
     const uint64_t nodes =
         sizing == PoolSizing::count        ? std::max<uint64_t>(content.fragments, 1)
         : sizing == PoolSizing::worst_case ? content.pixels() * uint64_t(params.integer("max_per_pixel"))
                                            : fragment_pool::nodes_for(content, uint64_t(params.integer("initial_nodes_per_pixel")));
-    const uint64_t node = params.choice("storage") == "compact" ? kCompactNodeBytes : kNodeBytes;
+    const uint64_t node = params.choice("storage", kStorages) == Storage::compact ? kCompactNodeBytes : kNodeBytes;
     return StorageNeed{nodes * node, content.pixels() * (kPixelBytes + 2) + nodes * node};
   };
   registry.add(std::move(d));

@@ -1,6 +1,6 @@
 // Storage of the per-pixel linked lists (Yang et al. 2010): LL_HEADS head
 // pointers and a list length per pixel, one pool of nodes, and global counters.
-#include "shaders/bindings.h"
+#include "algorithms/linked_list/bindings.h"
 
 #define LL_NIL 0xffffffffu
 // Each pixel's fragments are spread over LL_HEADS interleaved lists: the
@@ -8,8 +8,7 @@
 // goes to list p % LL_HEADS. The resolve walks the lists side by side, so
 // LL_HEADS node loads are independent and their memory latencies overlap
 // (one list is a chain of dependent loads, ~2 MB apart on 256x256 quads).
-// linked_list.cpp's kHeads; the resolve reads a pixel's heads as one uvec4.
-#define LL_HEADS 4
+// LL_HEADS is in bindings.h.
 
 #if defined(LL_COMPACT)
 // storage=compact: 12 bytes a node, three words: view depth (float bits),
@@ -26,25 +25,25 @@ struct LinkedListNode {
 #endif
 
 // Pixel p's list c starts at ll_heads[p * LL_HEADS + c].
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) coherent buffer LinkedListHeads { uint ll_heads[]; };
+layout(std430, binding = LINKED_LIST_HEADS_BINDING) coherent buffer LinkedListHeads { uint ll_heads[]; };
 #if defined(LL_COMPACT)
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) buffer LinkedListNodes { uint ll_words[]; };
+layout(std430, binding = LINKED_LIST_NODES_BINDING) buffer LinkedListNodes { uint ll_words[]; };
 #else
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) buffer LinkedListNodes { LinkedListNode ll_nodes[]; };
+layout(std430, binding = LINKED_LIST_NODES_BINDING) buffer LinkedListNodes { LinkedListNode ll_nodes[]; };
 #endif
 // node_count: fragments the fill produced (may exceed the pool: that is how
 // the host sees an overflow). max_length: the longest list, which sizes the
 // resolve. dropped: fragments beyond max_per_pixel in their pixel, which the
 // resolve will not composite.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 2) coherent buffer LinkedListCounters {
+layout(std430, binding = LINKED_LIST_COUNTERS_BINDING) coherent buffer LinkedListCounters {
   uint ll_node_count;
   uint ll_max_length;
   uint ll_dropped;
 };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 3) coherent buffer LinkedListLengths { uint ll_lengths[]; };
+layout(std430, binding = LINKED_LIST_LENGTHS_BINDING) coherent buffer LinkedListLengths { uint ll_lengths[]; };
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform uint u_capacity;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_width;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 2) uniform uint u_max_per_pixel;
+layout(location = LINKED_LIST_CAPACITY_LOCATION) uniform uint u_capacity;
+layout(location = LINKED_LIST_WIDTH_LOCATION) uniform int u_width;
+layout(location = LINKED_LIST_MAX_PER_PIXEL_LOCATION) uniform uint u_max_per_pixel;
 
 uint ll_pixel() { return uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x); }

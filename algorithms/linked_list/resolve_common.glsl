@@ -11,12 +11,12 @@ layout(location = 0) out vec4 out_color;
 // resolve of 32 quads took 14.5 ms with imageLoad against 19.1 ms with
 // texelFetch of the same buffer (the insertion resolve: 44.0 against 43.2).
 #if defined(LL_COMPACT)
-layout(binding = 0, r32ui) readonly uniform uimageBuffer u_nodes;
+layout(binding = LINKED_LIST_NODES_IMAGE_UNIT, r32ui) readonly uniform uimageBuffer u_nodes;
 #else
-layout(binding = 0, rgba32ui) readonly uniform uimageBuffer u_nodes;
+layout(binding = LINKED_LIST_NODES_IMAGE_UNIT, rgba32ui) readonly uniform uimageBuffer u_nodes;
 #endif
-layout(binding = 1) uniform usamplerBuffer u_heads;
-layout(binding = 2) uniform usamplerBuffer u_lengths;
+layout(binding = LINKED_LIST_HEADS_UNIT) uniform usamplerBuffer u_heads;
+layout(binding = LINKED_LIST_LENGTHS_UNIT) uniform usamplerBuffer u_lengths;
 
 // The heads of the pixel's LL_HEADS lists (nodes.glsl), one RGBA32UI texel.
 uvec4 heads_of(uint pixel) { return texelFetch(u_heads, int(pixel)); }

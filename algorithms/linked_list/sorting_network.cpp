@@ -32,34 +32,28 @@ void apply_network(const std::vector<Comparator>& network, std::vector<uint32_t>
   }
 }
 
-namespace {
-
 std::string macro_sequence(const std::string& macro, uint32_t count) {
   std::string text;
   for (uint32_t i = 0; i < count; ++i) text += macro + "(" + std::to_string(i) + ") ";
   return text;
 }
 
-}  // namespace
-
-ShaderDefines resolve_defines(const std::string& sort, uint32_t capacity) {
+ShaderDefines resolve_defines(Sort sort, uint32_t capacity) {
   if (capacity == 0) throw std::invalid_argument("linked_list: the resolve needs room for at least one fragment");
   ShaderDefines defines = {{"LL_CAPACITY", std::to_string(capacity)}};
-  if (sort == "insertion") {
-    defines.push_back({"LL_SORT_INSERTION", "1"});
-  } else if (sort == "selection") {
-    defines.push_back({"LL_SORT_SELECTION", "1"});
-  } else if (sort == "network") {
-    defines.push_back({"LL_SORT_NETWORK", "1"});
-    std::string network;
-    for (const Comparator& c : odd_even_merge_sort(capacity))
-      network += "LL_CE(" + std::to_string(c.first) + "," + std::to_string(c.second) + ") ";
-    defines.push_back({"LL_LOAD_ALL", macro_sequence("LL_LOAD", capacity)});
-    defines.push_back({"LL_NETWORK", network});
-    defines.push_back({"LL_BLEND_ALL", macro_sequence("LL_BLEND", capacity)});
-  } else {
-    throw std::invalid_argument("linked_list: parameter 'sort' has no variant '" + sort +
-                                "'; choose insertion, selection or network");
+  switch (sort) {
+    case Sort::insertion: defines.push_back({"LL_SORT_INSERTION", "1"}); break;
+    case Sort::selection: defines.push_back({"LL_SORT_SELECTION", "1"}); break;
+    case Sort::network: {
+      defines.push_back({"LL_SORT_NETWORK", "1"});
+      std::string network;
+      for (const Comparator& c : odd_even_merge_sort(capacity))
+        network += "LL_CE(" + std::to_string(c.first) + "," + std::to_string(c.second) + ") ";
+      defines.push_back({"LL_LOAD_ALL", macro_sequence("LL_LOAD", capacity)});
+      defines.push_back({"LL_NETWORK", network});
+      defines.push_back({"LL_BLEND_ALL", macro_sequence("LL_BLEND", capacity)});
+      break;
+    }
   }
   return defines;
 }

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "base/params.h"
 #include "harness/gl/shader_program.h"
 
 namespace oit::linked_list {
@@ -25,10 +26,19 @@ std::vector<Comparator> odd_even_merge_sort(uint32_t size);
 // Applies `network` to `values` on the CPU (used by the tests).
 void apply_network(const std::vector<Comparator>& network, std::vector<uint32_t>& values);
 
-// The #defines of algorithms/linked_list/resolve.frag for `sort`
-// ("insertion", "selection" or "network") and a local array of `capacity`
-// elements. For the network they also carry the unrolled load, network and
-// blend as macro sequences.
-ShaderDefines resolve_defines(const std::string& sort, uint32_t capacity);
+// The resolve's sort: insertion (Yang 2010), selection (Carnecky 2013) or the
+// unrolled network (also linearized_fragment_buffer's).
+enum class Sort { insertion, selection, network };
+inline const Choices<Sort> kSorts{
+    {Sort::insertion, "insertion"}, {Sort::selection, "selection"}, {Sort::network, "network"}};
+
+// "M(0) M(1) ... M(count-1) ": a macro applied to each constant index, for
+// unrolled GLSL (linked_list's network, linearized_fragment_buffer's blocks).
+std::string macro_sequence(const std::string& macro, uint32_t count);
+
+// The #defines of algorithms/linked_list/resolve.frag for `sort` and a local
+// array of `capacity` elements. For the network they also carry the unrolled
+// load, network and blend as macro sequences.
+ShaderDefines resolve_defines(Sort sort, uint32_t capacity);
 
 }  // namespace oit::linked_list

@@ -6,11 +6,11 @@
 // block split by a quad's diagonal would be shaded twice. The tiles
 // partition the screen, so every pixel is resolved by exactly one class.
 // u_first_tile = 0xffffffff: one triangle covering the screen instead.
-#include "shaders/bindings.h"
+#include "algorithms/linked_list/bindings.h"
 
-layout(binding = 3) uniform usamplerBuffer u_class_tiles;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 8) uniform ivec2 u_size;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 9) uniform uint u_first_tile;
+layout(binding = LINKED_LIST_CLASS_TILES_UNIT) uniform usamplerBuffer u_class_tiles;
+layout(location = LINKED_LIST_SIZE_LOCATION) uniform ivec2 u_size;
+layout(location = LINKED_LIST_FIRST_TILE_LOCATION) uniform uint u_first_tile;
 
 void main() {
   if (u_first_tile == 0xffffffffu) {

@@ -16,6 +16,7 @@
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
+#include "harness/gl/uniforms.h"
 #include "algorithms/moment_oit/bindings.h"
 
 namespace oit {
@@ -28,13 +29,13 @@ constexpr double kPi = 3.14159265358979323846;
 struct MomentConfig {
   bool trigonometric;
   int moments;
+  bool operator==(const MomentConfig&) const = default;
 };
-
-MomentConfig config_of(const std::string& choice) {
-  const bool trigonometric = choice.rfind("trig", 0) == 0;
-  const int count = std::stoi(choice.substr(trigonometric ? 4 : 5));
-  return {trigonometric, trigonometric ? 2 * count : count};
-}
+const Choices<MomentConfig> kMomentConfigs{{{false, 4}, "power4"}, {{false, 6}, "power6"}, {{false, 8}, "power8"},
+                                           {{true, 4}, "trig2"},   {{true, 6}, "trig3"},   {{true, 8}, "trig4"}};
+// Storage of the moment and accumulation targets.
+enum class Precision { single, half };
+const Choices<Precision> kPrecisions{{Precision::single, "float"}, {Precision::half, "half"}};
 
 // The paper's moment bias per configuration and storage (its Table 1 and
 // supplementary): the smallest bias that kept its reconstructions stable.
@@ -63,8 +64,8 @@ glm::vec2 near_far_of(const glm::mat4& p) {
 class MomentOit final : public Technique {
  public:
   explicit MomentOit(const ParamSet& params)
-      : config_(config_of(params.choice("moments"))),
-        half_(params.choice("precision") == "half"),
+      : config_(params.choice("moments", kMomentConfigs)),
+        half_(params.choice("precision", kPrecisions) == Precision::half),
         moment_bias_(paper_moment_bias(config_, half_) * params.real("moment_bias_scale")),
         overestimation_(params.real("overestimation")),
         wrapping_zone_(params.real("wrapping_zone_degrees") * kPi / 180.0),
@@ -76,10 +77,10 @@ class MomentOit final : public Technique {
                                   " makes the moment bias " + std::to_string(moment_bias_) +
                                   " >= 1, which discards the moments entirely");
     for (GLuint program : {fill_.id(), store_.id()}) {
-      glProgramUniform1f(program, MOMENT_OIT_WRAPPING_ZONE_LOCATION, float(wrapping_zone_));
+      set_uniform(program, MOMENT_OIT_WRAPPING_ZONE_LOCATION, float(wrapping_zone_));
     }
-    glProgramUniform1f(store_.id(), MOMENT_OIT_MOMENT_BIAS_LOCATION, float(moment_bias_));
-    glProgramUniform1f(store_.id(), MOMENT_OIT_OVERESTIMATION_LOCATION, float(overestimation_));
+    set_uniform(store_.id(), MOMENT_OIT_MOMENT_BIAS_LOCATION, float(moment_bias_));
+    set_uniform(store_.id(), MOMENT_OIT_OVERESTIMATION_LOCATION, float(overestimation_));
   }
 
   void resize(int width, int height) override {
@@ -160,8 +161,8 @@ class MomentOit final : public Technique {
     glm::vec2 near_far = near_far_of(projection);
     if (perspective) near_far = glm::log(near_far);
     for (GLuint program : {fill_.id(), store_.id()}) {
-      glProgramUniform2f(program, MOMENT_OIT_DEPTH_WARP_LOCATION, near_far.x, 1.0f / (near_far.y - near_far.x));
-      glProgramUniform1i(program, MOMENT_OIT_LOG_DEPTH_LOCATION, perspective ? 1 : 0);
+      set_uniform(program, MOMENT_OIT_DEPTH_WARP_LOCATION, glm::vec2(near_far.x, 1.0f / (near_far.y - near_far.x)));
+      set_uniform(program, MOMENT_OIT_LOG_DEPTH_LOCATION, perspective ? 1 : 0);
     }
   }
 
@@ -188,10 +189,10 @@ void register_technique_moment_oit(TechniqueRegistry& registry) {
   d.display_name = "Moment-based OIT";
   d.paper = "Münstermann, Krumpen, Klein & Peters 2018, Moment-Based Order-Independent Transparency, PACMCGIT 1(1)";
   d.params = {
-      ParamSpec::choice("moments", "power6", {"power4", "power6", "power8", "trig2", "trig3", "trig4"},
-                        "power moments (4, 6 or 8 of depth) or trigonometric moments (2, 3 or 4 of an angle)"),
-      ParamSpec::choice("precision", "float", {"float", "half"},
-                        "moment and accumulation targets: 32-bit floats, or the paper's 16-bit (half) storage"),
+      kMomentConfigs.spec("moments", {false, 6},
+                          "power moments (4, 6 or 8 of depth) or trigonometric moments (2, 3 or 4 of an angle)"),
+      kPrecisions.spec("precision", Precision::single,
+                       "moment and accumulation targets: 32-bit floats, or the paper's 16-bit (half) storage"),
       ParamSpec::real("moment_bias_scale", 1.0, 0.0, 1e4,
                       "multiplies the paper's moment bias of the configuration (e.g. 5e-6 for power6 at 32 bits); "
                       "0 = no bias"),

@@ -14,6 +14,7 @@
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
+#include "harness/gl/uniforms.h"
 #include "algorithms/multi_layer_alpha_blending/bindings.h"
 
 namespace oit {
@@ -31,14 +32,14 @@ class MultiLayerAlphaBlending final : public Technique {
         fill_(build_geometry_program("algorithms/multi_layer_alpha_blending/fill.frag")),
         compose_(build_fullscreen_program("algorithms/multi_layer_alpha_blending/compose.frag")) {
     for (GLuint program : {fill_.id(), compose_.id()})
-      glProgramUniform1i(program, MULTI_LAYER_ALPHA_BLENDING_LAYERS_LOCATION, k_);
+      set_uniform(program, MULTI_LAYER_ALPHA_BLENDING_LAYERS_LOCATION, k_);
   }
 
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
     for (GLuint program : {fill_.id(), compose_.id()})
-      glProgramUniform1i(program, MULTI_LAYER_ALPHA_BLENDING_WIDTH_LOCATION, width);
+      set_uniform(program, MULTI_LAYER_ALPHA_BLENDING_WIDTH_LOCATION, width);
     const uint64_t pixels = uint64_t(width) * uint64_t(height);
     colors_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_) * 16));
     depths_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_) * 4));
@@ -55,9 +56,9 @@ class MultiLayerAlphaBlending final : public Technique {
       fill_buffer_u32(counts_, 0);
       locks_.clear();
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, MULTI_LAYER_ALPHA_BLENDING_COLORS_BINDING, colors_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, MULTI_LAYER_ALPHA_BLENDING_DEPTHS_BINDING, depths_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, MULTI_LAYER_ALPHA_BLENDING_COUNTS_BINDING, counts_.id());
+    bind_storage_buffers({{MULTI_LAYER_ALPHA_BLENDING_COLORS_BINDING, &colors_},
+                          {MULTI_LAYER_ALPHA_BLENDING_DEPTHS_BINDING, &depths_},
+                          {MULTI_LAYER_ALPHA_BLENDING_COUNTS_BINDING, &counts_}});
     locks_.bind(MULTI_LAYER_ALPHA_BLENDING_LOCKS_BINDING);
     {
       auto fill = frame.clock.stage("fill");

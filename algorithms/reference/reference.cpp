@@ -18,20 +18,15 @@
 #include "harness/core/passes.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "shaders/bindings.h"
+#include "harness/gl/uniforms.h"
+#include "algorithms/reference/bindings.h"
 
 namespace oit {
 namespace {
 
 constexpr GLsizeiptr kNodeBytes = 32;  // ReferenceNode in reference_nodes.glsl
-constexpr GLuint kHeadsBinding = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kNodesBinding = OIT_FIRST_TECHNIQUE_BINDING + 1;
-constexpr GLuint kCounterBinding = OIT_FIRST_TECHNIQUE_BINDING + 2;
-constexpr GLuint kLengthsBinding = OIT_FIRST_TECHNIQUE_BINDING + 3;
 // Longest list the GPU resolve handles; longer frames resolve on the CPU.
 constexpr uint32_t kMaxGpuListLength = 512;
-constexpr GLint kCapacityLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
-constexpr GLint kWidthLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 1;
 
 class Reference final : public Technique {
  public:
@@ -151,23 +146,23 @@ class Reference final : public Technique {
       it = resolve_.emplace(size, build_fullscreen_program("algorithms/reference/resolve.frag",
                                                            {{"MAX_FRAGMENTS", std::to_string(size)}}))
                .first;
-      glProgramUniform1i(it->second.id(), kWidthLocation, width_);
+      set_uniform(it->second.id(), REFERENCE_WIDTH_LOCATION, width_);
     }
     return it->second.id();
   }
 
   void allocate_pool(uint64_t capacity) {
     nodes_ = make_buffer(GLsizeiptr(capacity) * kNodeBytes);
-    glProgramUniform1ui(fill_.id(), kCapacityLocation, GLuint(capacity));
-    glProgramUniform1i(fill_.id(), kWidthLocation, width_);
-    for (auto& [size, program] : resolve_) glProgramUniform1i(program.id(), kWidthLocation, width_);
+    set_uniform(fill_.id(), REFERENCE_CAPACITY_LOCATION, GLuint(capacity));
+    set_uniform(fill_.id(), REFERENCE_WIDTH_LOCATION, width_);
+    for (auto& [size, program] : resolve_) set_uniform(program.id(), REFERENCE_WIDTH_LOCATION, width_);
   }
 
   void bind_storage() const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kHeadsBinding, heads_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNodesBinding, nodes_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCounterBinding, counter_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLengthsBinding, lengths_.id());
+    bind_storage_buffers({{REFERENCE_HEADS_BINDING, &heads_},
+                          {REFERENCE_NODES_BINDING, &nodes_},
+                          {REFERENCE_COUNTER_BINDING, &counter_},
+                          {REFERENCE_LENGTHS_BINDING, &lengths_}});
   }
 
   int64_t nodes_per_pixel_;

@@ -1,5 +1,5 @@
 // Storage of the reference: every fragment in a per-pixel linked list.
-#include "shaders/bindings.h"
+#include "algorithms/reference/bindings.h"
 
 #define REFERENCE_NIL 0xffffffffu
 
@@ -10,16 +10,16 @@ struct ReferenceNode {
   uvec4 link;  // x: view depth (float bits), y: stable triangle id, z: next node, w: unused
 };
 
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) coherent buffer ReferenceHeads { uint heads[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) buffer ReferenceNodes { ReferenceNode nodes[]; };
+layout(std430, binding = REFERENCE_HEADS_BINDING) coherent buffer ReferenceHeads { uint heads[]; };
+layout(std430, binding = REFERENCE_NODES_BINDING) buffer ReferenceNodes { ReferenceNode nodes[]; };
 // node_count: fragments the last fill produced; may exceed the capacity,
 // which is how the host detects overflow. max_length: the longest list, from
 // which the host sizes the resolve's local array.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 2) coherent buffer ReferenceCounter {
+layout(std430, binding = REFERENCE_COUNTER_BINDING) coherent buffer ReferenceCounter {
   uint node_count;
   uint max_length;
 };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 3) coherent buffer ReferenceLengths { uint lengths[]; };
+layout(std430, binding = REFERENCE_LENGTHS_BINDING) coherent buffer ReferenceLengths { uint lengths[]; };
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform uint u_capacity;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_width;
+layout(location = REFERENCE_CAPACITY_LOCATION) uniform uint u_capacity;
+layout(location = REFERENCE_WIDTH_LOCATION) uniform int u_width;

@@ -4,9 +4,10 @@
 // estimate decides only how the pixel's coverage is shared among its
 // fragments, the coverage itself, 1 - prod (1 - a), is exact.
 #include "shaders/compose.glsl"
+#include "algorithms/stochastic_transparency/bindings.h"
 
-layout(binding = OIT_FIRST_TECHNIQUE_BINDING + 1) uniform sampler2DMS u_accumulation;
-layout(binding = OIT_FIRST_TECHNIQUE_BINDING + 2) uniform sampler2D u_total_transmittance;
+layout(binding = STOCHASTIC_TRANSPARENCY_ACCUMULATION_UNIT) uniform sampler2DMS u_accumulation;
+layout(binding = STOCHASTIC_TRANSPARENCY_TOTAL_TRANSMITTANCE_UNIT) uniform sampler2D u_total_transmittance;
 
 layout(location = 0) out vec4 out_color;
 

@@ -4,8 +4,9 @@
 // probability alpha, through gl_SampleMask; the depth test (LESS) keeps, per
 // sample, the nearest fragment that covered it (its depth at that sample).
 #include "shaders/shading.glsl"
+#include "algorithms/stochastic_transparency/bindings.h"
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform uint u_seed;
+layout(location = STOCHASTIC_TRANSPARENCY_SEED_LOCATION) uniform uint u_seed;
 
 // A 32-bit integer hash with full avalanche (the PCG output permutation
 // applied to an LCG step): random numbers from (pixel, triangle, seed)

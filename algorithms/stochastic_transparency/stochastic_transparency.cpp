@@ -14,14 +14,12 @@
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "shaders/bindings.h"
+#include "harness/gl/uniforms.h"
+#include "algorithms/stochastic_transparency/bindings.h"
 
 namespace oit {
 namespace {
 
-constexpr GLuint kAccumulationUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
-constexpr GLuint kTotalTransmittanceUnit = OIT_FIRST_TECHNIQUE_BINDING + 2;
-constexpr GLint kSeedLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
 
 GLint get_integer(GLenum name) {
   GLint value = 0;
@@ -58,10 +56,12 @@ Texture make_multisample_texture(GLenum format, int samples, int width, int heig
   return texture;
 }
 
+const Choices<int> kSampleCounts{{4, "4"}, {8, "8"}, {16, "16"}};  // MSAA samples of the depth pass
+
 class StochasticTransparency final : public Technique {
  public:
   explicit StochasticTransparency(const ParamSet& params)
-      : samples_(std::stoi(params.choice("samples"))),
+      : samples_(params.choice("samples", kSampleCounts)),
         passes_(int(params.integer("passes"))),
         seed_(uint32_t(params.integer("seed"))),
         depth_(build_geometry_program("algorithms/stochastic_transparency/depth.frag", defines())),
@@ -101,7 +101,7 @@ class StochasticTransparency final : public Technique {
         auto fill = frame.clock.stage("fill");
         const GLfloat far = 1.0f;
         glClearNamedFramebufferfv(depth_framebuffer_.id(), GL_DEPTH, 0, &far);
-        glProgramUniform1ui(depth_.id(), kSeedLocation, seed_ + uint32_t(pass) * 0x9e3779b9u);
+        set_uniform(depth_.id(), STOCHASTIC_TRANSPARENCY_SEED_LOCATION, seed_ + uint32_t(pass) * 0x9e3779b9u);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glDepthMask(GL_TRUE);
@@ -127,8 +127,8 @@ class StochasticTransparency final : public Technique {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     {
       auto compose = frame.clock.stage("compose");
-      glBindTextureUnit(kAccumulationUnit, accumulation_.id());
-      glBindTextureUnit(kTotalTransmittanceUnit, total_transmittance_.id());
+      glBindTextureUnit(STOCHASTIC_TRANSPARENCY_ACCUMULATION_UNIT, accumulation_.id());
+      glBindTextureUnit(STOCHASTIC_TRANSPARENCY_TOTAL_TRANSMITTANCE_UNIT, total_transmittance_.id());
       draw_fullscreen_pass(frame, compose_);
     }
   }
@@ -162,18 +162,18 @@ void register_technique_stochastic_transparency(TechniqueRegistry& registry) {
   d.id = "stochastic_transparency";
   d.display_name = "Stochastic transparency";
   d.paper = "Enderton, Sintorn, Shirley & Luebke 2010, Stochastic Transparency, I3D 2010";
-  d.params = {ParamSpec::choice("samples", "4", {"4", "8", "16"},
-                                "MSAA samples per pixel of the stochastic depth pass (a count the device lacks is a "
-                                "skipped run)"),
+  d.params = {kSampleCounts.spec("samples", 4,
+                                 "MSAA samples per pixel of the stochastic depth pass (a count the device lacks is "
+                                 "a skipped run)"),
               ParamSpec::integer("passes", 1, 1, 64,
                                  "depth + accumulation pass pairs with different seeds, averaged: samples x passes "
                                  "effective samples"),
               ParamSpec::integer("seed", 1, 0, 0xffffffffLL, "seed of the per-fragment coverage masks")};
   d.stages = {"clear", "fill", "store", "compose"};
   d.exactness = Exactness::approximate;
-  d.quality_sweep = {{"samples", {"4", "8", "16"}}, {"passes", {"1", "2", "4", "8"}}};
+  d.quality_sweep = {{"samples", kSampleCounts.names()}, {"passes", {"1", "2", "4", "8"}}};
   d.extra_support_check = [](const ParamSet& params, const SceneFacts&) {
-    return sample_count_support(std::stoi(params.choice("samples")));
+    return sample_count_support(params.choice("samples", kSampleCounts));
   };
   d.create = [](const ParamSet& params) { return std::make_unique<StochasticTransparency>(params); };
   registry.add(std::move(d));

@@ -2,9 +2,10 @@
 // Compose of weighted blended OIT: the weighted average colour covers
 // (1 - revealage) of the pixel; the background shows through the rest.
 #include "shaders/compose.glsl"
+#include "algorithms/weighted_blended/bindings.h"
 
-layout(binding = OIT_FIRST_TECHNIQUE_BINDING + 0) uniform sampler2D u_accumulation;
-layout(binding = OIT_FIRST_TECHNIQUE_BINDING + 1) uniform sampler2D u_revealage;
+layout(binding = WEIGHTED_BLENDED_ACCUMULATION_UNIT) uniform sampler2D u_accumulation;
+layout(binding = WEIGHTED_BLENDED_REVEALAGE_UNIT) uniform sampler2D u_revealage;
 
 layout(location = 0) out vec4 out_color;
 

@@ -4,10 +4,10 @@
 // Target 1 (ZERO, ONE_MINUS_SRC_COLOR): revealage = product of (1 - alpha).
 // The paper's weights include the alpha factor: w = alpha * f(depth).
 #include "shaders/shading.glsl"
-#include "shaders/bindings.h"
+#include "algorithms/weighted_blended/bindings.h"
 
 // View depths of the projection's near and far planes (eqs. 7-9 only).
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform vec2 u_near_far;
+layout(location = WEIGHTED_BLENDED_NEAR_FAR_LOCATION) uniform vec2 u_near_far;
 
 layout(location = 0) out vec4 out_accumulation;
 layout(location = 1) out vec4 out_revealage;

@@ -11,14 +11,12 @@
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "shaders/bindings.h"
+#include "harness/gl/uniforms.h"
+#include "algorithms/weighted_blended/bindings.h"
 
 namespace oit {
 namespace {
 
-constexpr GLuint kAccumulationUnit = OIT_FIRST_TECHNIQUE_BINDING + 0;
-constexpr GLuint kRevealageUnit = OIT_FIRST_TECHNIQUE_BINDING + 1;
-constexpr GLint kNearFarLocation = OIT_FIRST_TECHNIQUE_UNIFORM + 0;
 
 // View depths of the near and far planes of a GL projection matrix
 // (glm: m[column][row]); perspective when m[2][3] == -1, else orthographic.
@@ -27,12 +25,18 @@ glm::vec2 near_far_of(const glm::mat4& p) {
   return {(p[3][2] + 1.0f) / p[2][2], (p[3][2] - 1.0f) / p[2][2]};
 }
 
+// The paper's weight functions, by equation number (fill.frag's WEIGHT_EQUATION).
+const Choices<int> kWeights{{7, "eq7"}, {8, "eq8"}, {9, "eq9"}, {10, "eq10"}};
+// Storage of the accumulation target.
+enum class Precision { single, half };
+const Choices<Precision> kPrecisions{{Precision::single, "float"}, {Precision::half, "half"}};
+
 class WeightedBlended final : public Technique {
  public:
   explicit WeightedBlended(const ParamSet& params)
-      : half_(params.choice("precision") == "half"),
+      : half_(params.choice("precision", kPrecisions) == Precision::half),
         fill_(build_geometry_program("algorithms/weighted_blended/fill.frag",
-                                     {{"WEIGHT_EQUATION", params.choice("weight").substr(2)}})),
+                                     {{"WEIGHT_EQUATION", std::to_string(params.choice("weight", kWeights))}})),
         compose_(build_fullscreen_program("algorithms/weighted_blended/compose.frag")) {}
 
   void resize(int width, int height) override {
@@ -68,7 +72,7 @@ class WeightedBlended final : public Technique {
       glUseProgram(fill_.id());
       frame.set_shared_uniforms(fill_.id());
       const glm::vec2 near_far = near_far_of(frame.projection);
-      glProgramUniform2f(fill_.id(), kNearFarLocation, near_far.x, near_far.y);
+      set_uniform(fill_.id(), WEIGHTED_BLENDED_NEAR_FAR_LOCATION, near_far);
       frame.scene.draw();
       glDisable(GL_BLEND);
     }
@@ -76,8 +80,8 @@ class WeightedBlended final : public Technique {
     {
       auto compose = frame.clock.stage("compose");
       frame.bind_target();
-      glBindTextureUnit(kAccumulationUnit, accumulation_.id());
-      glBindTextureUnit(kRevealageUnit, revealage_.id());
+      glBindTextureUnit(WEIGHTED_BLENDED_ACCUMULATION_UNIT, accumulation_.id());
+      glBindTextureUnit(WEIGHTED_BLENDED_REVEALAGE_UNIT, revealage_.id());
       glUseProgram(compose_.id());
       frame.set_shared_uniforms(compose_.id());
       glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -108,14 +112,14 @@ void register_technique_weighted_blended(TechniqueRegistry& registry) {
   d.id = "weighted_blended";
   d.display_name = "Weighted blended OIT";
   d.paper = "McGuire & Bavoil 2013, Weighted Blended Order-Independent Transparency, JCGT 2(2)";
-  d.params = {ParamSpec::choice("weight", "eq10", {"eq7", "eq8", "eq9", "eq10"},
-                                "depth weight: the paper's eq. 7, 8, 9 (view depth rescaled from [near, far] to "
-                                "[0.1, 500]) or 10 (window depth)"),
-              ParamSpec::choice("precision", "float", {"float", "half"},
-                                "accumulation/revealage targets: RGBA32F + R32F, or the paper's RGBA16F + R16F")};
+  d.params = {kWeights.spec("weight", 10,
+                            "depth weight: the paper's eq. 7, 8, 9 (view depth rescaled from [near, far] to "
+                            "[0.1, 500]) or 10 (window depth)"),
+              kPrecisions.spec("precision", Precision::single,
+                               "accumulation/revealage targets: RGBA32F + R32F, or the paper's RGBA16F + R16F")};
   d.stages = {"clear", "fill", "compose"};
   d.exactness = Exactness::approximate;
-  d.quality_sweep = {{"weight", {"eq7", "eq8", "eq9", "eq10"}}};
+  d.quality_sweep = {{"weight", kWeights.names()}};
   d.create = [](const ParamSet& params) { return std::make_unique<WeightedBlended>(params); };
   // Two accumulation textures (precision=float's 20 bytes per pixel, the larger).
   d.storage_need = [](const ParamSet&, const FrameContent& content) { return StorageNeed{0, content.pixels() * 20}; };

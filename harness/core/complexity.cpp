@@ -6,6 +6,7 @@
 #include "harness/core/heatmap.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
+#include "harness/gl/uniforms.h"
 #include "shaders/bindings.h"
 
 namespace oit {
@@ -28,8 +29,8 @@ DepthComplexity measure_depth_complexity(const SceneGpu& scene, const glm::mat4&
   glDisable(GL_CULL_FACE);
   glDisable(GL_BLEND);
   glUseProgram(program.id());
-  glProgramUniformMatrix4fv(program.id(), OIT_UNIFORM_VIEW, 1, GL_FALSE, &view[0][0]);
-  glProgramUniformMatrix4fv(program.id(), OIT_UNIFORM_PROJECTION, 1, GL_FALSE, &projection[0][0]);
+  set_uniform(program.id(), OIT_UNIFORM_VIEW, view);
+  set_uniform(program.id(), OIT_UNIFORM_PROJECTION, projection);
   glBindImageTexture(0, counts.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   scene.draw();
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);

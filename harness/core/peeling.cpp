@@ -16,12 +16,19 @@ uint32_t float_bits(float value) {
   return bits;
 }
 
+namespace {
+// Which of two fragments at one depth comes first: the stable triangle id, or submission order.
+enum class TieBreak { triangle_id, submission };
+const Choices<TieBreak> kTieBreaks{{TieBreak::triangle_id, "triangle_id"}, {TieBreak::submission, "submission"}};
+
+}  // namespace
+
 void describe_peeler(TechniqueDescriptor& d, const PeelingText& text, uint64_t bytes_per_pixel,
                      PeelerFactory by_triangle_id, PeelerFactory by_submission) {
   d.params = {
       ParamSpec::integer("max_passes", 64, 1, 4096, text.max_passes),
       ParamSpec::boolean("early_exit", true, text.early_exit),
-      ParamSpec::choice("tie_break", "triangle_id", {"triangle_id", "submission"}, text.tie_break),
+      kTieBreaks.spec("tie_break", TieBreak::triangle_id, text.tie_break),
   };
   d.stages = {"clear", "peel", "compose"};
   d.exactness = Exactness::exact;
@@ -32,7 +39,7 @@ void describe_peeler(TechniqueDescriptor& d, const PeelingText& text, uint64_t b
   d.create = [by_triangle_id, by_submission](const ParamSet& params) -> std::unique_ptr<Technique> {
     const int max_passes = int(params.integer("max_passes"));
     const bool early_exit = params.boolean("early_exit");
-    if (params.choice("tie_break") == "submission") return by_submission(max_passes, early_exit);
+    if (params.choice("tie_break", kTieBreaks) == TieBreak::submission) return by_submission(max_passes, early_exit);
     return by_triangle_id(max_passes, early_exit);
   };
 }

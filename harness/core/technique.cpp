@@ -4,27 +4,21 @@
 #include <stdexcept>
 
 #include "harness/core/stage_clock.h"
+#include "harness/gl/uniforms.h"
 
 #include "shaders/bindings.h"
 
 namespace oit {
 
-namespace {
 // Shared uniforms are optional in a program (a depth-only pass has no u_lit,
-// a compose pass no matrices); setting an inactive location is a GL error.
-bool is_active(GLuint program, const char* name) {
-  return glGetProgramResourceIndex(program, GL_UNIFORM, name) != GL_INVALID_INDEX;
-}
-}  // namespace
-
+// a compose pass no matrices).
 void Frame::set_shared_uniforms(GLuint program) const {
-  if (is_active(program, "u_view")) glProgramUniformMatrix4fv(program, OIT_UNIFORM_VIEW, 1, GL_FALSE, &view[0][0]);
-  if (is_active(program, "u_projection"))
-    glProgramUniformMatrix4fv(program, OIT_UNIFORM_PROJECTION, 1, GL_FALSE, &projection[0][0]);
-  if (is_active(program, "u_lit")) glProgramUniform1i(program, OIT_UNIFORM_LIT, scene.scene().lit ? 1 : 0);
-  if (is_active(program, "u_pixel_origin")) glProgramUniform2i(program, OIT_UNIFORM_PIXEL_ORIGIN, origin_x, origin_y);
-  if (is_active(program, "u_background"))
-    glProgramUniform3f(program, OIT_UNIFORM_BACKGROUND, background.r, background.g, background.b);
+  if (uniform_active(program, "u_view")) set_uniform(program, OIT_UNIFORM_VIEW, view);
+  if (uniform_active(program, "u_projection")) set_uniform(program, OIT_UNIFORM_PROJECTION, projection);
+  if (uniform_active(program, "u_lit")) set_uniform(program, OIT_UNIFORM_LIT, scene.scene().lit ? 1 : 0);
+  if (uniform_active(program, "u_pixel_origin"))
+    set_uniform(program, OIT_UNIFORM_PIXEL_ORIGIN, glm::ivec2(origin_x, origin_y));
+  if (uniform_active(program, "u_background")) set_uniform(program, OIT_UNIFORM_BACKGROUND, background);
 }
 
 void Frame::bind_target() const {

@@ -1,6 +1,7 @@
 #pragma once
 // One move-only RAII owner per GL object kind. Objects are created with the
 // GL 4.5 direct-state-access entry points so no binding state leaks.
+#include <initializer_list>
 #include <utility>
 
 #include "harness/gl/gl.h"
@@ -64,6 +65,12 @@ inline Buffer make_buffer(GLsizeiptr bytes, const void* data = nullptr,
 // counters to zero).
 inline void fill_buffer_u32(const Buffer& buffer, GLuint value) {
   glClearNamedBufferData(buffer.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
+}
+
+// Binds each buffer to its GL_SHADER_STORAGE_BUFFER binding point (the
+// technique's bindings.h names them): {{NODES_BINDING, &nodes_}, ...}.
+inline void bind_storage_buffers(std::initializer_list<std::pair<GLuint, const Buffer*>> bindings) {
+  for (const auto& [binding, buffer] : bindings) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer->id());
 }
 
 // A buffer texture reading `buffer` as `internal_format` texels: the whole

@@ -1,0 +1,24 @@
+#pragma once
+// The bucketed k-buffer's choice parameters besides the transfer functions
+// (transfer_functions.h), declared once for its descriptor (register.cpp)
+// and the technique (bucketed_kbuffer.cpp).
+#include "base/params.h"
+
+namespace oit::bkb {
+
+// buckets: the neighbour query in one hashed bucket (on), over all fragments
+// (off), or on unless the scene has a single object (automatic).
+enum class BucketMode { automatic, on, off };
+inline const Choices<BucketMode> kBucketModes{
+    {BucketMode::automatic, "auto"}, {BucketMode::on, "on"}, {BucketMode::off, "off"}};
+
+// neighbor_search: walk the two sorted lists (merge) or scan the bucket or
+// list that `buckets` selects (bucket).
+enum class NeighborSearch { merge, bucket };
+inline const Choices<NeighborSearch> kNeighborSearches{{NeighborSearch::merge, "merge"},
+                                                       {NeighborSearch::bucket, "bucket"}};
+
+// depth_bits: the depth's share of the 32-bit key; the shape id gets the rest.
+inline const Choices<int> kDepthBits{{16, "16"}, {24, "24"}};
+
+}  // namespace oit::bkb

@@ -1,0 +1,36 @@
+// linearized_fragment_buffer's binding points, units and uniform locations,
+// included by its C++ and its GLSL alike so that no number is copied by hand
+// between the two (shaders/bindings.h: a technique's own start at
+// OIT_FIRST_TECHNIQUE_*). The resolve is drawn by linked_list's length
+// classes (tile.vert, classify.comp), whose numbers it shares.
+#ifndef OIT_LINEARIZED_FRAGMENT_BUFFER_BINDINGS_H
+#define OIT_LINEARIZED_FRAGMENT_BUFFER_BINDINGS_H
+
+#include "shaders/bindings.h"
+#include "algorithms/linked_list/bindings.h"
+
+// Storage buffer binding points: lengths.comp's, and the prefix sum's (a pass of its own).
+#define LFB_OFFSETS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 0)
+#define LFB_CURSORS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 1)
+#define LFB_MISMATCHED_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 6)
+#define LFB_PREFIX_SUM_VALUES_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 0)
+#define LFB_PREFIX_SUM_SUMS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 1)
+
+// The nodes on image unit 0, the fill's cursors on image unit 2; the offsets
+// on texture unit 1 and, in the resolve, the cursors (the lengths) on the
+// unit where linked_list's classify.comp reads them; the prefix sum's counts
+// on texture unit 0; the scene's flat colours (flat_color_nodes) on unit 4
+// (unit 3 holds tile.vert's class tiles).
+#define LFB_NODES_IMAGE_UNIT 0
+#define LFB_CURSORS_IMAGE_UNIT 2
+#define LFB_OFFSETS_UNIT 1
+#define LFB_LENGTHS_UNIT LINKED_LIST_LENGTHS_UNIT
+#define LFB_PREFIX_SUM_COUNTS_UNIT 0
+#define LFB_FLAT_COLORS_UNIT (LINKED_LIST_CLASS_TILES_UNIT + 1)
+
+// Uniform locations.
+#define LFB_PREFIX_SUM_COUNT_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 0)  // values at this level
+#define LFB_WIDTH_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 1)
+#define LFB_PIXELS_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 2)
+
+#endif
