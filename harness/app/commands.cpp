@@ -171,8 +171,11 @@ class BenchSession {
     for (size_t i = 0; i < runs.size(); ++i) {
       const std::string start = progress.start_text(i, runs[i]);
       std::fputs(start.c_str(), stderr);  // before the run: what is running now
+      images_.clear();
       const std::string outcome = run_one(runs[i]) + progress.timing_text(i + 1);
       std::fprintf(stderr, "%s\n", wrap_after(start.size(), outcome).c_str());
+      // On a line of their own: paths are long, and a script finds them there.
+      if (!images_.empty()) std::fprintf(stderr, "  images: %s\n", images_.c_str());
     }
   }
 
@@ -195,6 +198,7 @@ class BenchSession {
   std::optional<SamplesCsv> samples_;
   std::optional<BenchJson> json_;
   std::vector<RunResult> results_;
+  std::string images_;  // the last run's image files (write_images)
   size_t resumed_ = 0, elsewhere_ = 0;
 };
 
@@ -228,8 +232,7 @@ std::string BenchSession::record(RunResult result) {
                     *result.clock_disagreement * 100.0);
       outcome += text;
     }
-    const std::string images = write_images(result);
-    if (!images.empty()) outcome += "; images: " + images;
+    images_ = write_images(result);
   } else {
     outcome = to_string(result.status) + ": " + result.message;
   }
