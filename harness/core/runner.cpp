@@ -310,6 +310,9 @@ void Harness::execute(const RunSpec& spec, RunResult& result, RenderTarget* give
   result.clock = clock_kind;
 
   const Tiling tiling(tile_plan(spec));
+  // The technique's programs are built for this scene's shading, here and
+  // in any pass it builds while rendering (gl/shader_program.h).
+  const SceneShadingScope shading(loaded.gpu->shading());
   std::unique_ptr<Technique> technique = descriptor.create(params);
   technique->resize(tiling.plan().frame_width(), tiling.plan().frame_height());
   std::optional<RenderTarget> own_target;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 #include "harness/core/stage_clock.h"
 
@@ -18,6 +19,13 @@ bool is_active(GLuint program, const char* name) {
 }  // namespace
 
 void Frame::set_shared_uniforms(GLuint program) const {
+  // The one place every pass goes through: a program built for the other
+  // shading would draw this scene wrongly (gl/shader_program.h).
+  const SceneShading built_for = scene_shading_of(program);
+  if (built_for != SceneShading::any && built_for != scene.shading())
+    throw std::logic_error("program " + std::to_string(program) + " was built for " + to_string(built_for) +
+                           " scenes but draws " + to_string(scene.shading()) + " scene '" + scene.scene().name +
+                           "': create the technique under a SceneShadingScope of the scene it renders");
   if (is_active(program, "u_view")) glProgramUniformMatrix4fv(program, OIT_UNIFORM_VIEW, 1, GL_FALSE, &view[0][0]);
   if (is_active(program, "u_projection"))
     glProgramUniformMatrix4fv(program, OIT_UNIFORM_PROJECTION, 1, GL_FALSE, &projection[0][0]);

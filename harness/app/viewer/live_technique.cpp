@@ -3,12 +3,18 @@
 #include "harness/gl/check.h"
 
 namespace oit {
+namespace {
+// The whole image as one tile: a technique's plan until its first frame plans it.
+std::unique_ptr<Tiling> one_tile(int width, int height) {
+  return std::make_unique<Tiling>(TilePlan{width, height, width, height, 0, {{0, 0, width, height}}, {}});
+}
+}  // namespace
 
 LiveTechnique::LiveTechnique(const TechniqueRegistry& registry, const DeviceInfo& device, ClockKind clock)
     : registry_(registry), device_(device), clock_kind_(clock) {}
 
 std::string LiveTechnique::configure(const std::string& id, const RawParams& params, const SceneFacts& facts,
-                                     int width, int height) {
+                                     SceneShading shading, int width, int height) {
   try {
     const TechniqueDescriptor& descriptor = registry_.get(id);
     const ParamSet values(descriptor.params, params, "technique '" + id + "'");
@@ -19,14 +25,14 @@ std::string LiveTechnique::configure(const std::string& id, const RawParams& par
     // Sized for the whole image as a start (so counters and diagnostics
     // are valid before the first frame); the first frame's tile plan
     // resizes it when the frame must be tiled.
-    std::unique_ptr<Technique> technique = descriptor.create(values);
-    technique->resize(width, height);
+    std::unique_ptr<Technique> technique = create(descriptor, values, shading, width, height);
     auto target = std::make_unique<RenderTarget>(width, height);
     gl_check("creating " + id);
     technique_ = std::move(technique);
+    shading_ = shading;
     descriptor_ = &descriptor;
     values_ = std::make_unique<ParamSet>(values);
-    tiling_ = std::make_unique<Tiling>(TilePlan{width, height, width, height, 0, {{0, 0, width, height}}, {}});
+    tiling_ = one_tile(width, height);
     planned_scene_ = nullptr;
     target_ = std::move(target);
     clock_ = std::make_unique<StageClock>(clock_kind_, descriptor_->stages);
@@ -44,9 +50,26 @@ std::string LiveTechnique::configure(const std::string& id, const RawParams& par
   }
 }
 
+std::unique_ptr<Technique> LiveTechnique::create(const TechniqueDescriptor& descriptor, const ParamSet& values,
+                                                 SceneShading shading, int width, int height) {
+  const SceneShadingScope scope(shading);
+  std::unique_ptr<Technique> technique = descriptor.create(values);
+  technique->resize(width, height);
+  return technique;
+}
+
 void LiveTechnique::render(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection,
                            const glm::vec3& background) {
   if (!technique_) return;
+  // The viewer switches scenes under a running technique: one of the other
+  // shading gets the technique built again for it (gl/shader_program.h).
+  if (scene.shading() != shading_) {
+    technique_ = create(*descriptor_, *values_, scene.shading(), width_, height_);
+    shading_ = scene.shading();
+    tiling_ = one_tile(width_, height_);
+    planned_scene_ = nullptr;
+  }
+  const SceneShadingScope scope(shading_);  // for the passes a technique builds while rendering
   plan_for(scene, view, projection);
   const Frame frame{scene, view, projection, width_, height_, background, target_->framebuffer.id(), *clock_};
   const ScreenRect rect = render_frame(*technique_, frame, true, scene_rect_, tiling_.get());

@@ -19,15 +19,18 @@ class LiveTechnique {
  public:
   LiveTechnique(const TechniqueRegistry& registry, const DeviceInfo& device, ClockKind clock);
 
-  // Switches to technique `id` with `params` at `width` x `height`. Returns
+  // Switches to technique `id` with `params` at `width` x `height`, its
+  // programs built for scenes of `shading` (gl/shader_program.h). Returns
   // "" on success, else why not (the schema's validation message, the
   // technique's support check, or the error of its construction); on
   // failure the technique that ran before keeps running unchanged.
-  std::string configure(const std::string& id, const RawParams& params, const SceneFacts& facts, int width,
-                        int height);
+  std::string configure(const std::string& id, const RawParams& params, const SceneFacts& facts,
+                        SceneShading shading, int width, int height);
   bool ready() const { return technique_ != nullptr; }
 
-  // Renders one frame into target(); throws what the technique throws.
+  // Renders one frame into target(); throws what the technique throws. A
+  // scene of another shading than the technique's programs were built for
+  // gets the technique created again for it first.
   // Whenever the view changes, the storage need is measured again (the
   // harness's counting pass) and the technique re-planned into screen tiles
   // (core/tiling.h) as a bench run would be.
@@ -60,6 +63,8 @@ class LiveTechnique {
   // single frames yet still follow parameter changes within a second or so.
   static constexpr int kWindow = 8;
   void finish_window();
+  static std::unique_ptr<Technique> create(const TechniqueDescriptor& descriptor, const ParamSet& values,
+                                           SceneShading shading, int width, int height);
 
   const TechniqueRegistry& registry_;
   const DeviceInfo& device_;
@@ -68,6 +73,7 @@ class LiveTechnique {
   void plan_for(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection);
 
   std::unique_ptr<Technique> technique_;
+  SceneShading shading_ = SceneShading::any;  // what technique_'s programs were built for
   const TechniqueDescriptor* descriptor_ = nullptr;
   std::unique_ptr<ParamSet> values_;
   std::unique_ptr<Tiling> tiling_;  // one tile until the first frame plans it
