@@ -74,8 +74,9 @@ class SceneShadingScope {
 SceneShading current_scene_shading();
 // What `program` was built for: build_program labels each program that
 // shades and was built for a known shading (a GL object label, which dies
-// with the program); `any` for every other program. Frame::set_shared_uniforms refuses a program
-// built for the other shading than the frame's scene.
+// with the program); `any` for every other program.
+// Frame::set_shared_uniforms refuses a program built for the other shading
+// than the frame's scene.
 SceneShading scene_shading_of(GLuint program);
 
 }  // namespace oit
