@@ -11,7 +11,14 @@ flat in uint v_surface_id;
 in vec2 v_uv;
 in float v_mean_curvature;  // analytic, in scene units, where the scene knows it
 
+#ifdef OIT_SCENE_LIT
+// The scene's shading, compiled in (harness/gl/shader_program.h,
+// SceneShading): an unlit program reads no normal or position to shade.
+bool oit_scene_lit() { return OIT_SCENE_LIT != 0; }
+#else
 layout(location = OIT_UNIFORM_LIT) uniform bool u_lit;
+bool oit_scene_lit() { return u_lit; }
+#endif
 
 layout(std430, binding = OIT_BINDING_TRIANGLE_IDS) readonly buffer OitTriangleIds { uint oit_triangle_ids[]; };
 
@@ -39,7 +46,7 @@ vec3 oit_view_normal() {
 // Unlit scenes output the material colour exactly; lit ones use a two-sided
 // headlight: ambient 0.25 + diffuse 0.75 * |n.v|.
 vec4 oit_shade() {
-  if (!u_lit) return v_color;
+  if (!oit_scene_lit()) return v_color;
   vec3 to_eye = normalize(-v_view_position);
   float lambert = abs(dot(normalize(v_view_normal), to_eye));
   return vec4(v_color.rgb * (0.25 + 0.75 * lambert), v_color.a);

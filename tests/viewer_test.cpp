@@ -127,7 +127,7 @@ struct LiveQuads {
 TEST(ViewerLiveTechnique, RendersTheHarnessImageWithStageTimings) {
   LiveQuads quads;
   LiveTechnique live(builtin_techniques(), quads.context.device(), ClockKind::wall);
-  ASSERT_EQ(live.configure("kbuffer", {{"k", "2"}}, quads.facts, 48, 32), "");
+  ASSERT_EQ(live.configure("kbuffer", {{"k", "2"}}, quads.facts, quads.gpu.shading(), 48, 32), "");
   const Camera& camera = quads.scene.camera;
   for (int i = 0; i < 2; ++i) live.render(quads.gpu, camera.view, camera.projection(48.0f / 32.0f), glm::vec3(0.0f));
   const Image image = live.read_image();
@@ -148,7 +148,7 @@ TEST(ViewerLiveTechnique, RendersTheHarnessImageWithStageTimings) {
 TEST(ViewerLiveTechnique, TimingsLeaveOutTheWarmUpFrameAndCountTheTimedFrames) {
   LiveQuads quads;
   LiveTechnique live(builtin_techniques(), quads.context.device(), ClockKind::wall);
-  ASSERT_EQ(live.configure("unsorted", {}, quads.facts, 16, 16), "");
+  ASSERT_EQ(live.configure("unsorted", {}, quads.facts, quads.gpu.shading(), 16, 16), "");
   const Camera& camera = quads.scene.camera;
   auto frames = [&](int n) {
     for (int i = 0; i < n; ++i) live.render(quads.gpu, camera.view, camera.projection(1.0f), glm::vec3(0.0f));
@@ -170,7 +170,7 @@ TEST(ViewerLiveTechnique, TimingsLeaveOutTheWarmUpFrameAndCountTheTimedFrames) {
   frames(3);  // the next window is not complete: the last complete one stays
   EXPECT_EQ(live.timed_frames(), LiveTechnique::kWindow);
   EXPECT_EQ(total_count(), size_t(LiveTechnique::kWindow));
-  ASSERT_EQ(live.configure("unsorted", {}, quads.facts, 16, 16), "");
+  ASSERT_EQ(live.configure("unsorted", {}, quads.facts, quads.gpu.shading(), 16, 16), "");
   EXPECT_EQ(live.timed_frames(), 0);
   EXPECT_TRUE(live.timings().empty());
 }
@@ -178,18 +178,38 @@ TEST(ViewerLiveTechnique, TimingsLeaveOutTheWarmUpFrameAndCountTheTimedFrames) {
 TEST(ViewerLiveTechnique, InvalidParametersAreRefusedWithTheSchemaMessageAndTheOldOneKeepsRunning) {
   LiveQuads quads;
   LiveTechnique live(builtin_techniques(), quads.context.device(), ClockKind::wall);
-  ASSERT_EQ(live.configure("kbuffer", {{"k", "4"}}, quads.facts, 16, 16), "");
-  const std::string message = live.configure("kbuffer", {{"k", "65"}}, quads.facts, 16, 16);
+  ASSERT_EQ(live.configure("kbuffer", {{"k", "4"}}, quads.facts, quads.gpu.shading(), 16, 16), "");
+  const std::string message = live.configure("kbuffer", {{"k", "65"}}, quads.facts, quads.gpu.shading(), 16, 16);
   EXPECT_NE(message.find("'k'"), std::string::npos) << message;
   EXPECT_NE(message.find("[1, 64]"), std::string::npos) << message;
-  EXPECT_NE(live.configure("kbuffer", {{"tail", "nope"}}, quads.facts, 16, 16).find("{drop, blend}"),
-            std::string::npos);
-  EXPECT_NE(live.configure("no_such_technique", {}, quads.facts, 16, 16), "");
+  EXPECT_NE(
+      live.configure("kbuffer", {{"tail", "nope"}}, quads.facts, quads.gpu.shading(), 16, 16).find("{drop, blend}"),
+      std::string::npos);
+  EXPECT_NE(live.configure("no_such_technique", {}, quads.facts, quads.gpu.shading(), 16, 16), "");
   ASSERT_TRUE(live.ready());
   EXPECT_EQ(live.id(), "kbuffer");
   EXPECT_EQ(live.canonical_params(), "k=4 tail=drop auto_k_memory_mb=1024");
   const Camera& camera = quads.scene.camera;
   live.render(quads.gpu, camera.view, camera.projection(1.0f), glm::vec3(0.0f));
+}
+
+// The viewer switches scenes under a running technique: one of the other
+// shading gets the technique built again for it (gl/shader_program.h), so a
+// lit scene after an unlit one is lit, and back again.
+TEST(ViewerLiveTechnique, ASceneOfTheOtherShadingIsRenderedAsTheHarnessRendersIt) {
+  LiveQuads quads;
+  const Scene torus = load_scene("torus", {});
+  const SceneGpu torus_gpu(torus);
+  LiveTechnique live(builtin_techniques(), quads.context.device(), ClockKind::wall);
+  ASSERT_EQ(live.configure("linked_list", {}, quads.facts, quads.gpu.shading(), 32, 32), "");
+  auto expect_harness_image = [&](const Scene& scene, const SceneGpu& gpu, const RawParams& params) {
+    SCOPED_TRACE(scene.name);
+    live.render(gpu, scene.camera.view, scene.camera.projection(1.0f), glm::vec3(0.0f));
+    const RunResult run = test::render_once("linked_list", {}, scene.name, params, 32, 32);
+    EXPECT_EQ(live.read_image().rgba, run.image.rgba);
+  };
+  expect_harness_image(torus, torus_gpu, {});
+  expect_harness_image(quads.scene, quads.gpu, {{"layers", "8"}});
 }
 
 // The viewer's "saved" line for the scene rectangle counts what the
@@ -200,7 +220,7 @@ TEST(ViewerLiveTechnique, PixelsOutsideTheSceneRectangleAreTheHarnessCount) {
   const SceneGpu gpu(scene);
   const SceneFacts facts{scene.triangle_count(), scene.object_count, true};
   LiveTechnique live(builtin_techniques(), context.device(), ClockKind::wall);
-  ASSERT_EQ(live.configure("unsorted", {}, facts, 64, 48), "");
+  ASSERT_EQ(live.configure("unsorted", {}, facts, gpu.shading(), 64, 48), "");
   const glm::mat4 view = scene.camera.view, projection = scene.camera.projection(64.0f / 48.0f);
   live.render(gpu, view, projection, glm::vec3(0.0f));
   const uint64_t expected = 64 * 48 - projected_scene_rect(gpu.bounding_box(), projection * view, 64, 48).pixels();

@@ -330,6 +330,9 @@ void record_stages(StageClock& clock, RunResult& result) {
 
 void Harness::execute(PreparedRun& prepared, LoadedScene& loaded, RunResult& result, RenderTarget* given_target) {
   const RunSpec& spec = result.spec;
+  // The technique's programs are built for this scene's shading, here and
+  // in any pass it builds while rendering (gl/shader_program.h).
+  const SceneShadingScope shading(loaded.gpu->shading());
   prepared.create(
       prepared.plan(complexity(loaded, spec.width, spec.height), query_device_limits(spec.memory_budget)));
   std::optional<RenderTarget> own_target;

@@ -1,6 +1,7 @@
 #pragma once
 #include "harness/core/scene_rect.h"
 #include "harness/gl/handles.h"
+#include "harness/gl/shader_program.h"
 #include "scenes/scene.h"
 
 namespace oit {
@@ -11,6 +12,8 @@ class SceneGpu {
  public:
   explicit SceneGpu(const Scene& scene);
   const Scene& scene() const { return scene_; }
+  // What the programs that draw this scene may be built for (SceneShadingScope).
+  SceneShading shading() const { return scene_.lit ? SceneShading::lit : SceneShading::unlit; }
   // Binds the vertex array and the triangle-id buffer; techniques call draw().
   void bind() const;
   // One draw call over every triangle, so gl_PrimitiveID = triangle index.

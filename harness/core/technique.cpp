@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 #include "harness/core/stage_clock.h"
 #include "harness/gl/uniforms.h"
@@ -13,6 +14,13 @@ namespace oit {
 // Shared uniforms are optional in a program (a depth-only pass has no u_lit,
 // a compose pass no matrices).
 void Frame::set_shared_uniforms(GLuint program) const {
+  // The one place every pass goes through: a program built for the other
+  // shading would draw this scene wrongly (gl/shader_program.h).
+  const SceneShading built_for = scene_shading_of(program);
+  if (built_for != SceneShading::any && built_for != scene.shading())
+    throw std::logic_error("program " + std::to_string(program) + " was built for " + to_string(built_for) +
+                           " scenes but draws " + to_string(scene.shading()) + " scene '" + scene.scene().name +
+                           "': create the technique under a SceneShadingScope of the scene it renders");
   if (uniform_active(program, "u_view")) set_uniform(program, OIT_UNIFORM_VIEW, view);
   if (uniform_active(program, "u_projection")) set_uniform(program, OIT_UNIFORM_PROJECTION, projection);
   if (uniform_active(program, "u_lit")) set_uniform(program, OIT_UNIFORM_LIT, scene.scene().lit ? 1 : 0);

@@ -110,7 +110,9 @@ struct Frame {
 
   // Sets whichever shared uniforms `program` uses: the camera of
   // shaders/geometry.vert, u_lit and u_pixel_origin of shading.glsl,
-  // u_background of compose.glsl.
+  // u_background of compose.glsl. Throws std::logic_error when `program`
+  // was built for the other scene shading than this scene's
+  // (gl/shader_program.h, SceneShading).
   void set_shared_uniforms(GLuint program) const;
   // Binds the target framebuffer with a full viewport.
   void bind_target() const;

@@ -107,13 +107,34 @@ Shader compile(const ShaderStageSource& stage, const PreprocessedShader& pre) {
   return shader;
 }
 
-// The caller's defines, then the current context's (shader_capabilities.h).
+SceneShading current_shading = SceneShading::any;
+
+// The label build_program gives a program built for a known scene shading.
+std::string shading_label(SceneShading shading) { return std::string("oit scene shading: ") + to_string(shading); }
+
+// Whether `source` includes the shading function, the one reader of OIT_SCENE_LIT.
+bool shades(const PreprocessedShader& source) {
+  return std::find(source.files.begin(), source.files.end(), "shaders/shading.glsl") != source.files.end();
+}
+
+// The caller's defines, then the current context's (shader_capabilities.h);
+// stages that shade get the scene shading in force (SceneShadingScope),
+// others not, so that a program that does not shade is one program for
+// every scene.
 std::vector<PreprocessedShader> preprocess_stages(const std::vector<ShaderStageSource>& stages,
                                                   const ShaderDefines& defines) {
   ShaderDefines all = defines;
   for (auto& define : capability_defines()) all.push_back(std::move(define));
   std::vector<PreprocessedShader> sources;
-  for (const auto& stage : stages) sources.push_back(preprocess_shader(stage.path, all));
+  for (const auto& stage : stages) {
+    sources.push_back(preprocess_shader(stage.path, all));
+    if (current_shading == SceneShading::any || !shades(sources.back())) continue;
+    // After the #version line; the #line directive that follows keeps every
+    // diagnostic's line number.
+    std::string& text = sources.back().text;
+    text.insert(text.find('\n') + 1,
+                std::string("#define OIT_SCENE_LIT ") + (current_shading == SceneShading::lit ? "1" : "0") + "\n");
+  }
   return sources;
 }
 
@@ -124,6 +145,33 @@ std::string cache_key(const std::vector<ShaderStageSource>& stages, const std::v
   for (size_t i = 0; i < stages.size(); ++i)
     text += "stage " + std::to_string(stages[i].stage) + "\n" + sources[i].text + '\0';
   return ProgramCache::instance().key(text);
+}
+
+Program compile_or_load(const std::vector<ShaderStageSource>& stages, const std::vector<PreprocessedShader>& sources) {
+  ProgramCache& cache = ProgramCache::instance();
+  const std::string key = cache.enabled() ? cache_key(stages, sources) : "";
+  if (!key.empty())
+    if (std::optional<Program> program = cache.load(key)) return std::move(*program);
+
+  std::vector<Shader> shaders;
+  for (size_t i = 0; i < stages.size(); ++i) shaders.push_back(compile(stages[i], sources[i]));
+  Program program(glCreateProgram());
+  // Some drivers only keep a retrievable binary when told before linking.
+  if (!key.empty()) glProgramParameteri(program.id(), GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
+  for (const auto& shader : shaders) glAttachShader(program.id(), shader.id());
+  glLinkProgram(program.id());
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    const std::string log = info_log(program.id(), glGetProgramiv, glGetProgramInfoLog);
+    std::string names;
+    for (const auto& stage : stages) names += (names.empty() ? "" : " + ") + stage.path;
+    throw ShaderError("failed to link program (" + names + "):\n" + log);
+  }
+  for (const auto& shader : shaders) glDetachShader(program.id(), shader.id());
+  cache.count_compiled();
+  if (!key.empty()) cache.store(key, program);
+  return program;
 }
 
 }  // namespace
@@ -157,30 +205,34 @@ std::string program_cache_key(const std::vector<ShaderStageSource>& stages, cons
 
 Program build_program(const std::vector<ShaderStageSource>& stages, const ShaderDefines& defines) {
   const std::vector<PreprocessedShader> sources = preprocess_stages(stages, defines);
-  ProgramCache& cache = ProgramCache::instance();
-  const std::string key = cache.enabled() ? cache_key(stages, sources) : "";
-  if (!key.empty())
-    if (std::optional<Program> program = cache.load(key)) return std::move(*program);
-
-  std::vector<Shader> shaders;
-  for (size_t i = 0; i < stages.size(); ++i) shaders.push_back(compile(stages[i], sources[i]));
-  Program program(glCreateProgram());
-  // Some drivers only keep a retrievable binary when told before linking.
-  if (!key.empty()) glProgramParameteri(program.id(), GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
-  for (const auto& shader : shaders) glAttachShader(program.id(), shader.id());
-  glLinkProgram(program.id());
-  GLint ok = GL_FALSE;
-  glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
-  if (ok != GL_TRUE) {
-    const std::string log = info_log(program.id(), glGetProgramiv, glGetProgramInfoLog);
-    std::string names;
-    for (const auto& stage : stages) names += (names.empty() ? "" : " + ") + stage.path;
-    throw ShaderError("failed to link program (" + names + "):\n" + log);
+  Program program = compile_or_load(stages, sources);
+  if (current_shading != SceneShading::any && std::any_of(sources.begin(), sources.end(), shades)) {
+    const std::string label = shading_label(current_shading);
+    glObjectLabel(GL_PROGRAM, program.id(), GLsizei(label.size()), label.c_str());
   }
-  for (const auto& shader : shaders) glDetachShader(program.id(), shader.id());
-  cache.count_compiled();
-  if (!key.empty()) cache.store(key, program);
   return program;
+}
+
+const char* to_string(SceneShading shading) {
+  switch (shading) {
+    case SceneShading::unlit: return "unlit";
+    case SceneShading::lit: return "lit";
+    default: return "any";
+  }
+}
+
+SceneShadingScope::SceneShadingScope(SceneShading shading) : outer_(current_shading) { current_shading = shading; }
+SceneShadingScope::~SceneShadingScope() { current_shading = outer_; }
+SceneShading current_scene_shading() { return current_shading; }
+
+SceneShading scene_shading_of(GLuint program) {
+  char label[64] = {};
+  GLsizei length = 0;
+  glGetObjectLabel(GL_PROGRAM, program, GLsizei(sizeof label), &length, label);
+  const std::string text(label, size_t(length));
+  for (SceneShading shading : {SceneShading::unlit, SceneShading::lit})
+    if (text == shading_label(shading)) return shading;
+  return SceneShading::any;
 }
 
 Program build_geometry_program(const std::string& fragment_path, const ShaderDefines& defines) {

@@ -48,4 +48,35 @@ Program build_geometry_program(const std::string& fragment_path, const ShaderDef
 Program build_fullscreen_program(const std::string& fragment_path, const ShaderDefines& defines = {});
 Program build_compute_program(const std::string& compute_path, const ShaderDefines& defines = {});
 
+// How the scene a program will draw is shaded (Scene::lit). Known, it is
+// compiled in: build_program defines OIT_SCENE_LIT 0 or 1 in every stage
+// that includes shaders/shading.glsl, which reads it instead of the u_lit
+// uniform, so the programs of an unlit scene read (and the rasterizer
+// interpolates) no normal and no view position for shading. `any` keeps the
+// run-time branch on u_lit, right for every scene.
+enum class SceneShading { any, unlit, lit };
+const char* to_string(SceneShading shading);
+
+// Every program built while a scope lives is built for `shading` (a nested
+// scope restores the outer one when it ends). The harness opens one where it
+// creates and renders a technique for a scene (core/runner.cpp,
+// app/viewer/live_technique.cpp); programs built outside any scope are `any`.
+class SceneShadingScope {
+ public:
+  explicit SceneShadingScope(SceneShading shading);
+  ~SceneShadingScope();
+  SceneShadingScope(const SceneShadingScope&) = delete;
+  SceneShadingScope& operator=(const SceneShadingScope&) = delete;
+
+ private:
+  SceneShading outer_;
+};
+SceneShading current_scene_shading();
+// What `program` was built for: build_program labels each program that
+// shades and was built for a known shading (a GL object label, which dies
+// with the program); `any` for every other program.
+// Frame::set_shared_uniforms refuses a program built for the other shading
+// than the frame's scene.
+SceneShading scene_shading_of(GLuint program);
+
 }  // namespace oit

@@ -8,7 +8,7 @@ LiveTechnique::LiveTechnique(const TechniqueRegistry& registry, const DeviceInfo
     : registry_(registry), device_(device), clock_kind_(clock) {}
 
 std::string LiveTechnique::configure(const std::string& id, const RawParams& params, const SceneFacts& facts,
-                                     int width, int height) {
+                                     SceneShading shading, int width, int height) {
   try {
     auto prepared = std::make_unique<PreparedRun>(registry_, id, params);
     if (std::string reason = prepared->unsupported(device_, facts); !reason.empty()) {
@@ -18,10 +18,14 @@ std::string LiveTechnique::configure(const std::string& id, const RawParams& par
     // Sized for the whole image as a start (so counters and diagnostics
     // are valid before the first frame); the first frame's tile plan
     // resizes it when the frame must be tiled.
-    prepared->create(untiled_plan(width, height));
+    {
+      const SceneShadingScope scope(shading);
+      prepared->create(untiled_plan(width, height));
+    }
     auto target = std::make_unique<RenderTarget>(width, height);
     gl_check("creating " + id);
     prepared_ = std::move(prepared);
+    shading_ = shading;
     planned_scene_ = nullptr;
     target_ = std::move(target);
     clock_ = std::make_unique<StageClock>(clock_kind_, prepared_->descriptor().stages);
@@ -44,6 +48,18 @@ std::string LiveTechnique::configure(const std::string& id, const RawParams& par
 void LiveTechnique::render(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection,
                            const glm::vec3& background) {
   if (!prepared_) return;
+  // The viewer switches scenes under a running technique: one of the other
+  // shading gets the technique built again for it (gl/shader_program.h).
+  if (scene.shading() != shading_) {
+    const SceneShadingScope scope(scene.shading());
+    prepared_->create(untiled_plan(width_, height_));
+    shading_ = scene.shading();
+    planned_scene_ = nullptr;
+    restart_clock();
+    timed_frames_ = 0;
+    warmup_left_ = kWarmup;
+  }
+  const SceneShadingScope scope(shading_);  // for the passes a technique builds while rendering
   plan_for(scene, view, projection);
   const Frame frame{scene, view, projection, width_, height_, background, target_->framebuffer.id(), *clock_};
   // Warm-up frames (the first after configure compiles shaders and

@@ -19,15 +19,18 @@ class LiveTechnique {
  public:
   LiveTechnique(const TechniqueRegistry& registry, const DeviceInfo& device, ClockKind clock);
 
-  // Switches to technique `id` with `params` at `width` x `height`. Returns
+  // Switches to technique `id` with `params` at `width` x `height`, its
+  // programs built for scenes of `shading` (gl/shader_program.h). Returns
   // "" on success, else why not (the schema's validation message, the
   // technique's support check, or the error of its construction); on
   // failure the technique that ran before keeps running unchanged.
-  std::string configure(const std::string& id, const RawParams& params, const SceneFacts& facts, int width,
-                        int height);
+  std::string configure(const std::string& id, const RawParams& params, const SceneFacts& facts,
+                        SceneShading shading, int width, int height);
   bool ready() const { return prepared_ != nullptr; }
 
-  // Renders one frame into target(); throws what the technique throws.
+  // Renders one frame into target(); throws what the technique throws. A
+  // scene of another shading than the technique's programs were built for
+  // gets the technique created again for it first.
   // Whenever the view changes, the storage need is measured again (the
   // harness's counting pass) and the technique re-planned into screen tiles
   // (core/tiling.h) as a bench run would be.
@@ -77,6 +80,7 @@ class LiveTechnique {
   // The technique as a bench run resolves it; one tile until the first
   // frame plans it.
   std::unique_ptr<PreparedRun> prepared_;
+  SceneShading shading_ = SceneShading::any;  // what the technique's programs were built for
   glm::mat4 planned_view_{0.0f}, planned_projection_{0.0f};
   const SceneGpu* planned_scene_ = nullptr;
   std::unique_ptr<RenderTarget> target_;

@@ -143,7 +143,8 @@ SceneFacts Viewer::facts() const { return {scene_->triangle_count(), scene_->obj
 // ---- techniques -------------------------------------------------------
 
 void Viewer::configure(Slot& slot) {
-  slot.message = slot.live.configure(slot.wanted_id, slot.wanted_params, facts(), width_, height_);
+  slot.message =
+      slot.live.configure(slot.wanted_id, slot.wanted_params, facts(), scene_gpu_->shading(), width_, height_);
   if (slot.message.empty()) slot.render_error.clear();
 }
 

@@ -41,7 +41,8 @@ void Viewer::upload(const Image& image) {
 // rendered as the harness renders references.
 const Image& Viewer::reference_of_view() {
   if (reference_->id().empty()) {
-    if (std::string m = reference_->configure(registry_.reference().id, {}, facts(), width_, height_); !m.empty())
+    if (std::string m = reference_->configure(registry_.reference().id, {}, facts(), scene_gpu_->shading(), width_,
+                                          height_); !m.empty())
       throw std::runtime_error(m);
   }
   reference_->render(*scene_gpu_, orbit_.camera().view, projection(), background_);
