@@ -17,7 +17,9 @@ CLI::App* add_view_command(CLI::App& app, ViewOptions& o) {
   view->add_option("--set", o.sets, "technique A parameter key=value (repeatable)");
   view->add_option("--scene,-s", o.scene, "scene id or .gltf/.glb/.obj/.off/.ply/.stl file");
   view->add_option("--scene-set", o.scene_sets, "scene parameter key=value (repeatable)");
-  view->add_option("--size", o.size, "WIDTHxHEIGHT of the rendered image");
+  view->add_option("--size", o.size,
+                   "WIDTHxHEIGHT of the rendered image (larger than bench's 256x256: an image to look at in a "
+                   "window, and murray2016 Fig. 10's size, which software GL renders in screen tiles)");
   view->add_option("--background", o.background, "r,g,b (linear)");
   view->add_option("--camera", o.camera, "preset: default, random:N:SEED[@I] or max_list[:N:SEED]");
   view->add_option("--compare", o.compare, "technique B for the A/B comparison");
