@@ -4,7 +4,6 @@
 // a colour bar that is the same in every file; LDR-FLIP on cases whose
 // value is known in closed form.
 #include <gtest/gtest.h>
-#include <stb_image.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,6 +18,7 @@
 #include "harness/core/heatmap.h"
 #include "harness/core/image.h"
 #include "tests/oitbench_process.h"
+#include "tests/png_file.h"
 
 namespace oit {
 namespace {
@@ -32,21 +32,8 @@ std::string fresh_dir(const std::string& name) {
   return dir;
 }
 
-struct Png {
-  int width = 0, height = 0;
-  std::vector<unsigned char> rgba;  // top row first
-  int at(int x, int y, int c) const { return rgba[(size_t(y) * size_t(width) + size_t(x)) * 4 + size_t(c)]; }
-};
-
-Png load_png(const std::string& path) {
-  Png png;
-  int channels = 0;
-  unsigned char* data = stbi_load(path.c_str(), &png.width, &png.height, &channels, 4);
-  if (!data) return png;
-  png.rgba.assign(data, data + size_t(png.width) * size_t(png.height) * 4);
-  stbi_image_free(data);
-  return png;
-}
+using test::Png;
+using test::load_png;
 
 std::string contents_of(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

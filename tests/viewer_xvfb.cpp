@@ -11,7 +11,6 @@
 // with std::pow and lround; the two may round differently at a half step.
 // Alpha is not compared (both are opaque).
 #include <gtest/gtest.h>
-#include <stb_image.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -22,6 +21,7 @@
 #include "harness/core/image.h"
 #include "harness/core/runner.h"
 #include "tests/gl_fixture.h"
+#include "tests/png_file.h"
 
 namespace oit {
 namespace {
@@ -45,21 +45,8 @@ Outcome run(const std::string& command_line) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
 }
 
-struct Png {
-  int width = 0, height = 0;
-  std::vector<unsigned char> rgba;  // top row first
-  int at(int x, int y, int c) const { return rgba[(size_t(y) * size_t(width) + size_t(x)) * 4 + size_t(c)]; }
-};
-
-Png load_png(const std::string& path) {
-  Png png;
-  int channels = 0;
-  unsigned char* data = stbi_load(path.c_str(), &png.width, &png.height, &channels, 4);
-  if (!data) return png;
-  png.rgba.assign(data, data + size_t(png.width) * size_t(png.height) * 4);
-  stbi_image_free(data);
-  return png;
-}
+using test::Png;
+using test::load_png;
 
 // Largest RGB difference between the screenshot and `expected` over the
 // columns [x0, x1) and rows [y0, y1) (rows from the top; y1 < 0: all of
