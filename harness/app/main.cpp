@@ -3,6 +3,9 @@
 
 #include <cstdio>
 #include <exception>
+#include <functional>
+#include <utility>
+#include <vector>
 
 #include "harness/app/adaptive.h"
 #include "harness/app/check_order.h"
@@ -35,17 +38,26 @@ void add_bench_options(CLI::App* command, oit::BenchOptions& options, const std:
   command->add_option("--baseline", options.baseline, "technique whose median total the summary's ratios divide by");
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  oit::relaunch_with_huge_page_malloc(argv);
-  CLI::App app{"oitbench: order-independent transparency techniques, timed stage by stage and compared "
-               "with the exact image"};
-  app.require_subcommand(1);
-  // Every option's default in --help, subcommands included (they copy this).
-  app.option_defaults()->always_capture_default();
+// Each command's options live here from parsing to running; `add` registers
+// a subcommand with what runs it, so main() is parse-then-dispatch.
+struct Commands {
   oit::CommonOptions common;
-  app.add_option("--device", common.device,
+  bool list_markdown = false;
+  oit::RenderOptions render;
+  oit::BenchOptions bench, pareto;
+  oit::AdaptiveOptions adaptive;
+  oit::StressOptions stress;
+  oit::CheckOrderOptions order;
+  oit::StatsOptions stats;
+  oit::ExportOptions export_options;
+  oit::ViewOptions view;
+  std::vector<std::pair<CLI::App*, std::function<int()>>> runs;
+
+  void add(CLI::App* command, std::function<int()> run) { runs.emplace_back(command, std::move(run)); }
+};
+
+void add_common_options(CLI::App& app, Commands& c) {
+  app.add_option("--device", c.common.device,
                  "auto (GPU if present, else software; with CUDA_VISIBLE_DEVICES, as SLURM sets it, that GPU), gpu, "
                  "software, or egl:N (the N-th EGL device `list` prints)")
       ->check(CLI::Validator(
@@ -58,123 +70,150 @@ int main(int argc, char** argv) {
             }
           },
           "auto|gpu|software|egl:N"));
-  app.add_flag("--debug-gl", common.debug_gl, "create a debug context and print KHR_debug messages");
+  app.add_flag("--debug-gl", c.common.debug_gl, "create a debug context and print KHR_debug messages");
+}
 
+void add_list_command(CLI::App& app, Commands& c) {
   auto* list = app.add_subcommand("list", "techniques with their parameters, scenes, device");
-  bool list_markdown = false;
-  list->add_flag("--markdown", list_markdown, "print only the technique table of the README, from the registry (no GL)");
+  list->add_flag("--markdown", c.list_markdown,
+                 "print only the technique table of the README, from the registry (no GL)");
+  c.add(list, [&c] {
+    if (!c.list_markdown) return oit::run_list(c.common);
+    std::fputs(oit::technique_table_markdown(oit::builtin_techniques()).c_str(), stdout);
+    return 0;
+  });
+}
 
-  oit::RenderOptions render;
-  auto* render_cmd = app.add_subcommand("render", "render one image (.png: 8-bit sRGB of the composite, .pfm: linear float RGB)");
-  render_cmd->add_option("--technique,-t", render.technique, "technique id (see `list`)");
-  render_cmd->add_option("--set", render.sets, "technique parameter key=value (repeatable)");
-  render_cmd->add_option("--scene,-s", render.scene, "scene id or .gltf/.glb/.obj/.off/.ply/.stl file");
-  render_cmd->add_option("--scene-set", render.scene_sets, "scene parameter key=value (repeatable)");
-  render_cmd->add_option("--size", render.size, "WIDTHxHEIGHT");
-  render_cmd->add_option("--background", render.background, "r,g,b (linear)");
-  render_cmd->add_option("--out,-o", render.out, "output .png or .pfm")->required();
-  render_cmd->add_option("--png", render.png, "display (sRGB of the composite, opaque) or linear (values, alpha = coverage)")
+void add_render_command(CLI::App& app, Commands& c) {
+  oit::RenderOptions& render = c.render;
+  auto* cmd = app.add_subcommand("render", "render one image (.png: 8-bit sRGB of the composite, .pfm: linear float RGB)");
+  cmd->add_option("--technique,-t", render.technique, "technique id (see `list`)");
+  cmd->add_option("--set", render.sets, "technique parameter key=value (repeatable)");
+  cmd->add_option("--scene,-s", render.scene, "scene id or .gltf/.glb/.obj/.off/.ply/.stl file");
+  cmd->add_option("--scene-set", render.scene_sets, "scene parameter key=value (repeatable)");
+  cmd->add_option("--size", render.size, "WIDTHxHEIGHT");
+  cmd->add_option("--background", render.background, "r,g,b (linear)");
+  cmd->add_option("--out,-o", render.out, "output .png or .pfm")->required();
+  cmd->add_option("--png", render.png, "display (sRGB of the composite, opaque) or linear (values, alpha = coverage)")
       ->check(CLI::IsMember({"display", "linear"}));
-  render_cmd->add_option("--camera", render.camera,
-                         "default, random:N:SEED (one image per view, _camI), random:N:SEED@I or max_list[:N:SEED]");
-  render_cmd->add_option("--scene-rect", render.scene_rect,
-                         "on: confine the technique to the scene's projected rectangle; off: full image")
+  cmd->add_option("--camera", render.camera,
+                  "default, random:N:SEED (one image per view, _camI), random:N:SEED@I or max_list[:N:SEED]");
+  cmd->add_option("--scene-rect", render.scene_rect,
+                  "on: confine the technique to the scene's projected rectangle; off: full image")
       ->check(CLI::IsMember({"on", "off"}));
-  render_cmd->add_option("--memory-budget", render.memory_budget, "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G (default: the device's, see `list`)");
+  cmd->add_option("--memory-budget", render.memory_budget,
+                  "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G "
+                  "(default: the device's, see `list`)");
+  c.add(cmd, [&c] { return oit::run_render(c.common, c.render); });
+}
 
-  oit::BenchOptions bench;
-  auto* bench_cmd = app.add_subcommand("bench", "time every combination and append long-form CSV rows");
-  add_bench_options(bench_cmd, bench, "");
-
+void add_bench_and_pareto_commands(CLI::App& app, Commands& c) {
+  auto* bench = app.add_subcommand("bench", "time every combination and append long-form CSV rows");
+  add_bench_options(bench, c.bench, "");
+  c.add(bench, [&c] { return oit::run_bench(c.common, c.bench); });
   // pareto: the bench options, with each technique's quality knobs swept.
-  oit::BenchOptions pareto;
-  pareto.sweep.scenes = {"quads", "spheres"};
-  pareto.sweep.sizes = {"128x128"};
-  pareto.sweep.frames = 5;
-  auto* pareto_cmd = app.add_subcommand(
+  c.pareto.sweep.scenes = {"quads", "spheres"};
+  c.pareto.sweep.sizes = {"128x128"};
+  c.pareto.sweep.frames = 5;
+  auto* pareto = app.add_subcommand(
       "pareto", "run time against error: bench every technique over its quality knobs (k, max_passes, ...); "
                 "plot with analysis/pareto.py");
   // 128x128 and 5 frames: pareto runs every technique at every value of its
   // quality knobs, several times bench's runs; a quarter of the pixels keeps
   // that to minutes on software GL, and the error ranking holds at that size.
-  add_bench_options(pareto_cmd, pareto, "; smaller than bench's default: pareto runs every knob value");
+  add_bench_options(pareto, c.pareto, "; smaller than bench's default: pareto runs every knob value");
+  c.add(pareto, [&c] { return oit::run_pareto(c.common, c.pareto); });
+}
 
-  oit::AdaptiveOptions adaptive;
-  auto* adaptive_cmd = app.add_subcommand(
+void add_adaptive_command(CLI::App& app, Commands& c) {
+  oit::AdaptiveOptions& adaptive = c.adaptive;
+  auto* cmd = app.add_subcommand(
       "adaptive", "every adaptive feature (each technique's switches and the harness's scene rectangle) on and off "
                   "on the same scenes: time and memory ratios, image difference, work saved");
-  adaptive_cmd->add_option("--technique,-t", adaptive.techniques,
-                           "technique ids or 'all' (repeatable; default: those that declare adaptive switches)");
-  adaptive_cmd->add_option("--feature", adaptive.features, "only these features, e.g. early_exit, scene_rect (repeatable)");
-  adaptive_cmd->add_option("--scene,-s", adaptive.scenes,
-                           "ID or ID:key=value,key=value (repeatable; default quads:layers=4, quads:layers=32, "
-                           "model:name=engine, torus)");
-  adaptive_cmd->add_option("--size", adaptive.size, "WIDTHxHEIGHT");
-  adaptive_cmd->add_option("--frames", adaptive.frames, "timed frames per run")->check(CLI::Range(1, 100000));
-  adaptive_cmd->add_option("--warmup", adaptive.warmup, "untimed frames first")->check(CLI::Range(0, 1000));
-  adaptive_cmd->add_option("--repeats", adaptive.repeats, "on/off pairs per feature and scene, order alternating")
+  cmd->add_option("--technique,-t", adaptive.techniques,
+                  "technique ids or 'all' (repeatable; default: those that declare adaptive switches)");
+  cmd->add_option("--feature", adaptive.features, "only these features, e.g. early_exit, scene_rect (repeatable)");
+  cmd->add_option("--scene,-s", adaptive.scenes,
+                  "ID or ID:key=value,key=value (repeatable; default quads:layers=4, quads:layers=32, "
+                  "model:name=engine, torus)");
+  cmd->add_option("--size", adaptive.size, "WIDTHxHEIGHT");
+  cmd->add_option("--frames", adaptive.frames, "timed frames per run")->check(CLI::Range(1, 100000));
+  cmd->add_option("--warmup", adaptive.warmup, "untimed frames first")->check(CLI::Range(0, 1000));
+  cmd->add_option("--repeats", adaptive.repeats, "on/off pairs per feature and scene, order alternating")
       ->check(CLI::Range(1, 1000));
-  adaptive_cmd->add_option("--background", adaptive.background, "r,g,b");
-  adaptive_cmd->add_option("--csv", adaptive.csv, "CSV file to append every run to (the columns of bench)");
+  cmd->add_option("--background", adaptive.background, "r,g,b");
+  cmd->add_option("--csv", adaptive.csv, "CSV file to append every run to (the columns of bench)");
+  c.add(cmd, [&c] { return oit::run_adaptive(c.common, c.adaptive); });
+}
 
-  oit::StressOptions stress;
-  auto* stress_cmd = app.add_subcommand("stress", "numerical and robustness stress cases on every technique: "
-                                                   "pass/fail/skip table (each run in its own process)");
-  stress_cmd->add_option("--technique,-t", stress.techniques, "technique ids or 'all' (repeatable)");
-  stress_cmd->add_flag("--full", stress.full, "every case (default: the reduced set that CI runs)");
-  stress_cmd->add_option("--case", stress.case_filter, "only cases whose name contains this text");
-  stress_cmd->add_option("--timeout", stress.timeout_s, "seconds per case and technique before it counts as a hang")
+void add_stress_command(CLI::App& app, Commands& c) {
+  auto* cmd = app.add_subcommand("stress", "numerical and robustness stress cases on every technique: "
+                                            "pass/fail/skip table (each run in its own process)");
+  cmd->add_option("--technique,-t", c.stress.techniques, "technique ids or 'all' (repeatable)");
+  cmd->add_flag("--full", c.stress.full, "every case (default: the reduced set that CI runs)");
+  cmd->add_option("--case", c.stress.case_filter, "only cases whose name contains this text");
+  cmd->add_option("--timeout", c.stress.timeout_s, "seconds per case and technique before it counts as a hang")
       ->check(CLI::Range(1.0, 86400.0));
-  stress_cmd->add_option("--csv", stress.csv, "CSV file to append verdicts to");
+  cmd->add_option("--csv", c.stress.csv, "CSV file to append verdicts to");
+  c.add(cmd, [&c] { return oit::run_stress(c.common, c.stress); });
+}
 
-  oit::CheckOrderOptions order;
-  auto* order_cmd = app.add_subcommand("check-order", "how far each technique's image moves when the triangles "
-                                                       "are submitted in other orders (exact ones must not)");
-  order_cmd->add_option("--technique,-t", order.techniques, "technique ids or 'all' (repeatable)");
-  order_cmd->add_option("--scene,-s", order.scene, "scene id or file");
-  order_cmd->add_option("--scene-set", order.scene_sets, "scene parameter key=value (repeatable)");
-  order_cmd->add_option("--size", order.size,
-                        "WIDTHxHEIGHT (smaller than the other commands' default: every technique renders the scene "
-                        "in 2N+1 other submission orders, N = --seeds)");
-  order_cmd->add_option("--seeds", order.seeds, "shuffled and objects_shuffled seeds 1..N")->check(CLI::Range(1, 100));
+void add_check_order_command(CLI::App& app, Commands& c) {
+  auto* cmd = app.add_subcommand("check-order", "how far each technique's image moves when the triangles "
+                                                 "are submitted in other orders (exact ones must not)");
+  cmd->add_option("--technique,-t", c.order.techniques, "technique ids or 'all' (repeatable)");
+  cmd->add_option("--scene,-s", c.order.scene, "scene id or file");
+  cmd->add_option("--scene-set", c.order.scene_sets, "scene parameter key=value (repeatable)");
+  cmd->add_option("--size", c.order.size,
+                  "WIDTHxHEIGHT (smaller than the other commands' default: every technique renders the scene "
+                  "in 2N+1 other submission orders, N = --seeds)");
+  cmd->add_option("--seeds", c.order.seeds, "shuffled and objects_shuffled seeds 1..N")->check(CLI::Range(1, 100));
+  c.add(cmd, [&c] { return oit::run_check_order(c.common, c.order); });
+}
 
-  oit::StatsOptions stats;
-  auto* stats_cmd = app.add_subcommand("stats", "fragments per pixel of one scene view: triangles, objects, depth "
-                                                 "complexity, list-length histogram, Psi, heatmap");
-  stats_cmd->add_option("--scene,-s", stats.scene, "scene id or file");
-  stats_cmd->add_option("--scene-set", stats.scene_sets, "scene parameter key=value (repeatable)");
-  stats_cmd->add_option("--camera", stats.camera, "default, random:N:SEED, random:N:SEED@I or max_list[:N:SEED]");
-  stats_cmd->add_option("--size", stats.size, "WIDTHxHEIGHT");
-  stats_cmd->add_option("--heatmap", stats.heatmap, "list-length heatmap .png (viridis 0 .. longest, colour bar below)");
-
-  oit::ExportOptions export_options;
-  auto* export_cmd = app.add_subcommand(
+void add_stats_and_export_commands(CLI::App& app, Commands& c) {
+  auto* stats = app.add_subcommand("stats", "fragments per pixel of one scene view: triangles, objects, depth "
+                                             "complexity, list-length histogram, Psi, heatmap");
+  stats->add_option("--scene,-s", c.stats.scene, "scene id or file");
+  stats->add_option("--scene-set", c.stats.scene_sets, "scene parameter key=value (repeatable)");
+  stats->add_option("--camera", c.stats.camera, "default, random:N:SEED, random:N:SEED@I or max_list[:N:SEED]");
+  stats->add_option("--size", c.stats.size, "WIDTHxHEIGHT");
+  stats->add_option("--heatmap", c.stats.heatmap, "list-length heatmap .png (viridis 0 .. longest, colour bar below)");
+  c.add(stats, [&c] { return oit::run_stats(c.common, c.stats); });
+  auto* exports = app.add_subcommand(
       "export", "a results CSV as one row per run, every parameter, figure and stage time in its own column");
-  export_cmd->add_option("--wide", export_options.wide,
-                         "results CSV to export: param.<name>, scene.<name>, extra.<name>, work_saved.<name> and "
-                         "<stage>.<clock>.<median|min|p05|p95|mean>_ms columns")
+  exports->add_option("--wide", c.export_options.wide,
+                      "results CSV to export: param.<name>, scene.<name>, extra.<name>, work_saved.<name> and "
+                      "<stage>.<clock>.<median|min|p05|p95|mean>_ms columns")
       ->required();
-  export_cmd->add_option("--out,-o", export_options.out, "CSV file to write (replaced whole)")->required();
+  exports->add_option("--out,-o", c.export_options.out, "CSV file to write (replaced whole)")->required();
+  c.add(exports, [&c] { return oit::run_export(c.export_options); });
+}
 
-  oit::ViewOptions view;
-  auto* view_cmd = oit::add_view_command(app, view);
+}  // namespace
+
+int main(int argc, char** argv) {
+  oit::relaunch_with_huge_page_malloc(argv);
+  CLI::App app{"oitbench: order-independent transparency techniques, timed stage by stage and compared "
+               "with the exact image"};
+  app.require_subcommand(1);
+  // Every option's default in --help, subcommands included (they copy this).
+  app.option_defaults()->always_capture_default();
+  Commands c;
+  add_common_options(app, c);
+  add_list_command(app, c);
+  add_render_command(app, c);
+  add_bench_and_pareto_commands(app, c);
+  add_adaptive_command(app, c);
+  add_stress_command(app, c);
+  add_check_order_command(app, c);
+  add_stats_and_export_commands(app, c);
+  c.add(oit::add_view_command(app, c.view), [&c] { return oit::run_view(c.common, c.view); });
 
   CLI11_PARSE(app, argc, argv);
   try {
-    if (*list && list_markdown) {
-      std::fputs(oit::technique_table_markdown(oit::builtin_techniques()).c_str(), stdout);
-      return 0;
-    }
-    if (*list) return oit::run_list(common);
-    if (*render_cmd) return oit::run_render(common, render);
-    if (*bench_cmd) return oit::run_bench(common, bench);
-    if (*stress_cmd) return oit::run_stress(common, stress);
-    if (*adaptive_cmd) return oit::run_adaptive(common, adaptive);
-    if (*pareto_cmd) return oit::run_pareto(common, pareto);
-    if (*order_cmd) return oit::run_check_order(common, order);
-    if (*stats_cmd) return oit::run_stats(common, stats);
-    if (*export_cmd) return oit::run_export(export_options);
-    if (*view_cmd) return oit::run_view(common, view);
+    for (const auto& [command, run] : c.runs)
+      if (*command) return run();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "oitbench: error: %s\n", e.what());
     return 1;
