@@ -294,9 +294,12 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
   auto context = open_context(common);
   Harness harness(*context, builtin_techniques());
   BenchSession session(harness, options);
-  std::fprintf(stderr, "oitbench bench: %zu runs on %s, clock %s -> %s%s\n", runs.size(),
-               harness.device().renderer.c_str(), clock_name(options, harness).c_str(), options.csv.c_str(),
-               options.resume ? " (resuming: runs already there are not run again)" : "");
+  const std::string header = "oitbench bench: " + std::to_string(runs.size()) + " runs on " +
+                             harness.device().renderer + ", clock " + clock_name(options, harness) + " -> " +
+                             options.csv +
+                             (options.resume ? " (resuming: runs already there are not run again)" : "");
+  // Wrapped like the progress lines: a long CSV path must not push it past the console width.
+  std::fprintf(stderr, "%s\n", wrap_after(0, header).c_str());
   session.run_all(runs);
   return session.report();
 }
