@@ -264,16 +264,18 @@ int BenchSession::report() const {
   for (const auto& r : results_)
     (r.status == RunStatus::ok ? ok : r.status == RunStatus::skipped ? skipped : failed) += 1;
   if (!results_.empty()) print_summary(results_, options_.baseline, builtin_techniques());
-  const char* csv = options_.csv.c_str();
+  // Lines naming the CSV are wrapped: its path may be long.
+  const std::string& csv = options_.csv;
+  auto runs_text = [](size_t n) { return std::to_string(n) + (n == 1 ? " run" : " runs"); };
   if (resumed_ > 0)
-    std::printf("(%zu run%s already in %s from an earlier invocation: not in this table)\n", resumed_,
-                resumed_ == 1 ? "" : "s", csv);
+    std::printf("%s\n", wrap_after(0, "(" + runs_text(resumed_) + " already in " + csv +
+                                          " from an earlier invocation: not in this table)").c_str());
   if (elsewhere_ > 0)
-    std::printf("(%zu run%s left to another bench --resume on %s: not in this table)\n", elsewhere_,
-                elsewhere_ == 1 ? "" : "s", csv);
+    std::printf("%s\n", wrap_after(0, "(" + runs_text(elsewhere_) + " left to another bench --resume on " + csv +
+                                          ": not in this table)").c_str());
   const DeviceInfo& device = harness_.device();
-  std::printf("\ndevice: %s\nplatform: %s\nclock: %s | rows appended to %s\n", device.renderer.c_str(),
-              platform_text(device).c_str(), clock_name(options_, harness_).c_str(), csv);
+  std::printf("\ndevice: %s\nplatform: %s\n%s\n", device.renderer.c_str(), platform_text(device).c_str(),
+              wrap_after(0, "clock: " + clock_name(options_, harness_) + " | rows appended to " + csv).c_str());
   std::printf("runs: %zu done (%zu ok, %zu error), %zu resumed (already in the CSV), %zu skipped\n", ok + failed, ok,
               failed, resumed_, skipped);
   const ProgramCacheStats programs = ProgramCache::instance().stats();
