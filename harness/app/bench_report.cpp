@@ -102,6 +102,8 @@ void print_row(const RunResult& r, const std::string& params, double base) {
   std::string line = row;
   line.erase(line.find_last_not_of(' ') + 1);
   std::printf("%s\n", line.c_str());
+  // Cut to its column, a parameter text may lose what tells two rows apart.
+  if (params.size() > 20) std::printf("    %s\n", wrap_after(4, "params: " + params).c_str());
   // Figures that saved nothing (0) say nothing worth a line.
   std::string saved;
   for (const Figure& figure : r.counters.work_saved)
