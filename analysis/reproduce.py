@@ -499,24 +499,30 @@ def draw_images(sweep, args):
     """The image grids of a render-only sweep."""
     import importlib
 
-    import matplotlib.pyplot as plt
-
-    from analysis import common
-
     drawn = []
     for module_name, _ in sweep.plots:
         module = importlib.import_module(f"analysis.{module_name}")
         out = os.path.join(args.out, f"{module_name}.png")
-        try:
-            fig = module.draw_directory(os.path.join(args.out, "images"))
-        except (common.NoData, FileNotFoundError) as e:
-            print(f"  {module_name}: not drawn: {e}", flush=True)
-            continue
-        save_figure(fig, out, dpi=90)
-        plt.close(fig)
-        drawn.append(out)
-        print(f"  wrote {out}", flush=True)
+        draw_and_save(lambda: module.draw_directory(os.path.join(args.out, "images")), out, module_name, drawn)
     return drawn
+
+
+def draw_and_save(draw, out, label, drawn):
+    """draw() saved to `out` and appended to `drawn`; a plot without data
+    (NoData, a missing file) is reported under `label` and left out."""
+    import matplotlib.pyplot as plt
+
+    from analysis import common
+
+    try:
+        fig = draw()
+    except (common.NoData, FileNotFoundError) as e:
+        print(f"  {label}: not drawn: {e}", flush=True)
+        return
+    save_figure(fig, out, dpi=90)
+    plt.close(fig)
+    drawn.append(out)
+    print(f"  wrote {out}", flush=True)
 
 
 def draw_plots(sweep, args):
@@ -524,8 +530,6 @@ def draw_plots(sweep, args):
     platform in it; a plot without data is reported and left out, the others
     are still drawn."""
     import importlib
-
-    import matplotlib.pyplot as plt
 
     from analysis import common
 
@@ -543,15 +547,7 @@ def draw_plots(sweep, args):
         plot_args = argparse.Namespace(heatmaps=os.path.join(args.out, "heatmaps")) if options.get("heatmaps") else None
         for suffix, runs in groups:
             out = os.path.join(args.out, f"{module_name}{suffix}.png")
-            try:
-                fig = module.draw(runs, plot_args)
-            except (common.NoData, FileNotFoundError) as e:
-                print(f"  {module_name}{suffix}: not drawn: {e}", flush=True)
-                continue
-            save_figure(fig, out, dpi=90)
-            plt.close(fig)
-            drawn.append(out)
-            print(f"  wrote {out}", flush=True)
+            draw_and_save(lambda: module.draw(runs, plot_args), out, f"{module_name}{suffix}", drawn)
     return drawn
 
 
