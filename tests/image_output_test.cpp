@@ -2,15 +2,18 @@
 // the composite, opaque), PFMs linear; --images names distinct per run and
 // never over an earlier file; error heatmaps on one absolute log scale with
 // a colour bar that is the same in every file; LDR-FLIP on cases whose
-// value is known in closed form.
+// value is known in closed form and against values of NVIDIA's reference
+// implementation on generated image pairs.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include "harness/app/sweep.h"
 #include "harness/core/error_metrics.h"
@@ -244,18 +247,20 @@ TEST(Flip, UniformFieldsTakeTheirClosedFormColourValue) {
   // is the remapped Hunt-adjusted HyAB distance of the two colours.
   // Green vs blue is the normalising pair: exactly 1.
   EXPECT_NEAR(mean_flip(uniform(24, 24, 0, 1, 0), uniform(24, 24, 0, 0, 1)), 1.0, 1e-6);
-  // Black vs white: HyAB 100, cmax = 203.29^0.7 = 41.2755;
-  // 0.95 + 0.05 (100^0.7 - 0.4 cmax) / (0.6 cmax) = 0.967381.
-  EXPECT_NEAR(mean_flip(uniform(24, 24, 0, 0, 0), uniform(24, 24, 1, 1, 1)), 0.967381, 1e-5);
+  // Black vs white: HyAB 100, cmax = 203.305^0.7 = 41.2766;
+  // 0.95 + 0.05 (100^0.7 - 0.4 cmax) / (0.6 cmax) = 0.967379.
+  EXPECT_NEAR(mean_flip(uniform(24, 24, 0, 0, 0), uniform(24, 24, 1, 1, 1)), 0.967379, 1e-5);
   // Below the knee (pc cmax) the map is linear: grey 0.5 vs 0.25 (linear):
-  // L* 76.0693 vs 57.0754, (18.9939^0.7) 0.95 / (0.4 cmax) = 0.451856.
-  EXPECT_NEAR(mean_flip(uniform(24, 24, 0.5f, 0.5f, 0.5f), uniform(24, 24, 0.25f, 0.25f, 0.25f)), 0.451856, 1e-5);
+  // L* 76.0693 vs 57.0754, (18.9939^0.7) 0.95 / (0.4 cmax) = 0.451844.
+  EXPECT_NEAR(mean_flip(uniform(24, 24, 0.5f, 0.5f, 0.5f), uniform(24, 24, 0.25f, 0.25f, 0.25f)), 0.451844, 1e-5);
 }
 
 TEST(Flip, ADisplacedEdgeErrsOnlyWithinTheFiltersReachAndIsSymmetric) {
   // A white half moved by one column: the CSF filters reach 10 pixels at
   // 67 pixels per degree, so FLIP is exactly 0 beyond that (the far tails
   // vanish in the clamp to [0, 1] a few pixels sooner), high at the step.
+  // Below 1e-3 the tails are rounding: NVIDIA's float implementation gives
+  // 0 at column 26 and 7e-4 at 38, in double 5e-4 and 0.
   Image a = uniform(64, 4, 0, 0, 0), b = a;
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 64; ++x)
@@ -265,13 +270,170 @@ TEST(Flip, ADisplacedEdgeErrsOnlyWithinTheFiltersReachAndIsSymmetric) {
       }
   const std::vector<float> map = flip_map(b, a);
   for (int x = 0; x < 64; ++x) {
-    if (x < 22 || x > 42) EXPECT_EQ(map[size_t(x)], 0.0f) << x;
-    if (x >= 26 && x <= 38) EXPECT_GT(map[size_t(x)], 1e-4f) << x;
+    if (x < 22 || x > 42) {
+      EXPECT_EQ(map[size_t(x)], 0.0f) << x;
+    }
+    if (x >= 27 && x <= 37) {
+      EXPECT_GT(map[size_t(x)], 1e-3f) << x;
+    }
   }
   // The colour filters blur the step; the feature term lifts the error at it.
   EXPECT_GT(*std::max_element(map.begin() + 29, map.begin() + 34), 0.5f);
   EXPECT_EQ(flip_map(a, b), map);
   EXPECT_THROW(flip_map(a, uniform(8, 8, 0, 0, 0)), std::invalid_argument);
+}
+
+// ---- FLIP against NVIDIA's reference implementation ----
+// The authors' example images are binaries this project cannot fetch, so
+// the check uses pairs any build regenerates from integer formulas: 8-bit
+// sRGB values, 96x64, decoded to linear as a PNG reader would.
+
+struct SrgbPair {
+  Image reference, test;
+};
+
+constexpr int kPairWidth = 96, kPairHeight = 64;
+
+// Numerical Recipes' 32-bit LCG; the top 24 bits.
+uint32_t lcg_next(uint32_t& state) {
+  state = state * 1664525u + 1013904223u;
+  return state >> 8;
+}
+
+void put_srgb(Image& image, int x, int y, int r, int g, int b) {
+  const int bytes[3] = {r, g, b};
+  for (int c = 0; c < 3; ++c)
+    image.rgba[(size_t(y) * size_t(image.width) + size_t(x)) * 4 + size_t(c)] =
+        srgb_decode(float(std::clamp(bytes[c], 0, 255)) / 255.0f);
+}
+
+// Fills reference and test pixel by pixel; `pixel(x, y, ref, test)` calls
+// put_srgb on both.
+template <typename Pixel>
+SrgbPair srgb_pair(Pixel pixel) {
+  SrgbPair pair{uniform(kPairWidth, kPairHeight, 0, 0, 0), uniform(kPairWidth, kPairHeight, 0, 0, 0)};
+  for (int y = 0; y < kPairHeight; ++y)
+    for (int x = 0; x < kPairWidth; ++x) pixel(x, y, pair.reference, pair.test);
+  return pair;
+}
+
+int ramp(int i, int n) { return i * 255 / (n - 1); }
+
+SrgbPair gradient_pair() {  // a colour ramp against a hue and brightness shift of it
+  return srgb_pair([](int x, int y, Image& ref, Image& test) {
+    const int r = ramp(x, kPairWidth), g = ramp(y, kPairHeight);
+    put_srgb(ref, x, y, r, g, 128);
+    put_srgb(test, x, y, r * 15 / 16 + 10, g, 108);
+  });
+}
+
+SrgbPair checker_pair() {  // 8-pixel checkers against the same moved one pixel right and down
+  auto cell = [](int x, int y) { return ((x >> 3) + (y >> 3)) & 1; };
+  auto paint = [](Image& image, int x, int y, int on) {
+    put_srgb(image, x, y, on ? 230 : 20, on ? 210 : 30, on ? 120 : 90);
+  };
+  return srgb_pair([&](int x, int y, Image& ref, Image& test) {
+    paint(ref, x, y, cell(x, y));
+    paint(test, x, y, cell(std::max(x - 1, 0), std::max(y - 1, 0)));
+  });
+}
+
+SrgbPair firefly_pair() {  // a dark scene against it with one pixel in 50 blown out
+  uint32_t state = 12345u;
+  return srgb_pair([&](int x, int y, Image& ref, Image& test) {
+    const int r = 40 + x / 4, g = 45, b = 60 + y / 4;
+    put_srgb(ref, x, y, r, g, b);
+    if (lcg_next(state) % 50u == 0u)
+      put_srgb(test, x, y, 255, 250, 230);
+    else
+      put_srgb(test, x, y, r, g, b);
+  });
+}
+
+SrgbPair noise_pair() {  // the ramp against it with uniform noise in [-24, 24] per channel
+  uint32_t state = 2024u;
+  return srgb_pair([&](int x, int y, Image& ref, Image& test) {
+    const int r = ramp(x, kPairWidth), g = ramp(y, kPairHeight);
+    put_srgb(ref, x, y, r, g, 128);
+    const int nr = int(lcg_next(state) % 49u) - 24, ng = int(lcg_next(state) % 49u) - 24;
+    const int nb = int(lcg_next(state) % 49u) - 24;
+    put_srgb(test, x, y, r + nr, g + ng, 128 + nb);
+  });
+}
+
+SrgbPair disc_pair() {  // a red disc, 4x4 samples per pixel against one (aliased)
+  // Sample (sx + 0.5) / 4 in pixels against the circle at (48, 32), radius 20.
+  auto inside = [](int sx, int sy) {
+    const int dx = 2 * sx + 1 - 8 * 48, dy = 2 * sy + 1 - 8 * 32;
+    return dx * dx + dy * dy <= 160 * 160;
+  };
+  auto paint = [](Image& image, int x, int y, int covered) {  // covered of 16, blended in bytes
+    const int fg[3] = {230, 40, 30}, bg[3] = {20, 20, 40};
+    int c[3];
+    for (int i = 0; i < 3; ++i) c[i] = (bg[i] * (16 - covered) + fg[i] * covered + 8) / 16;
+    put_srgb(image, x, y, c[0], c[1], c[2]);
+  };
+  return srgb_pair([&](int x, int y, Image& ref, Image& test) {
+    int covered = 0;
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) covered += inside(4 * x + i, 4 * y + j);
+    paint(ref, x, y, covered);
+    paint(test, x, y, inside(4 * x + 2, 4 * y + 2) ? 16 : 0);
+  });
+}
+
+struct OraclePixel {
+  int x, y;
+  float value;
+};
+
+struct OracleCase {
+  const char* name;
+  double pixels_per_degree;
+  double mean;
+  OraclePixel pixels[2];  // the largest error and one near the mean
+};
+
+TEST(Flip, MatchesNvidiasReferenceImplementationOnGeneratedPairs) {
+  // Expected values: NVIDIA's reference implementation of LDR-FLIP
+  // (github.com/NVlabs/flip, cpp/FLIP.h at commit
+  // 00ac8f5bf518164471f43dab1a66df7074ee25c3; its LDR path is unchanged in
+  // 1fd382a5a3d932315e40335abdd85785e5bbf13d), built outside this
+  // repository and run on exactly these pairs (the sRGB bytes / 255, as
+  // its tool reads a PNG) at its default 67.02 pixels per degree and at 30;
+  // mean of the float map summed in double. Tolerances: the reference
+  // computes in float (its own float vs double results differ by up to
+  // 9e-6 in a mean, 1.1e-4 in a pixel where an edge difference is near 0
+  // and sqrt magnifies rounding), and its RGB/XYZ matrices differ from the
+  // IEC ones in flip.cpp in the fifth digit; measured: means within
+  // 2.1e-5 relative, all pixels within 1.1e-4.
+  const std::vector<std::pair<SrgbPair, std::vector<OracleCase>>> cases = {
+      {gradient_pair(),
+       {{"gradient", kFlipPixelsPerDegree, 0.2225954, {{92, 58, 0.271787f}, {74, 6, 0.222591f}}},
+        {"gradient", 30.0, 0.2210058, {{90, 61, 0.269149f}, {15, 38, 0.221016f}}}}},
+      {checker_pair(),
+       {{"checker", kFlipPixelsPerDegree, 0.4380777, {{25, 10, 0.765101f}, {11, 55, 0.438999f}}},
+        {"checker", 30.0, 0.4982021, {{16, 6, 0.964256f}, {10, 7, 0.478173f}}}}},
+      {firefly_pair(),
+       {{"fireflies", kFlipPixelsPerDegree, 0.1648912, {{0, 0, 0.986744f}, {58, 29, 0.164745f}}},
+        {"fireflies", 30.0, 0.0975958, {{0, 0, 0.991155f}, {67, 50, 0.097524f}}}}},
+      {noise_pair(),
+       {{"noise", kFlipPixelsPerDegree, 0.1194892, {{68, 63, 0.404188f}, {50, 12, 0.119485f}}},
+        {"noise", 30.0, 0.2247537, {{80, 63, 0.525401f}, {62, 4, 0.224690f}}}}},
+      {disc_pair(),
+       {{"disc", kFlipPixelsPerDegree, 0.0192941, {{31, 19, 0.368399f}, {62, 33, 0.019271f}}},
+        {"disc", 30.0, 0.0163408, {{36, 15, 0.764150f}, {43, 9, 0.016235f}}}}},
+  };
+  for (const auto& [pair, expectations] : cases)
+    for (const OracleCase& expected : expectations) {
+      SCOPED_TRACE(std::string(expected.name) + " at " + std::to_string(expected.pixels_per_degree) + " ppd");
+      const std::vector<float> map = flip_map(pair.test, pair.reference, expected.pixels_per_degree);
+      double sum = 0.0;
+      for (float e : map) sum += e;
+      EXPECT_NEAR(sum / double(map.size()), expected.mean, 5e-5 * expected.mean);
+      for (const OraclePixel& p : expected.pixels)
+        EXPECT_NEAR(map[size_t(p.y) * kPairWidth + size_t(p.x)], p.value, 2e-4) << p.x << ", " << p.y;
+    }
 }
 
 TEST(Flip, IsAnErrorColumnBesidePsnrAndSsim) {
