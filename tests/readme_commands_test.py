@@ -6,9 +6,11 @@ code block and each code span whose first word is a command (`oitbench`, a
 path ending in /oitbench, `oitbench_gbench`, `bash`, `python3`, `snakemake`,
 `ctest`, `xvfb-run`). Each one is either
   - RUN here, as written, with the built binary in place of the path, in one
-    temporary directory in document order (REFERENCE's export reads the CSV
-    that README's example bench wrote), and its outcome asserted: exit
-    status, the files it promises and what it prints; or
+    temporary directory in document order (REFERENCE's export and
+    analysis.plot_stages read the CSV that README's example bench wrote;
+    placeholders mapped in PLACEHOLDERS, COMMAND run for each command of
+    the README's command table), and its outcome asserted: exit status, the
+    files it promises and what it prints; or
   - listed in NOT_RUN with the reason and the tests that run it instead
     (which must exist); or
   - a synopsis of docs/REFERENCE.md's command list, whose every option the
@@ -192,7 +194,7 @@ def subcommands(help_text):
     return re.findall(r"^  ([\w-]+)  ", help_text.split("Subcommands:")[1], re.M)
 
 
-def test_exists(name):
+def ctest_name_exists(name):
     """A CTest name: an add_test NAME or a GoogleTest TEST/TEST_F/TEST_P
     (parameterised ones as Prefix/Suite.Name/*)."""
     if name == CI:
@@ -271,7 +273,7 @@ class DocumentCommandsTest(unittest.TestCase):
         for command, (reason, tests) in NOT_RUN.items():
             self.assertTrue(reason, command)
             for name in tests:
-                self.assertTrue(test_exists(name), f"`{command}`: no test {name}")
+                self.assertTrue(ctest_name_exists(name), f"`{command}`: no test {name}")
 
     def test_analysis_commands_are_the_ones_analysis_readme_test_runs(self):
         other = analysis_readme_test
