@@ -1,10 +1,15 @@
-// illustration_buffer's binding points, units and uniform locations, included
+// illustration_buffer's binding points, units, uniform locations and sentinels, included
 // by its C++ and its GLSL alike so that no number is copied by hand between
 // the two (shaders/bindings.h: a technique's own start at OIT_FIRST_TECHNIQUE_*).
 #ifndef OIT_ILLUSTRATION_BUFFER_BINDINGS_H
 #define OIT_ILLUSTRATION_BUFFER_BINDINGS_H
 
 #include "shaders/bindings.h"
+
+// Sentinels the shaders write and the C++ clears with or reads back (accuracy.h).
+#define IB_NIL 0xffffffffu        // end of a list
+#define IB_NONE 0xffffffffu       // no geodesic neighbour in that direction
+#define IB_OFF_IMAGE 0xfffffffeu  // the adjacent pixel lies outside the image
 
 // Storage buffer binding points (ib_storage.glsl unless noted).
 #define IB_HEAD_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 0)

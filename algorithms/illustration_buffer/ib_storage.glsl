@@ -6,9 +6,6 @@
 // returned wrong values.
 #include "algorithms/illustration_buffer/bindings.h"
 
-#define IB_NIL 0xffffffffu        // end of a list
-#define IB_NONE 0xffffffffu       // no geodesic neighbour in that direction
-#define IB_OFF_IMAGE 0xfffffffeu  // the adjacent pixel lies outside the image
 #define IB_INFINITY 3.0e38
 
 // fragData: one record per fragment in fill order (48 B).

@@ -135,8 +135,7 @@ class IllustrationBuffer final : public Technique {
       {
         auto stage = frame.clock.stage("clear");
         pool_.before_fill(frame);
-        const GLuint nil = 0xffffffffu;
-        fill_buffer_u32(head_, nil);
+        fill_buffer_u32(head_, IB_NIL);
         fill_buffer_u32(count_, 0);
         fill_buffer_u32(counters_, 0);
       }
