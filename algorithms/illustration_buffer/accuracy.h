@@ -7,10 +7,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "algorithms/illustration_buffer/bindings.h"
+
 namespace oit::illustration_buffer {
 
-constexpr uint32_t kNoNeighbor = 0xffffffffu;  // IB_NONE in ib_storage.glsl
-constexpr uint32_t kOffImage = 0xfffffffeu;    // IB_OFF_IMAGE
+constexpr uint32_t kNoNeighbor = IB_NONE;
+constexpr uint32_t kOffImage = IB_OFF_IMAGE;
 
 // IbSortedSearch (fragData2) and IbSortedShade (fragData3) of ib_storage.glsl, 32 B each.
 struct SortedSearchRecord {

@@ -17,8 +17,8 @@ layout(location = 0) out vec4 out_color;
 #ifdef IB_MODULATE
 #include "algorithms/illustration_buffer/fields.glsl"
 // 0: none, 1: exponential (eq. 10), 2: power (eq. 11).
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 14) uniform int u_profile;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 15) uniform float u_profile_p;
+layout(location = IB_PROFILE_LOCATION) uniform int u_profile;
+layout(location = IB_PROFILE_P_LOCATION) uniform float u_profile_p;
 
 float profile(float u) {
   u = clamp(u, 0.0, 1.0);

@@ -7,7 +7,7 @@
 #define IB_FIXED_BETA 1u
 #define IB_FIXED_GAMMA 2u
 
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 8) readonly buffer IbFieldsIn { vec4 ib_fields_in[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 9) writeonly buffer IbFieldsOut { vec4 ib_fields_out[]; };
+layout(std430, binding = IB_FIELDS_IN_BINDING) readonly buffer IbFieldsIn { vec4 ib_fields_in[]; };
+layout(std430, binding = IB_FIELDS_OUT_BINDING) writeonly buffer IbFieldsOut { vec4 ib_fields_out[]; };
 
 uint ib_flags(vec4 field) { return uint(field.w); }

@@ -8,8 +8,8 @@
 #include "shaders/shading.glsl"
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 2) uniform uint u_capacity;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 3) uniform uint u_max_per_pixel;
+layout(location = IB_CAPACITY_LOCATION) uniform uint u_capacity;
+layout(location = IB_MAX_PER_PIXEL_LOCATION) uniform uint u_max_per_pixel;
 
 // The purely local opacities of carnecky2013 Fig. 11 (modulation=angle /
 // normal_variation), stored in the record's slopes.z for the compose:
@@ -18,7 +18,7 @@ layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 3) uniform uint u_max_per_pixel;
 //  normal_variation: min(1, scale * |grad n|), grad n = (dn/dx, dn/dy) the
 //    view normal's change per pixel (Born et al. [7]; carnecky2013: "the
 //    derivatives of the surface normal").
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 18) uniform float u_normal_variation_scale;
+layout(location = IB_NORMAL_VARIATION_SCALE_LOCATION) uniform float u_normal_variation_scale;
 layout(location = OIT_UNIFORM_PROJECTION) uniform mat4 u_projection;
 
 // Unit vector from the fragment towards the eye along its view ray: +z for
@@ -28,7 +28,7 @@ vec3 to_eye() { return u_projection[2][3] == 0.0 ? vec3(0.0, 0.0, 1.0) : normali
 #ifdef IB_MEASURE
 // Ground truth for the neighbour accuracy only (parameter measure_accuracy):
 // x: surface id, yz: (u, v) bits, w: uv footprint of one pixel (fwidth, half2).
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 6) buffer IbTruth { uvec4 ib_truth[]; };
+layout(std430, binding = IB_TRUTH_BINDING) buffer IbTruth { uvec4 ib_truth[]; };
 #endif
 
 void main() {

@@ -4,11 +4,8 @@
 // Records are read and written as whole vec4/uvec4 members: on Mesa 22.3
 // llvmpipe, reading single scalar members of a struct array in a loop
 // returned wrong values.
-#include "shaders/bindings.h"
+#include "algorithms/illustration_buffer/bindings.h"
 
-#define IB_NIL 0xffffffffu        // end of a list
-#define IB_NONE 0xffffffffu       // no geodesic neighbour in that direction
-#define IB_OFF_IMAGE 0xfffffffeu  // the adjacent pixel lies outside the image
 #define IB_INFINITY 3.0e38
 
 // fragData: one record per fragment in fill order (48 B).
@@ -32,16 +29,16 @@ struct IbSortedShade {
   uvec4 links;  // sorted indices of the left, right, down, up neighbours (or IB_NONE / IB_OFF_IMAGE)
 };
 
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 0) coherent buffer IbPixelHead { uint ib_head[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 1) coherent buffer IbPixelCount { uint ib_count[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 2) buffer IbFragNext { uint ib_next[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 3) buffer IbFragData { IbFragment ib_fragments[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 4) buffer IbFragData2 { IbSortedSearch ib_search[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 10) buffer IbFragData3 { IbSortedShade ib_shade[]; };
+layout(std430, binding = IB_HEAD_BINDING) coherent buffer IbPixelHead { uint ib_head[]; };
+layout(std430, binding = IB_COUNT_BINDING) coherent buffer IbPixelCount { uint ib_count[]; };
+layout(std430, binding = IB_NEXT_BINDING) buffer IbFragNext { uint ib_next[]; };
+layout(std430, binding = IB_DATA_BINDING) buffer IbFragData { IbFragment ib_fragments[]; };
+layout(std430, binding = IB_DATA2_BINDING) buffer IbFragData2 { IbSortedSearch ib_search[]; };
+layout(std430, binding = IB_DATA3_BINDING) buffer IbFragData3 { IbSortedShade ib_shade[]; };
 // produced: fragments the fill generated (may exceed the pool: overflow).
 // longest: the longest list. dropped / truncated: fragments beyond
 // max_per_pixel and the lists that had any. allocated: the sort's range allocator.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 5) coherent buffer IbCounters {
+layout(std430, binding = IB_COUNTERS_BINDING) coherent buffer IbCounters {
   uint ib_produced;
   uint ib_longest;
   uint ib_dropped;
@@ -49,8 +46,8 @@ layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 5) coherent buffer IbCoun
   uint ib_allocated;
 };
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 0) uniform int u_width;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 1) uniform int u_height;
+layout(location = IB_WIDTH_LOCATION) uniform int u_width;
+layout(location = IB_HEIGHT_LOCATION) uniform int u_height;
 
 // The sort key's first word: IEEE floats compare like sign-magnitude
 // integers; this maps them to unsigned order.

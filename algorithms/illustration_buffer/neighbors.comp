@@ -15,9 +15,9 @@
 #include "algorithms/illustration_buffer/views.glsl"
 
 #if defined(IB_HEURISTIC)
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 5) uniform float u_weight_z;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 6) uniform float u_weight_n;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 7) uniform float u_inverse_radius;  // 1 / r_obj
+layout(location = IB_WEIGHT_Z_LOCATION) uniform float u_weight_z;
+layout(location = IB_WEIGHT_N_LOCATION) uniform float u_weight_n;
+layout(location = IB_INVERSE_RADIUS_LOCATION) uniform float u_inverse_radius;  // 1 / r_obj
 
 // The parts of fragment i that eq. 1-3 use, for one direction.
 struct Probe {

@@ -25,8 +25,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 // fragData (3 RGBA32UI texels per IbFragment) and fragNext read as buffer
 // textures: gathers on llvmpipe, where SSBO loads at per-invocation
 // addresses run lane by lane (see views.glsl).
-layout(binding = 0) uniform usamplerBuffer ib_fragment_view;
-layout(binding = 1) uniform usamplerBuffer ib_next_view;
+layout(binding = IB_FRAGMENT_UNIT) uniform usamplerBuffer ib_fragment_view;
+layout(binding = IB_NEXT_UNIT) uniform usamplerBuffer ib_next_view;
 
 bool precedes(uvec3 a, uvec3 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
 
@@ -46,7 +46,7 @@ uvec3 sort_key(uint node) {
 }
 
 #ifdef IB_DYNAMIC
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 3) uniform uint u_max_per_pixel;
+layout(location = IB_MAX_PER_PIXEL_LOCATION) uniform uint u_max_per_pixel;
 
 // Sorts the list of `length` (>= 2) nodes from `head` in place; returns the sorted head.
 // One flat loop: each step takes the next unsorted node, or moves the

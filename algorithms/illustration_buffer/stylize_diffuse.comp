@@ -21,9 +21,9 @@
 #include "algorithms/illustration_buffer/fields.glsl"
 #include "algorithms/illustration_buffer/views.glsl"
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 11) uniform float u_lambda_alpha;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 12) uniform float u_lambda_beta;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 13) uniform float u_lambda_gamma;
+layout(location = IB_LAMBDA_ALPHA_LOCATION) uniform float u_lambda_alpha;
+layout(location = IB_LAMBDA_BETA_LOCATION) uniform float u_lambda_beta;
+layout(location = IB_LAMBDA_GAMMA_LOCATION) uniform float u_lambda_gamma;
 
 // The fields of fragment s after one iteration.
 vec4 diffused(uint s, vec4 field) {
@@ -46,7 +46,7 @@ vec4 diffused(uint s, vec4 field) {
 
 #if defined(IB_TRACK) || defined(IB_WORKLIST)
 #include "algorithms/illustration_buffer/worklist.glsl"
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 17) uniform float u_tolerance;
+layout(location = IB_TOLERANCE_LOCATION) uniform float u_tolerance;
 
 // Updates fragment s; true when it moved by more than the tolerance.
 bool update(uint s) {
@@ -68,13 +68,13 @@ void main() {
 #elif defined(IB_WORKLIST)
 // The step's list (header: groups x, y, z, count; then pixels) and the
 // sorted ranges, read as buffer textures (gathers on llvmpipe, views.glsl).
-layout(binding = 4) uniform usamplerBuffer ib_work_view;
-layout(binding = 5) uniform usamplerBuffer ib_head_view;
-layout(binding = 6) uniform usamplerBuffer ib_count_view;
+layout(binding = IB_WORK_UNIT) uniform usamplerBuffer ib_work_view;
+layout(binding = IB_HEAD_UNIT) uniform usamplerBuffer ib_head_view;
+layout(binding = IB_COUNT_UNIT) uniform usamplerBuffer ib_count_view;
 
 // The list of the step after next (read by the step before): emptied here,
 // so that no host upload sits between the dispatches.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 14) writeonly buffer IbWorkNext { uvec4 ib_next_header; };
+layout(std430, binding = IB_WORK_NEXT_BINDING) writeonly buffer IbWorkNext { uvec4 ib_next_header; };
 
 void main() {
   if (gl_GlobalInvocationID.x == 0u) ib_next_header = uvec4(1u, 1u, 1u, 0u);

@@ -13,9 +13,9 @@
 #include "algorithms/illustration_buffer/fields.glsl"
 #include "algorithms/illustration_buffer/views.glsl"
 
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 8) uniform bool u_adaptive;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 9) uniform bool u_use_beta;
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 10) uniform bool u_use_gamma;
+layout(location = IB_ADAPTIVE_LOCATION) uniform bool u_adaptive;
+layout(location = IB_USE_BETA_LOCATION) uniform bool u_use_beta;
+layout(location = IB_USE_GAMMA_LOCATION) uniform bool u_use_gamma;
 
 // -1: the neighbour is nearer in its list, +1: deeper, 0: same layer or no neighbour.
 int compare_layer(uint layer, uint link) {

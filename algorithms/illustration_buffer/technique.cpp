@@ -10,13 +10,14 @@
 #include <stdexcept>
 
 #include "algorithms/illustration_buffer/accuracy.h"
+#include "algorithms/illustration_buffer/bindings.h"
+#include "algorithms/illustration_buffer/settings.h"
+#include "algorithms/illustration_buffer/triangle_table.h"
 #include "harness/core/fragment_pool.h"
 #include "harness/core/passes.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "algorithms/illustration_buffer/settings.h"
-#include "algorithms/illustration_buffer/triangle_table.h"
-#include "shaders/bindings.h"
+#include "harness/gl/uniforms.h"
 
 namespace oit::illustration_buffer {
 namespace {
@@ -27,17 +28,8 @@ constexpr GLsizeiptr kSearchBytes = 32, kShadeBytes = 32;
 // The largest per-record buffer (fragData; it also holds both field ranges) bounds the pool.
 constexpr GLsizeiptr kLargestRecordBytes = std::max({kFragmentBytes, kSearchBytes, kShadeBytes, 2 * kFieldBytes});
 constexpr GLsizeiptr kCounterBytes = 20;  // produced, longest, dropped, truncated, allocated
-constexpr GLuint kBinding = OIT_FIRST_TECHNIQUE_BINDING;
-enum : GLuint {
-  kHead = kBinding, kCount, kNext, kData, kData2, kCounters, kTruth, kTriangles, kFieldsIn, kFieldsOut, kData3,
-  kStamps, kWorkOut, kPixelUpdates, kWorkNext  // worklist.glsl, stylize_diffuse.comp
-};
 // A worklist (worklist.glsl): indirect-dispatch arguments and count, then one entry per pixel.
 constexpr GLsizeiptr kWorklistHeaderBytes = 16;
-// Texture units of views.glsl.
-constexpr GLuint kSearchUnit = 0, kTrianglesUnit = 1, kFieldsUnit = 2, kShadeUnit = 3;
-constexpr GLuint kWorkUnit = 4, kHeadUnit = 5, kCountUnit = 6;  // the listed steps' views (stylize_diffuse.comp)
-constexpr GLuint kFragmentUnit = 0, kNextUnit = 1;  // the sort's views (sort.comp)
 constexpr uint32_t kSmallestArray = 8;
 // sort=auto takes the dynamic sort up to this longest list: faster there on
 // llvmpipe (README, Sort variants), the array's ranks beyond.
@@ -45,14 +37,11 @@ constexpr uint32_t kLongestDynamicList = 4;
 // Keeps both field ranges inside fragData for any storage-offset alignment up to 4 KiB.
 constexpr uint64_t kSmallestPool = 256;
 
-void set(GLuint program, const char* name, float value) {
-  if (GLint at = glGetUniformLocation(program, name); at >= 0) glProgramUniform1f(program, at, value);
-}
-void set(GLuint program, const char* name, int value) {
-  if (GLint at = glGetUniformLocation(program, name); at >= 0) glProgramUniform1i(program, at, value);
-}
-void set(GLuint program, const char* name, uint32_t value) {
-  if (GLint at = glGetUniformLocation(program, name); at >= 0) glProgramUniform1ui(program, at, value);
+// u_width and u_height (ib_storage.glsl) are declared for every program and
+// used by some: the compiler drops the others (uniforms.h).
+void set_size(GLuint program, int width, int height) {
+  if (uniform_active(program, "u_width")) set_uniform(program, IB_WIDTH_LOCATION, width);
+  if (uniform_active(program, "u_height")) set_uniform(program, IB_HEIGHT_LOCATION, height);
 }
 
 uint64_t bytes_per_fragment(const Settings& s) {
@@ -81,8 +70,9 @@ class IllustrationBuffer final : public Technique {
         pool_("illustration_buffer", FragmentPool::Sizing::previous_frame, kLargestRecordBytes,
               [this](uint64_t capacity) { allocate_pool(capacity); }, kSmallestPool) {
     fill_ = build_geometry_program("algorithms/illustration_buffer/fill.frag", fill_defines(s_));
-    set(fill_.id(), "u_max_per_pixel", s_.max_per_pixel);
-    set(fill_.id(), "u_normal_variation_scale", s_.normal_variation_scale);
+    set_uniform(fill_.id(), IB_MAX_PER_PIXEL_LOCATION, s_.max_per_pixel);
+    if (s_.modulation == Modulation::normal_variation)
+      set_uniform(fill_.id(), IB_NORMAL_VARIATION_SCALE_LOCATION, s_.normal_variation_scale);
     compose_ = build_fullscreen_program("algorithms/illustration_buffer/compose.frag",
                                         modulated()          ? ShaderDefines{{"IB_MODULATE", "1"}}
                                         : s_.purely_local() ? ShaderDefines{{"IB_LOCAL_OPACITY", "1"}}
@@ -92,12 +82,14 @@ class IllustrationBuffer final : public Technique {
         "algorithms/illustration_buffer/neighbors.comp",
         {{s_.heuristic() ? "IB_HEURISTIC" : "IB_TRIANGLE_INDEX", "1"},
          {"IB_MERGE", s_.neighbors == NeighborSearch::heuristic_merge ? "1" : "0"}});
-    set(neighbors_.id(), "u_weight_z", s_.weight_z);
-    set(neighbors_.id(), "u_weight_n", s_.weight_n);
+    if (s_.heuristic()) {
+      set_uniform(neighbors_.id(), IB_WEIGHT_Z_LOCATION, s_.weight_z);
+      set_uniform(neighbors_.id(), IB_WEIGHT_N_LOCATION, s_.weight_n);
+    }
     stylize_init_ = build_compute_program("algorithms/illustration_buffer/stylize_init.comp");
-    set(stylize_init_.id(), "u_adaptive", int(s_.adaptive_alpha));
-    set(stylize_init_.id(), "u_use_beta", int(s_.uses_beta()));
-    set(stylize_init_.id(), "u_use_gamma", int(s_.uses_gamma()));
+    set_uniform(stylize_init_.id(), IB_ADAPTIVE_LOCATION, int(s_.adaptive_alpha));
+    set_uniform(stylize_init_.id(), IB_USE_BETA_LOCATION, int(s_.uses_beta()));
+    set_uniform(stylize_init_.id(), IB_USE_GAMMA_LOCATION, int(s_.uses_gamma()));
     const bool track = tracks_convergence(s_);
     stylize_diffuse_ = build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp",
                                              track ? ShaderDefines{{"IB_TRACK", "1"}} : ShaderDefines{});
@@ -106,13 +98,13 @@ class IllustrationBuffer final : public Technique {
           build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp", {{"IB_WORKLIST", "1"}});
     for (const Program* p : {&stylize_diffuse_, &diffuse_listed_}) {
       if (!*p) continue;
-      set(p->id(), "u_tolerance", s_.diffusion_tolerance);
-      set(p->id(), "u_lambda_alpha", s_.lambda_alpha);
-      set(p->id(), "u_lambda_beta", s_.lambda_beta);
-      set(p->id(), "u_lambda_gamma", s_.lambda_gamma);
+      if (track) set_uniform(p->id(), IB_TOLERANCE_LOCATION, s_.diffusion_tolerance);
+      set_uniform(p->id(), IB_LAMBDA_ALPHA_LOCATION, s_.lambda_alpha);
+      set_uniform(p->id(), IB_LAMBDA_BETA_LOCATION, s_.lambda_beta);
+      set_uniform(p->id(), IB_LAMBDA_GAMMA_LOCATION, s_.lambda_gamma);
     }
-    set(compose_.id(), "u_profile", int(s_.profile));
-    set(compose_.id(), "u_profile_p", s_.profile == Profile::power ? s_.power_p : s_.exponential_p);
+    set_uniform(compose_.id(), IB_PROFILE_LOCATION, int(s_.profile));
+    set_uniform(compose_.id(), IB_PROFILE_P_LOCATION, s_.profile == Profile::power ? s_.power_p : s_.exponential_p);
   }
 
   void resize(int width, int height) override {
@@ -133,10 +125,7 @@ class IllustrationBuffer final : public Technique {
       head_view_ = make_buffer_texture(head_, GL_R32UI, 0, GLsizeiptr(width) * height * 4);
       count_view_ = make_buffer_texture(count_, GL_R32UI, 0, GLsizeiptr(width) * height * 4);
     }
-    for (GLuint program : programs()) {
-      set(program, "u_width", width);
-      set(program, "u_height", height);
-    }
+    for (GLuint program : programs()) set_size(program, width, height);
   }
 
   void render(const Frame& frame) override {
@@ -146,8 +135,7 @@ class IllustrationBuffer final : public Technique {
       {
         auto stage = frame.clock.stage("clear");
         pool_.before_fill(frame);
-        const GLuint nil = 0xffffffffu;
-        fill_buffer_u32(head_, nil);
+        fill_buffer_u32(head_, IB_NIL);
         fill_buffer_u32(count_, 0);
         fill_buffer_u32(counters_, 0);
       }
@@ -169,8 +157,8 @@ class IllustrationBuffer final : public Technique {
       auto stage = frame.clock.stage("sort");
       const GLuint sort = sort_program(counts[1]);
       glUseProgram(sort);
-      glBindTextureUnit(kFragmentUnit, fragment_view_.id());
-      glBindTextureUnit(kNextUnit, next_view_.id());
+      glBindTextureUnit(IB_FRAGMENT_UNIT, fragment_view_.id());
+      glBindTextureUnit(IB_NEXT_UNIT, next_view_.id());
       glDispatchCompute(GLuint(width_ + 7) / 8, GLuint(height_ + 7) / 8, 1);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
@@ -187,7 +175,8 @@ class IllustrationBuffer final : public Technique {
     glUseProgram(compose_.id());
     frame.set_shared_uniforms(compose_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    for (GLuint unit : {kSearchUnit, kTrianglesUnit, kFieldsUnit, kShadeUnit, kWorkUnit, kHeadUnit, kCountUnit})
+    for (GLuint unit : {IB_SEARCH_UNIT, IB_TRIANGLES_UNIT, IB_FIELDS_UNIT, IB_SHADE_UNIT, IB_WORK_UNIT, IB_HEAD_UNIT,
+                        IB_COUNT_UNIT})
       glBindTextureUnit(unit, 0);
   }
 
@@ -222,12 +211,12 @@ class IllustrationBuffer final : public Technique {
   // Neighbour search, then the fields' initial and boundary conditions
   // (stylize_init) and the `iterations` steps of eq. 8-9 (diffuse).
   void stylize(const Frame& frame, GLintptr second_range) {
-    glBindTextureUnit(kSearchUnit, search_view_.id());
-    glBindTextureUnit(kShadeUnit, shade_view_.id());
+    glBindTextureUnit(IB_SEARCH_UNIT, search_view_.id());
+    glBindTextureUnit(IB_SHADE_UNIT, shade_view_.id());
     {
       auto stage = frame.clock.stage("neighbors");
       prepare_scene_data(frame.scene.scene());
-      glBindTextureUnit(kTrianglesUnit, triangles_view_ ? triangles_view_.id() : 0);
+      glBindTextureUnit(IB_TRIANGLES_UNIT, triangles_view_ ? triangles_view_.id() : 0);
       run_per_fragment(neighbors_.id());
     }
     {
@@ -244,7 +233,7 @@ class IllustrationBuffer final : public Technique {
       // With skip_converged the first step updates every fragment (so both
       // ranges hold every value after it) and queues the pixels of the second.
       if (i == 0 || !track) {
-        if (track) set(stylize_diffuse_.id(), "u_next_step", 2u);
+        if (track) set_uniform(stylize_diffuse_.id(), IB_NEXT_STEP_LOCATION, 2u);
         run_per_fragment(stylize_diffuse_.id());
       } else {
         run_queued(uint32_t(i + 1));
@@ -259,9 +248,9 @@ class IllustrationBuffer final : public Technique {
     fill_buffer_u32(pixel_updates_, 0);
     reset_worklist(worklists_[2]);
     reset_worklist(worklists_[0]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStamps, stamps_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPixelUpdates, pixel_updates_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWorkOut, worklists_[2].id());
+    bind_storage_buffers({{IB_STAMPS_BINDING, &stamps_},
+                          {IB_PIXEL_UPDATES_BINDING, &pixel_updates_},
+                          {IB_WORK_OUT_BINDING, &worklists_[2]}});
   }
 
   static void reset_worklist(const Buffer& list) {
@@ -274,13 +263,13 @@ class IllustrationBuffer final : public Technique {
   // step before) and emptying list (step + 2) % 3 for the step after.
   void run_queued(uint32_t step) const {
     const Buffer& in = worklists_[step % 3];
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWorkOut, worklists_[(step + 1) % 3].id());
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kWorkNext, worklists_[(step + 2) % 3].id(), 0, kWorklistHeaderBytes);
-    glBindTextureUnit(kWorkUnit, worklist_views_[step % 3].id());
-    glBindTextureUnit(kHeadUnit, head_view_.id());
-    glBindTextureUnit(kCountUnit, count_view_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_WORK_OUT_BINDING, worklists_[(step + 1) % 3].id());
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, IB_WORK_NEXT_BINDING, worklists_[(step + 2) % 3].id(), 0, kWorklistHeaderBytes);
+    glBindTextureUnit(IB_WORK_UNIT, worklist_views_[step % 3].id());
+    glBindTextureUnit(IB_HEAD_UNIT, head_view_.id());
+    glBindTextureUnit(IB_COUNT_UNIT, count_view_.id());
     glUseProgram(diffuse_listed_.id());
-    set(diffuse_listed_.id(), "u_next_step", step + 1);
+    set_uniform(diffuse_listed_.id(), IB_NEXT_STEP_LOCATION, step + 1);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.id());
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     glDispatchComputeIndirect(0);
@@ -310,16 +299,15 @@ class IllustrationBuffer final : public Technique {
       const ShaderDefines defines =
           dynamic ? ShaderDefines{{"IB_DYNAMIC", "1"}} : ShaderDefines{{"IB_ARRAY", std::to_string(size)}};
       it = sorts_.emplace(size, build_compute_program("algorithms/illustration_buffer/sort.comp", defines)).first;
-      set(it->second.id(), "u_width", width_);
-      set(it->second.id(), "u_height", height_);
-      set(it->second.id(), "u_max_per_pixel", s_.max_per_pixel);
+      set_size(it->second.id(), width_, height_);
+      if (dynamic) set_uniform(it->second.id(), IB_MAX_PER_PIXEL_LOCATION, s_.max_per_pixel);
     }
     return it->second.id();
   }
 
   void run_per_fragment(GLuint program) const {
     glUseProgram(program);
-    set(program, "u_fragments", uint32_t(stored_));
+    set_uniform(program, IB_FRAGMENTS_LOCATION, GLuint(stored_));
     const uint64_t groups = (stored_ + 63) / 64;
     if (groups > 0) {
       const uint64_t x = std::min<uint64_t>(groups, 65535);
@@ -330,9 +318,9 @@ class IllustrationBuffer final : public Technique {
 
   void bind_fields(GLintptr in, GLintptr out) const {
     const GLsizeiptr bytes = std::max<GLsizeiptr>(kFieldBytes * GLsizeiptr(stored_), kFieldBytes);
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kFieldsIn, data_.id(), in, bytes);
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kFieldsOut, data_.id(), out, bytes);
-    glBindTextureUnit(kFieldsUnit, in == 0 ? fields_view_[0].id() : fields_view_[1].id());
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, IB_FIELDS_IN_BINDING, data_.id(), in, bytes);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, IB_FIELDS_OUT_BINDING, data_.id(), out, bytes);
+    glBindTextureUnit(IB_FIELDS_UNIT, in == 0 ? fields_view_[0].id() : fields_view_[1].id());
   }
 
   // Start of the second field range in fragData: aligned for both the SSBO
@@ -356,7 +344,7 @@ class IllustrationBuffer final : public Technique {
     scene_hash_ = hash;
     if (s_.heuristic()) {
       const float radius = scene.bounds().radius;
-      set(neighbors_.id(), "u_inverse_radius", radius > 0.0f ? 1.0f / radius : 1.0f);
+      set_uniform(neighbors_.id(), IB_INVERSE_RADIUS_LOCATION, radius > 0.0f ? 1.0f / radius : 1.0f);
       return;
     }
     const TriangleTable table = build_triangle_table(scene, s_.weld_vertices);
@@ -383,18 +371,18 @@ class IllustrationBuffer final : public Technique {
     fields_view_[0] = make_buffer_texture(data_, GL_RGBA32F, 0, field_bytes);
     fields_view_[1] = make_buffer_texture(data_, GL_RGBA32F, second_field_range(), field_bytes);
     gl_check("creating the illustration buffer's read-only views");
-    set(fill_.id(), "u_capacity", uint32_t(capacity));
+    set_uniform(fill_.id(), IB_CAPACITY_LOCATION, GLuint(capacity));
   }
 
   void bind_storage() const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kHead, head_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCount, count_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNext, next_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kData, data_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kData2, data2_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kData3, data3_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCounters, counters_.id());
-    if (truth_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTruth, truth_.id());
+    bind_storage_buffers({{IB_HEAD_BINDING, &head_},
+                          {IB_COUNT_BINDING, &count_},
+                          {IB_NEXT_BINDING, &next_},
+                          {IB_DATA_BINDING, &data_},
+                          {IB_DATA2_BINDING, &data2_},
+                          {IB_DATA3_BINDING, &data3_},
+                          {IB_COUNTERS_BINDING, &counters_}});
+    if (truth_) bind_storage_buffers({{IB_TRUTH_BINDING, &truth_}});
   }
 
   void append_neighbor_statistics(TechniqueCounters& c) const;

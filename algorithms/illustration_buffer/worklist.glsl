@@ -14,16 +14,16 @@
 // step p was queued for, so a pixel enters a list once. (A list per step
 // keeps the dispatches small: on llvmpipe every workgroup has a fixed cost,
 // so one workgroup per tile that checks a mark was slower than the full pass.)
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 11) coherent buffer IbStamps { uint ib_stamp[]; };
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 12) coherent buffer IbWorkOut {
+layout(std430, binding = IB_STAMPS_BINDING) coherent buffer IbStamps { uint ib_stamp[]; };
+layout(std430, binding = IB_WORK_OUT_BINDING) coherent buffer IbWorkOut {
   uint ib_out_groups_x, ib_out_groups_y, ib_out_groups_z, ib_out_count;
   uint ib_work_out[];
 };
 // Fragment updates computed per pixel (one invocation per pixel and step: a
 // plain add), summed on the host for the counters.
-layout(std430, binding = OIT_FIRST_TECHNIQUE_BINDING + 13) buffer IbPixelUpdates { uint ib_pixel_updates[]; };
+layout(std430, binding = IB_PIXEL_UPDATES_BINDING) buffer IbPixelUpdates { uint ib_pixel_updates[]; };
 // The step the pixels queued now are for (2 = the second diffusion step).
-layout(location = OIT_FIRST_TECHNIQUE_UNIFORM + 16) uniform uint u_next_step;
+layout(location = IB_NEXT_STEP_LOCATION) uniform uint u_next_step;
 
 void ib_enqueue(int x, int y) {
   if (x < 0 || y < 0 || x >= u_width || y >= u_height) return;

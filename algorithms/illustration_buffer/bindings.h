@@ -1,0 +1,65 @@
+// illustration_buffer's binding points, units, uniform locations and sentinels, included
+// by its C++ and its GLSL alike so that no number is copied by hand between
+// the two (shaders/bindings.h: a technique's own start at OIT_FIRST_TECHNIQUE_*).
+#ifndef OIT_ILLUSTRATION_BUFFER_BINDINGS_H
+#define OIT_ILLUSTRATION_BUFFER_BINDINGS_H
+
+#include "shaders/bindings.h"
+
+// Sentinels the shaders write and the C++ clears with or reads back (accuracy.h).
+#define IB_NIL 0xffffffffu        // end of a list
+#define IB_NONE 0xffffffffu       // no geodesic neighbour in that direction
+#define IB_OFF_IMAGE 0xfffffffeu  // the adjacent pixel lies outside the image
+
+// Storage buffer binding points (ib_storage.glsl unless noted).
+#define IB_HEAD_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 0)
+#define IB_COUNT_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 1)
+#define IB_NEXT_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 2)
+#define IB_DATA_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 3)   // fragData: fill records, later both field ranges
+#define IB_DATA2_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 4)  // fragData2: sorted search records
+#define IB_COUNTERS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 5)
+#define IB_TRUTH_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 6)       // fill.frag, measure_accuracy
+#define IB_FIELDS_IN_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 7)   // fields.glsl
+#define IB_FIELDS_OUT_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 8)  // fields.glsl
+#define IB_DATA3_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 9)       // fragData3: sorted shade records and links
+#define IB_STAMPS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 10)     // worklist.glsl (skip_converged)
+#define IB_WORK_OUT_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 11)
+#define IB_PIXEL_UPDATES_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 12)
+#define IB_WORK_NEXT_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 13)  // stylize_diffuse.comp, IB_WORKLIST
+
+// Texture units of the read-only buffer-texture views. The per-fragment
+// passes' (views.glsl) and the listed diffusion steps' (stylize_diffuse.comp):
+#define IB_SEARCH_UNIT 0
+#define IB_TRIANGLES_UNIT 1
+#define IB_FIELDS_UNIT 2
+#define IB_SHADE_UNIT 3
+#define IB_WORK_UNIT 4
+#define IB_HEAD_UNIT 5
+#define IB_COUNT_UNIT 6
+// The sort's (sort.comp), a program of its own: fill records and next pointers.
+#define IB_FRAGMENT_UNIT 0
+#define IB_NEXT_UNIT 1
+
+// Uniform locations. u_width / u_height are declared by ib_storage.glsl for
+// every program, and each program uses a subset (the C++ asks uniform_active).
+#define IB_WIDTH_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 0)
+#define IB_HEIGHT_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 1)
+#define IB_CAPACITY_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 2)       // fill.frag
+#define IB_MAX_PER_PIXEL_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 3)  // fill.frag, sort.comp (IB_DYNAMIC)
+#define IB_FRAGMENTS_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 4)      // per_fragment.glsl
+#define IB_WEIGHT_Z_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 5)       // neighbors.comp, IB_HEURISTIC
+#define IB_WEIGHT_N_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 6)
+#define IB_INVERSE_RADIUS_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 7)
+#define IB_ADAPTIVE_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 8)  // stylize_init.comp
+#define IB_USE_BETA_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 9)
+#define IB_USE_GAMMA_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 10)
+#define IB_LAMBDA_ALPHA_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 11)  // stylize_diffuse.comp
+#define IB_LAMBDA_BETA_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 12)
+#define IB_LAMBDA_GAMMA_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 13)
+#define IB_PROFILE_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 14)  // compose.frag, IB_MODULATE
+#define IB_PROFILE_P_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 15)
+#define IB_NEXT_STEP_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 16)  // worklist.glsl
+#define IB_TOLERANCE_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 17)  // stylize_diffuse.comp, IB_TRACK / IB_WORKLIST
+#define IB_NORMAL_VARIATION_SCALE_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 18)  // fill.frag, IB_NORMAL_VARIATION
+
+#endif
