@@ -57,18 +57,9 @@ RawParams unstylized(RawParams params = {}) {
   return params;
 }
 
-RunResult run(RawParams params, const std::string& scene, RawParams scene_params, int size,
+RunResult run(const RawParams& params, const std::string& scene, const RawParams& scene_params, int size,
               const std::string& order = "original") {
-  RunSpec spec;
-  spec.technique = kId;
-  spec.params = std::move(params);
-  spec.scene = scene;
-  spec.scene_params = std::move(scene_params);
-  spec.submission_order = order;
-  spec.width = spec.height = size;
-  spec.warmup = 0;
-  spec.frames = 1;
-  RunResult r = test::harness().run(spec);
+  RunResult r = test::harness().run(test::one_frame(kId, params, scene, scene_params, size, order));
   EXPECT_EQ(r.status, RunStatus::ok) << r.message;
   return r;
 }

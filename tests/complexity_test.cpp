@@ -189,13 +189,7 @@ TEST(Cameras, MaxListPicksTheViewpointWithTheLongestList) {
 
 TEST(Cameras, HarnessRunsUseTheCameraForImageReferenceAndComplexity) {
   const RawParams spheres = {{"count", "3"}, {"slices", "12"}, {"stacks", "6"}};
-  RunSpec spec;
-  spec.technique = "reference";
-  spec.scene = "spheres";
-  spec.scene_params = spheres;
-  spec.width = spec.height = 32;
-  spec.warmup = 0;
-  spec.frames = 1;
+  RunSpec spec = test::one_frame("reference", {}, "spheres", spheres, 32);
   const RunResult plain = test::harness().run(spec);
   spec.camera = "random:4:2@1";
   const RunResult moved = test::harness().run(spec);

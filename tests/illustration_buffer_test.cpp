@@ -332,13 +332,7 @@ TEST(IllustrationBuffer, InvalidParametersAreErrorsNamingTheParameter) {
     } catch (const std::exception& e) {
       EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
     }
-    RunSpec spec;
-    spec.technique = "illustration_buffer";
-    spec.params = {{name, value}};
-    spec.width = spec.height = 8;
-    spec.warmup = 0;
-    spec.frames = 1;
-    const RunResult r = test::harness().run(spec);
+    const RunResult r = test::harness().run(test::one_frame("illustration_buffer", {{name, value}}, "quads", {}, 8));
     EXPECT_EQ(r.status, RunStatus::error) << name;
     EXPECT_NE(r.message.find(name), std::string::npos) << r.message;
   }
