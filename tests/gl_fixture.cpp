@@ -120,9 +120,10 @@ std::string write_mesh_gltf(const std::string& folder, const std::string& name, 
     low[i % 3] = std::min(low[i % 3], positions[i]);
     high[i % 3] = std::max(high[i % 3], positions[i]);
   }
-  gltf["accessors"] = {{{"bufferView", 0}, {"componentType", 5126}, {"count", positions.size() / 3}, {"type", "VEC3"},
-                        {"min", low}, {"max", high}},
-                       {{"bufferView", 1}, {"componentType", index_type}, {"count", indices.size()}, {"type", "SCALAR"}}};
+  gltf["accessors"] = {
+      {{"bufferView", 0}, {"componentType", 5126}, {"count", positions.size() / 3}, {"type", "VEC3"},
+       {"min", low}, {"max", high}},
+      {{"bufferView", 1}, {"componentType", index_type}, {"count", indices.size()}, {"type", "SCALAR"}}};
   gltf["bufferViews"] = {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", position_bytes}},
                          {{"buffer", 0}, {"byteOffset", position_bytes}, {"byteLength", bin.size() - position_bytes}}};
   gltf["buffers"] = {{{"uri", name + ".bin"}, {"byteLength", bin.size()}}};

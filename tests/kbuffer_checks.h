@@ -29,7 +29,8 @@ inline void expect_auto_k_on_thirty_two_layers(const RunResult& automatic, const
             double(worst_case.counters.bytes_allocated) - double(automatic.counters.bytes_allocated));
   EXPECT_EQ(work_saved(automatic, "slots_not_cleared"), double(32u * pixels));
   // Only the harness's own figure (the scene rectangle) remains: nothing of the technique adapts with a fixed k.
-  for (const auto& [name, value, combine] : worst_case.counters.work_saved) EXPECT_EQ(name, "pixels_outside_scene_rect");
+  for (const auto& [name, value, combine] : worst_case.counters.work_saved)
+    EXPECT_EQ(name, "pixels_outside_scene_rect");
 }
 
 }  // namespace oit::test
