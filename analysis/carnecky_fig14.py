@@ -61,11 +61,8 @@ def scaling_figure(runs, key, x_column, x_label, what, paper):
     figure_notes.paper_box(ax, paper)
     views = rows.groupby("point")["camera"].nunique().max()
     iterations = sorted({common.tokens(p).get("iterations", "?") for p in rows["params"]})
-    ax.set_title(common.title(rows, f"{what}\n{rows['scene'].iloc[0]}, mean over {views} camera view(s), "
-                                    f"iterations={','.join(iterations)}{figure_notes.noisy_note(rows)}"),
-                 fontsize=8)
-    fig.tight_layout()
-    return fig
+    return figure_notes.finish(fig, ax, rows, f"{what}\n{rows['scene'].iloc[0]}, mean over {views} camera view(s), "
+                                              f"iterations={','.join(iterations)}")
 
 
 def draw(runs, args=None):

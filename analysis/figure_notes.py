@@ -2,6 +2,8 @@
 numbers beside ours, and which runs were measured on a busy machine."""
 import pandas as pd
 
+from analysis import common
+
 # Columns that tell one run configuration from another (camera and size
 # included): the runs of one key are repeats of one measurement.
 RUN_KEY = ["technique", "params", "scene", "scene_params", "camera", "width", "height"]
@@ -36,3 +38,16 @@ def paper_box(ax, lines, loc="lower right"):
     x, y, ha, va = corners[loc]
     ax.text(x, y, "\n".join(lines), transform=ax.transAxes, ha=ha, va=va, fontsize=6,
             bbox=dict(boxstyle="round", facecolor="lightyellow", alpha=0.9))
+
+
+def finish(fig, ax, rows, what, noisy_rows=None, paper=None, paper_loc="lower right"):
+    """Titles `ax` (common.title of `rows`, `what` followed by the noisy_note
+    of `noisy_rows`, by default `rows`), puts the `paper` lines in a box at
+    `paper_loc` of `ax` when given, lays `fig` out and returns it: how every
+    paper figure ends."""
+    if paper is not None:
+        paper_box(ax, paper, loc=paper_loc)
+    noisy = noisy_note(rows if noisy_rows is None else noisy_rows)
+    ax.set_title(common.title(rows, what + noisy), fontsize=8)
+    fig.tight_layout()
+    return fig

@@ -82,10 +82,8 @@ def draw(runs, args=None):
     own.set_ylabel("time per frame of each stage (ms, log)")
     own.legend(fontsize=6, loc="center left", bbox_to_anchor=(1.01, 0.5))
     own.set_title("each stage on its own: bucketed solid, brute force dotted", fontsize=8)
-    ax.set_title(common.title(bucketed, "murray2016 Fig. 10: bucketed k-buffer vs number of objects"
-                                        + figure_notes.noisy_note(quads)), fontsize=8)
-    fig.tight_layout()
-    return fig
+    return figure_notes.finish(fig, ax, bucketed, "murray2016 Fig. 10: bucketed k-buffer vs number of objects",
+                               noisy_rows=quads)
 
 
 if __name__ == "__main__":

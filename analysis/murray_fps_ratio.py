@@ -41,10 +41,8 @@ def draw(runs, args=None):
     ax.set_ylabel("OIT fps / stylised fps")
     ax.set_ylim(bottom=0)
     ax.legend(fontsize=7, loc="upper left")
-    ax.set_title(common.title(rows, "murray2016 Figs. 1/8/9: cost of mean curvature transparency over OIT (k=16)"
-                                    + figure_notes.noisy_note(rows)), fontsize=8)
-    fig.tight_layout()
-    return fig
+    return figure_notes.finish(fig, ax, rows,
+                               "murray2016 Figs. 1/8/9: cost of mean curvature transparency over OIT (k=16)")
 
 
 if __name__ == "__main__":

@@ -47,11 +47,8 @@ def draw(runs, args=None):
         ax.legend(fontsize=7, loc="upper left")
     bottom.set_xticks(positions, order, rotation=30, ha="right")
     bottom.set_xlabel("model (sorted by the fastest variant's total)")
-    figure_notes.paper_box(top, PAPER)
-    top.set_title(common.title(rows, f"pastyrik2016 Fig. 7: sort variants of {technique}"
-                                     f"{figure_notes.noisy_note(rows)}"), fontsize=8)
-    fig.tight_layout()
-    return fig
+    return figure_notes.finish(fig, top, rows, f"pastyrik2016 Fig. 7: sort variants of {technique}",
+                               paper=PAPER)
 
 
 if __name__ == "__main__":

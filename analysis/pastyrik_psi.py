@@ -48,11 +48,8 @@ def draw(runs, args=None):
     bottom.set_xlabel("complexity coverage Psi (share of pixels with a list > 2/3 of the longest)")
     for ax in (top, bottom):
         ax.legend(fontsize=7, loc="best")
-    figure_notes.paper_box(top, PAPER, loc="lower left")
-    top.set_title(common.title(rows, "pastyrik2016 section 5: time per fragment against Psi"
-                                     + figure_notes.noisy_note(rows)), fontsize=8)
-    fig.tight_layout()
-    return fig
+    return figure_notes.finish(fig, top, rows, "pastyrik2016 section 5: time per fragment against Psi",
+                               paper=PAPER, paper_loc="lower left")
 
 
 if __name__ == "__main__":

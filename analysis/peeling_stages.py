@@ -59,11 +59,8 @@ def draw(runs, args=None):
     bottom.set_xlabel("model (camera position)")
     for ax in (top, bottom):
         ax.legend(fontsize=7, loc="upper left")
-    figure_notes.paper_box(top, PAPER, loc="upper right")
-    top.set_title(common.title(rows, "pastyrik2016 Figs. 11-14: depth peeling vs dual depth peeling"
-                                     + figure_notes.noisy_note(rows)), fontsize=8)
-    fig.tight_layout()
-    return fig
+    return figure_notes.finish(fig, top, rows, "pastyrik2016 Figs. 11-14: depth peeling vs dual depth peeling",
+                               paper=PAPER, paper_loc="upper right")
 
 
 if __name__ == "__main__":

@@ -175,7 +175,7 @@ Scene make_concentric_cylinders(const SurfaceParams& params) {
   return scene;
 }
 
-Scene make_overlapping_spheres(const OverlappingSpheresParams& params) {
+Scene make_overlapping_spheres(const SurfaceParams& params) {
   if (params.count < 1) throw std::invalid_argument("spheres: count must be >= 1");
   Scene scene;
   scene.name = "spheres";

@@ -22,24 +22,17 @@ void append_torus(Scene& scene, const glm::mat4& to_world, float major_radius, f
 void append_open_cylinder(Scene& scene, const glm::vec3& center, float radius, float height, int slices,
                           int stacks, const glm::vec4& color, uint32_t object_id, uint32_t surface_id);
 
-struct OverlappingSpheresParams {
-  int count = 3;
-  int slices = 32;
-  int stacks = 16;
-  float alpha = 0.4f;
-};
-
-// `count` closed spheres whose centres lie on a circle, overlapping their
-// neighbours: depth complexity varies from 0 to 2 * count across the image.
-// Lit, perspective camera framing the bounding sphere.
-Scene make_overlapping_spheres(const OverlappingSpheresParams& params);
-
 struct SurfaceParams {
   int count = 3;      // spheres / cylinders; ignored by the torus
   int slices = 64;
   int stacks = 32;
   float alpha = 0.4f;
 };
+
+// `count` closed spheres whose centres lie on a circle, overlapping their
+// neighbours: depth complexity varies from 0 to 2 * count across the image.
+// Lit, perspective camera framing the bounding sphere.
+Scene make_overlapping_spheres(const SurfaceParams& params);
 
 // One torus (R = 1, r = 0.35) tilted 60 degrees towards the viewer: up to 4
 // layers, positive and negative curvature. Lit, perspective.

@@ -70,15 +70,6 @@ Scene make_quads_scene(const ParamSet& p) {
   return make_stacked_quads(q);
 }
 
-Scene make_spheres_scene(const ParamSet& p) {
-  OverlappingSpheresParams s;
-  s.count = int(p.integer("count"));
-  s.slices = int(p.integer("slices"));
-  s.stacks = int(p.integer("stacks"));
-  s.alpha = float(p.real("alpha"));
-  return make_overlapping_spheres(s);
-}
-
 Scene make_random_quads_scene(const ParamSet& p) {
   RandomQuadsParams q;
   q.count = int(p.integer("count"));
@@ -138,7 +129,7 @@ const std::vector<SceneDescriptor>& scene_library() {
         ParamSpec::integer("slices", 32, 3, 4096, "segments around each sphere"),
         ParamSpec::integer("stacks", 16, 2, 4096, "segments from pole to pole"),
         ParamSpec::real("alpha", 0.4, 0.0, 1.0, "opacity of every sphere")},
-       make_spheres_scene},
+       [](const ParamSet& p) { return make_overlapping_spheres(surface(p)); }},
       {"torus", "one torus tilted towards the viewer: up to 4 layers, positive and negative curvature (lit)",
        surface_params(0), [](const ParamSet& p) { return make_torus(surface(p)); }},
       {"nested_spheres", "concentric spheres of radii 1 .. 1/count: 2*count layers at the centre (lit)",

@@ -59,22 +59,25 @@ Scene make_stacked_quads(const StackedQuadsParams& params) {
   return scene;
 }
 
-glm::vec4 stacked_quads_closed_form(const StackedQuadsParams& params, const glm::vec3& background) {
-  auto layers = stacked_quad_layers(params);
+glm::dvec4 composite_quad_layers(std::vector<QuadLayer> layers, const glm::vec3& background,
+                                 const std::function<double(double)>& opacity) {
   std::stable_sort(layers.begin(), layers.end(),
                    [](const QuadLayer& a, const QuadLayer& b) { return a.eye_distance < b.eye_distance; });
   glm::dvec3 accumulated(0.0);
   double transmittance = 1.0;
   for (const QuadLayer& layer : layers) {
-    const double alpha = layer.color.a;
+    const double alpha = opacity ? opacity(double(layer.color.a)) : double(layer.color.a);
     const double weight = transmittance * alpha;
     accumulated.r += weight * double(layer.color.r);
     accumulated.g += weight * double(layer.color.g);
     accumulated.b += weight * double(layer.color.b);
     transmittance *= 1.0 - alpha;
   }
-  const glm::dvec3 result = accumulated + transmittance * glm::dvec3(background);
-  return glm::vec4(glm::vec3(result), float(1.0 - transmittance));
+  return glm::dvec4(accumulated + transmittance * glm::dvec3(background), 1.0 - transmittance);
+}
+
+glm::vec4 stacked_quads_closed_form(const StackedQuadsParams& params, const glm::vec3& background) {
+  return glm::vec4(composite_quad_layers(stacked_quad_layers(params), background));
 }
 
 }  // namespace oit

@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "scenes/scene.h"
@@ -29,9 +30,14 @@ struct QuadLayer {
 std::vector<QuadLayer> stacked_quad_layers(const StackedQuadsParams& params);
 Scene make_stacked_quads(const StackedQuadsParams& params);
 
-// Exact composite of the stack over `background`, front to back in double
-// precision, in the same operation order as the reference technique
-// (acc += T*a*c; T *= 1-a; out = acc + T*bg, alpha = 1-T), rounded to float.
+// Exact composite of `layers` over `background`, sorted by eye distance
+// (ties keep their order) and composited front to back in double precision,
+// in the same operation order as the reference technique (acc += T*a*c;
+// T *= 1-a; out = acc + T*bg, alpha = 1-T). `opacity` maps each layer's alpha
+// to the one composited (a technique's own alpha model); default: as given.
+glm::dvec4 composite_quad_layers(std::vector<QuadLayer> layers, const glm::vec3& background,
+                                 const std::function<double(double)>& opacity = {});
+// composite_quad_layers() of the stack, rounded to float.
 glm::vec4 stacked_quads_closed_form(const StackedQuadsParams& params, const glm::vec3& background);
 
 }  // namespace oit

@@ -24,29 +24,22 @@ OITBENCH = os.path.abspath(sys.argv.pop(1) if len(sys.argv) > 1 else os.path.joi
 from analysis import common, presentation, reproduce, results_io  # noqa: E402
 import matplotlib.text  # noqa: E402
 
-COLUMNS = ("timestamp,git_revision,device,gl_version,platform,technique,params,scene,scene_params,camera,width,height,"
-           "clock,stage,median_ms,min_ms,p05_ms,p95_ms,mean_ms,frames,warmup,status,message,fragments,"
-           "max_depth_complexity,mean_depth_complexity,psi,bytes_allocated,fragments_stored,fragments_dropped,passes,"
-           "overflow_retries,error_max,error_rmse,psnr,ssim,pixels_over_1_255,other_cpu_load,noisy,clock_disagreement,extra")
 
 
-def row(technique, params, stage, median, status="ok", message=""):
-    fields = ["2026-11-22T09:00:00Z", "abc", "\"llvmpipe (LLVM 15.0.6, 256 bits)\"", "4.5", "egl-surfaceless",
-              technique, params, "quads", "layers=32", "default", "64", "64", "wall", stage, str(median), "", "", "",
-              "", "3", "2", status, message] + [""] * 18
-    return ",".join(fields)
+def runs_csv(tmp, rows):
+    """`rows` (analysis_fixtures.row) written as <tmp>/runs.csv; its path."""
+    path = os.path.join(tmp, "runs.csv")
+    fx.write_csv(path, rows)
+    return path
 
 
 class PlotStagesTest(unittest.TestCase):
     def test_medians_per_stage_and_skipped_rows_ignored(self):
         with tempfile.TemporaryDirectory() as tmp:
-            csv = os.path.join(tmp, "runs.csv")
-            with open(csv, "w") as f:
-                f.write(COLUMNS + "\n")
-                for stage, ms in [("clear", 1.0), ("fill", 5.0), ("compose", 2.0), ("total", 8.5)]:
-                    f.write(row("reference", "initial_nodes_per_pixel=8", stage, ms) + "\n")
-                f.write(row("unsorted", "", "fill", 0.5) + "\n" + row("unsorted", "", "total", 0.75) + "\n")
-                f.write(row("kbuffer", "k=8", "", "", status="skipped", message="\"needs a, b\"") + "\n")
+            csv = runs_csv(tmp, [fx.row("reference", stage, ms, params="initial_nodes_per_pixel=8")
+                                 for stage, ms in [("clear", 1.0), ("fill", 5.0), ("compose", 2.0), ("total", 8.5)]] +
+                           [fx.row("unsorted", "fill", 0.5), fx.row("unsorted", "total", 0.75),
+                            fx.row("kbuffer", "", "", params="k=8", status="skipped", message="needs a, b")])
             runs = plot_stages.load_runs(csv)
             self.assertEqual(sorted(runs["technique"].unique()), ["reference", "unsorted"])
             medians = runs.pivot_table(index="technique", columns="stage", values="median_ms")
@@ -60,13 +53,10 @@ class PlotStagesTest(unittest.TestCase):
 
     def test_stage_order_comes_from_the_csv_new_stage_names_included(self):
         with tempfile.TemporaryDirectory() as tmp:
-            csv = os.path.join(tmp, "runs.csv")
-            with open(csv, "w") as f:
-                f.write(COLUMNS + "\n")
-                for stage, ms in [("clear", 1.0), ("build_histogram", 3.0), ("fill", 5.0), ("total", 9.0)]:
-                    f.write(row("newcomer", "", stage, ms) + "\n")
-                for stage, ms in [("fill", 2.0), ("blend_tail", 1.0), ("total", 3.0)]:
-                    f.write(row("unsorted", "", stage, ms) + "\n")
+            csv = runs_csv(tmp, [fx.row("newcomer", stage, ms) for stage, ms in
+                                 [("clear", 1.0), ("build_histogram", 3.0), ("fill", 5.0), ("total", 9.0)]] +
+                           [fx.row("unsorted", stage, ms) for stage, ms in
+                            [("fill", 2.0), ("blend_tail", 1.0), ("total", 3.0)]])
             runs = plot_stages.load_runs(csv)
             self.assertEqual(common.stage_order(runs), ["clear", "build_histogram", "fill", "blend_tail"])
             table = common.stage_table(runs, "technique")
@@ -74,11 +64,10 @@ class PlotStagesTest(unittest.TestCase):
 
     def test_stage_order_follows_every_runs_pipeline_not_only_the_first_rows(self):
         with tempfile.TemporaryDirectory() as tmp:
-            csv = os.path.join(tmp, "runs.csv")
-            fx.write_csv(csv, [fx.row("unsorted", "fill", 1.0)] +
-                         [fx.row("linearized_fragment_buffer", s, 1.0) for s in ("count", "fill", "compose")] +
-                         [fx.row("linked_list", s, 1.0) for s in ("clear", "fill", "compose")] +
-                         [fx.row("disagrees", s, 1.0) for s in ("compose", "fill")])
+            csv = runs_csv(tmp, [fx.row("unsorted", "fill", 1.0)] +
+                           [fx.row("linearized_fragment_buffer", s, 1.0) for s in ("count", "fill", "compose")] +
+                           [fx.row("linked_list", s, 1.0) for s in ("clear", "fill", "compose")] +
+                           [fx.row("disagrees", s, 1.0) for s in ("compose", "fill")])
             runs = plot_stages.load_runs(csv)
             self.assertEqual(common.stage_order(runs), ["count", "clear", "fill", "compose"])
             self.assertEqual(common.stage_order(runs[runs["technique"] != "disagrees"]),
@@ -86,9 +75,7 @@ class PlotStagesTest(unittest.TestCase):
 
     def test_no_matching_rows_is_a_clear_error(self):
         with tempfile.TemporaryDirectory() as tmp:
-            csv = os.path.join(tmp, "runs.csv")
-            with open(csv, "w") as f:
-                f.write(COLUMNS + "\n" + row("unsorted", "", "total", 0.75) + "\n")
+            csv = runs_csv(tmp, [fx.row("unsorted", "total", 0.75)])
             result = subprocess.run([sys.executable, os.path.join(HERE, "..", "analysis", "plot_stages.py"), csv,
                                      "--scene", "spheres"], capture_output=True, text=True)
             self.assertNotEqual(result.returncode, 0)
@@ -105,14 +92,10 @@ class ParetoTest(unittest.TestCase):
 
     def test_plots_one_figure_per_scene_from_bench_rows(self):
         with tempfile.TemporaryDirectory() as tmp:
-            csv = os.path.join(tmp, "runs.csv")
-            with open(csv, "w") as f:
-                f.write(COLUMNS + "\n")
-                for technique, params, ms, err in [("kbuffer", "k=4", 2.0, 0.1), ("kbuffer", "k=32", 8.0, 0.0),
-                                                   ("unsorted", "", 1.0, 0.3)]:
-                    fields = row(technique, params, "total", ms).split(",")
-                    fields[COLUMNS.split(",").index("error_rmse") + 1] = str(err)  # the device field holds one comma
-                    f.write(",".join(fields) + "\n")
+            csv = runs_csv(tmp, [fx.row(technique, "total", ms, params=params, error_rmse=err)
+                                 for technique, params, ms, err in [("kbuffer", "k=4", 2.0, 0.1),
+                                                                    ("kbuffer", "k=32", 8.0, 0.0),
+                                                                    ("unsorted", "", 1.0, 0.3)]])
             totals = pareto.load_totals(csv, "error_rmse")
             self.assertEqual(len(totals), 3)
             result = subprocess.run([sys.executable, os.path.join(HERE, "..", "analysis", "pareto.py"), csv],
@@ -164,9 +147,7 @@ def stage_rows(technique, params, scene_params, clock="wall", scale=1.0, camera=
 class StageFacetsTest(unittest.TestCase):
     def draw(self, rows, defaults=DEFAULTS):
         with tempfile.TemporaryDirectory() as tmp:
-            path = os.path.join(tmp, "runs.csv")
-            fx.write_csv(path, rows)
-            return plot_stages.draw(plot_stages.load_runs(path), defaults)
+            return plot_stages.draw(plot_stages.load_runs(runs_csv(tmp, rows)), defaults)
 
     def test_scenes_and_clocks_never_share_a_bar(self):
         fig = self.draw(stage_rows("kbuffer", "k=16 tail=drop", "layers=32") +
@@ -213,9 +194,7 @@ class StageFacetsTest(unittest.TestCase):
 class ParetoNamesTest(unittest.TestCase):
     def totals(self, rows):
         with tempfile.TemporaryDirectory() as tmp:
-            path = os.path.join(tmp, "runs.csv")
-            fx.write_csv(path, rows)
-            return pareto.load_totals(path, "error_rmse")
+            return pareto.load_totals(runs_csv(tmp, rows), "error_rmse")
 
     def test_names_tell_every_configuration_apart(self):
         rows = [fx.row("unsorted", "total", 1.0, scene_params=f"layers={n} seed=1", clock=clock)
@@ -317,9 +296,8 @@ class ResultsIoTest(unittest.TestCase):
 
     def test_readers_keep_only_whole_runs(self):
         with tempfile.TemporaryDirectory() as tmp:
-            csv_path = os.path.join(tmp, "runs.csv")
-            fx.write_csv(csv_path, [fx.row("unsorted", s, 1.0) for s in ("fill", "compose", "total")] +
-                         [fx.row("kbuffer", s, 2.0, params="k=8") for s in ("fill", "compose", "total")])
+            csv_path = runs_csv(tmp, [fx.row("unsorted", s, 1.0) for s in ("fill", "compose", "total")] +
+                                [fx.row("kbuffer", s, 2.0, params="k=8") for s in ("fill", "compose", "total")])
             with open(csv_path) as f:
                 lines = f.readlines()
             with open(csv_path, "w") as f:  # the kbuffer run cut after 2 of its 3 rows, the second mid-line

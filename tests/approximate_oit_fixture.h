@@ -1,7 +1,7 @@
 #pragma once
 // What the tests of the approximate techniques (moment_oit,
-// hybrid_transparency, stochastic_transparency) share: one untimed frame of
-// a configuration, and checks on its image.
+// hybrid_transparency, stochastic_transparency, weighted_blended, ...)
+// share: one untimed frame of a configuration, and checks on its image.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -37,18 +37,27 @@ inline std::vector<double> rmse_per_value(const std::string& technique, RawParam
   return errors;
 }
 
+// One quad layer (no fragment in front of another) with each of `values`
+// of `knob`: within `float_bound` of the reference with float storage and
+// within `half_bound` with precision=half; the bounds are the storage's
+// rounding, which the tests derive.
+inline void expect_single_layer_within_storage_precision(const OneFrameOf& spec_of, const std::string& knob,
+                                                          const std::vector<std::string>& values, double float_bound,
+                                                          double half_bound) {
+  for (const std::string& value : values) {
+    const RunResult full = run_ok(spec_of({{knob, value}}, "quads", {{"layers", "1"}}));
+    ASSERT_TRUE(full.error.has_value());
+    EXPECT_LT(full.error->max_abs, float_bound) << value;
+    const RunResult half = run_ok(spec_of({{knob, value}, {"precision", "half"}}, "quads", {{"layers", "1"}}));
+    ASSERT_TRUE(half.error.has_value());
+    EXPECT_LT(half.error->max_abs, half_bound) << value;
+  }
+}
+
 // Each value strictly below the one before it.
 inline void expect_falling(const std::vector<double>& errors, const std::string& what) {
   for (size_t i = 1; i < errors.size(); ++i)
     EXPECT_LT(errors[i], errors[i - 1]) << what << ": step " << i << " of " << ::testing::PrintToString(errors);
-}
-
-// A technique-specific counter from TechniqueCounters::extra (NaN and a
-// failure when absent).
-inline double extra_counter(const RunResult& r, const std::string& name) {
-  if (auto value = find_figure(r.counters.extra, name)) return *value;
-  ADD_FAILURE() << r.spec.technique << " reports no counter '" << name << "'";
-  return std::nan("");
 }
 
 // The techniques with ordered per-pixel access (multi_layer_alpha_blending,

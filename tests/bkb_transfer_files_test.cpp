@@ -86,15 +86,7 @@ std::string error_of(Load load) {
 }
 
 RunResult run(const RawParams& params, RunStatus expected = RunStatus::ok) {
-  RunSpec spec;
-  spec.technique = "bucketed_kbuffer";
-  spec.params = params;
-  spec.scene = "quads";
-  spec.scene_params = {{"layers", "8"}};
-  spec.width = spec.height = 48;
-  spec.warmup = 0;
-  spec.frames = 1;
-  RunResult r = test::harness().run(spec);
+  RunResult r = test::harness().run(test::one_frame("bucketed_kbuffer", params, "quads", {{"layers", "8"}}, 48));
   EXPECT_EQ(r.status, expected) << r.message;
   return r;
 }

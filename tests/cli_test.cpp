@@ -32,6 +32,14 @@ const std::string kOut = std::string(OIT_BINARY_DIR) + "/test_output/cli";
 
 Outcome run_oitbench(const std::string& arguments) { return test::run_oitbench(kOut, arguments); }
 
+// <kOut>/<name>, removed: the output file of a test that must not find an
+// earlier run's.
+std::string fresh_output(const std::string& name) {
+  const std::string path = kOut + "/" + name;
+  std::filesystem::remove(path);
+  return path;
+}
+
 // The output with the console's wrapped lines (continued after "\n    ") joined again.
 std::string unwrapped(std::string text) {
   for (size_t at = text.find("\n    "); at != std::string::npos; at = text.find("\n    ", at)) text.replace(at, 5, " ");
@@ -60,8 +68,7 @@ TEST(Cli, ReadmeTechniqueTableIsTheGeneratedOne) {
 }
 
 TEST(Cli, RenderOfTheReferenceEqualsTheClosedFormExactly) {
-  const std::string out = kOut + "/reference_quads.pfm";
-  std::filesystem::remove(out);
+  const std::string out = fresh_output("reference_quads.pfm");
   const Outcome o = run_oitbench("render --technique reference --scene quads --size 64x64 --out " + out);
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const Image image = read_pfm(out);
@@ -76,8 +83,7 @@ TEST(Cli, RenderOfTheReferenceEqualsTheClosedFormExactly) {
 }
 
 TEST(Cli, BenchWithBothClocksWritesEveryStageOfEveryTechniqueTwice) {
-  const std::string csv = kOut + "/both_clocks.csv";
-  std::filesystem::remove(csv);
+  const std::string csv = fresh_output("both_clocks.csv");
   const Outcome o = run_oitbench(
       "bench --technique unsorted --technique reference --scene quads --scene-set layers=4 --size 32x32 "
       "--warmup 1 --frames 2 --clock both --csv " + csv);
@@ -106,8 +112,7 @@ TEST(Cli, BenchWithBothClocksWritesEveryStageOfEveryTechniqueTwice) {
 
 TEST(Cli, StatsPrintsTheQuadsComplexityAndWritesTheHeatmap) {
   // 8 full-screen layers: every pixel's list has 8 fragments, so Psi = 1.
-  const std::string heatmap = kOut + "/stats_heatmap.png";
-  std::filesystem::remove(heatmap);
+  const std::string heatmap = fresh_output("stats_heatmap.png");
   const Outcome o = run_oitbench("stats --scene quads --scene-set layers=8 --size 16x8 --heatmap " + heatmap);
   ASSERT_EQ(o.exit_code, 0) << o.output;
   EXPECT_NE(o.output.find("fragments         1,024"), std::string::npos) << o.output;
@@ -117,8 +122,7 @@ TEST(Cli, StatsPrintsTheQuadsComplexityAndWritesTheHeatmap) {
 }
 
 TEST(Cli, BenchSummaryNamesTheSweptSceneParameters) {
-  const std::string csv = kOut + "/swept_scene.csv";
-  std::filesystem::remove(csv);
+  const std::string csv = fresh_output("swept_scene.csv");
   const Outcome o = run_oitbench("bench --technique unsorted --scene quads --scene-set layers=2,3 --size 8x8 "
                                  "--frames 1 --warmup 0 --csv " + csv);
   ASSERT_EQ(o.exit_code, 0) << o.output;
@@ -167,8 +171,7 @@ TEST(Cli, DeviceEglIndexPicksThatDeviceAndNamesTheDevicesWhenOutOfRange) {
 }
 
 TEST(Cli, BenchKeepsGoingPastAFailingRunAndRecordsIt) {
-  const std::string csv = kOut + "/error_row.csv";
-  std::filesystem::remove(csv);
+  const std::string csv = fresh_output("error_row.csv");
   // The second scene file does not exist: an error row, and the first run still lands.
   const Outcome o = run_oitbench("bench --technique unsorted --scene quads --scene missing_scene.gltf --size 8x8 "
                                  "--warmup 0 --frames 1 --csv " + csv);
@@ -184,8 +187,7 @@ TEST(Cli, BenchKeepsGoingPastAFailingRunAndRecordsIt) {
 // A budget too small for any reference tile plan: the run keeps its timings,
 // its error columns stay empty, and the console says why instead of crashing.
 TEST(Cli, BenchRunWithoutAReferenceKeepsItsTimingsAndSaysWhy) {
-  const std::string csv = kOut + "/no_reference.csv";
-  std::filesystem::remove(csv);
+  const std::string csv = fresh_output("no_reference.csv");
   const Outcome o = run_oitbench("bench --technique unsorted --scene quads --size 16x16 --warmup 0 --frames 1 "
                                  "--background 0.5,0.25,0.125 --memory-budget 64 --csv " + csv);
   EXPECT_EQ(o.exit_code, 0) << o.output;
@@ -217,8 +219,7 @@ std::vector<std::vector<std::string>> rows_of(const std::string& csv, const std:
 }
 
 TEST(Cli, BenchResumeRunsNothingTwiceAndMatchesCanonicalParameters) {
-  const std::string csv = kOut + "/resume.csv";
-  std::filesystem::remove(csv);
+  const std::string csv = fresh_output("resume.csv");
   const std::string sweep = "bench --technique unsorted --technique kbuffer --scene quads --scene-set layers=4 "
                             "--size 16x16 --warmup 0 --frames 1 --resume --csv " + csv;
   const Outcome first = run_oitbench(sweep);
@@ -245,8 +246,7 @@ TEST(Cli, BenchResumeRunsNothingTwiceAndMatchesCanonicalParameters) {
 }
 
 TEST(Cli, BenchResumeRunsErrorRowsAgainAndKeepsSkippedOnes) {
-  const std::string csv = kOut + "/resume_error.csv";
-  std::filesystem::remove(csv);
+  const std::string csv = fresh_output("resume_error.csv");
   {
     // Written as an earlier invocation would have: unsorted failed, kbuffer was skipped
     // (quoted messages with commas, quotes and a newline).
@@ -305,8 +305,7 @@ std::string summary_row(const std::string& output, const std::string& technique)
 }
 
 TEST(Cli, BenchConsoleFitsIn120ColumnsWithSpreadRatioAndNonDefaultParameters) {
-  const std::string csv = kOut + "/summary.csv";
-  std::filesystem::remove(csv);
+  const std::string csv = fresh_output("summary.csv");
   const Outcome o = run_oitbench("bench --technique kbuffer --technique unsorted --set kbuffer.k=4 "
                                  "--set kbuffer.tail=drop --scene quads --scene-set layers=4 --size 16x16 "
                                  "--warmup 0 --frames 3 --csv " + csv);
@@ -344,8 +343,7 @@ TEST(Cli, BenchConsoleFitsIn120ColumnsWithSpreadRatioAndNonDefaultParameters) {
 }
 
 TEST(Cli, BenchWithoutTheBaselineDividesByTheFastestAndSaysSo) {
-  const std::string csv = kOut + "/no_baseline.csv";
-  std::filesystem::remove(csv);
+  const std::string csv = fresh_output("no_baseline.csv");
   const Outcome o = run_oitbench("bench --technique kbuffer --set k=2,4 --scene quads --scene-set layers=4 "
                                  "--size 16x16 --warmup 0 --frames 2 --csv " + csv);
   ASSERT_EQ(o.exit_code, 0) << o.output;
@@ -361,8 +359,7 @@ TEST(Cli, BenchWithoutTheBaselineDividesByTheFastestAndSaysSo) {
 // Every combination is checked before the first run: a bad value in the
 // sweep's last combination fails at once, names the value, writes nothing.
 TEST(Cli, BenchValidatesEveryCombinationBeforeTheFirstRun) {
-  const std::string csv = kOut + "/never_written.csv";
-  std::filesystem::remove(csv);
+  const std::string csv = fresh_output("never_written.csv");
   const Outcome k = run_oitbench("bench --technique unsorted --technique kbuffer --set k=4,abc --scene quads "
                                  "--size 8x8 --csv " + csv);
   EXPECT_EQ(k.exit_code, 1) << k.output;
@@ -414,9 +411,7 @@ TEST(Cli, HelpShowsEveryDefault) {
 // The wide export: one row per run, every parameter, figure and stage time
 // in a column of its own, equal to the long CSV's cells.
 TEST(Cli, ExportWideHasAColumnPerParameterFigureAndStage) {
-  const std::string csv = kOut + "/long.csv", wide = kOut + "/wide.csv";
-  std::filesystem::remove(csv);
-  std::filesystem::remove(wide);
+  const std::string csv = fresh_output("long.csv"), wide = fresh_output("wide.csv");
   const Outcome bench = run_oitbench("bench --technique unsorted --technique kbuffer --set k=2,4 --scene quads "
                                      "--scene-set layers=4 --size 16x16 --warmup 0 --frames 2 --clock both --csv " + csv);
   ASSERT_EQ(bench.exit_code, 0) << bench.output;
@@ -456,8 +451,7 @@ TEST(Cli, ExportWideHasAColumnPerParameterFigureAndStage) {
 }
 
 TEST(Cli, ExportOfAMissingCsvIsAnErrorNamingIt) {
-  const std::string missing = kOut + "/no_such_results.csv", out = kOut + "/never_wide.csv";
-  std::filesystem::remove(out);
+  const std::string missing = kOut + "/no_such_results.csv", out = fresh_output("never_wide.csv");
   const Outcome o = run_oitbench("export --wide " + missing + " -o " + out);
   EXPECT_EQ(o.exit_code, 1) << o.output;
   EXPECT_NE(o.output.find("oitbench: error: results CSV '" + missing + "' does not exist or is empty"),
@@ -486,8 +480,8 @@ TEST(Cli, ParetoSweepsTheDeclaredKnobsUnlessTheUserSetsThem) {
 // --json: this invocation's runs with the CSV's figures and every frame's
 // time; --samples: the same frames as CSV rows.
 TEST(Cli, BenchJsonAndSamplesHoldEveryFrameOfTheCsvRuns) {
-  const std::string csv = kOut + "/json_runs.csv", json_path = kOut + "/runs.json", samples = kOut + "/samples.csv";
-  for (const auto& path : {csv, json_path, samples}) std::filesystem::remove(path);
+  const std::string csv = fresh_output("json_runs.csv"), json_path = fresh_output("runs.json"),
+                    samples = fresh_output("samples.csv");
   const Outcome o = run_oitbench("bench --technique unsorted --technique kbuffer --set kbuffer.k=4 --scene quads "
                                  "--scene-set layers=4 --size 16x16 --warmup 0 --frames 3 --csv " + csv +
                                  " --json " + json_path + " --samples " + samples);
@@ -555,8 +549,7 @@ TEST(Cli, GoogleBenchmarkBinaryTakesBenchSweepOptionsAndItsOwnIterationFlags) {
   const std::string gbench = std::string(OIT_BINARY_DIR) + "/harness/oitbench_gbench --benchmark_format=json "
                              "--technique unsorted --scene-set layers=4 --size 16x16 --warmup 0 ";
   auto report_of = [&](const std::string& arguments) {
-    const std::string path = kOut + "/gbench_flags.json";
-    std::filesystem::remove(path);
+    const std::string path = fresh_output("gbench_flags.json");
     EXPECT_EQ(std::system((gbench + arguments + " > " + path + " 2>/dev/null").c_str()), 0) << arguments;
     std::ifstream in(path);
     return nlohmann::json::parse(in);

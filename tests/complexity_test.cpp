@@ -5,9 +5,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <stdexcept>
 
@@ -20,8 +17,6 @@
 
 namespace oit {
 namespace {
-
-const std::string kDir = std::string(OIT_BINARY_DIR) + "/test_output/complexity";
 
 DepthComplexity from_counts(std::vector<uint32_t> counts, int width) {
   DepthComplexity c;
@@ -61,7 +56,6 @@ TEST(Complexity, HistogramAndPsiOfHandMadeCounts) {
 // start at x = -1 and end at -0.5, 0 and 0.5, so the image's four column
 // bands hold 3, 2, 1 and 0 layers.
 std::string write_banded_gltf() {
-  std::filesystem::create_directories(kDir);
   std::vector<float> positions;
   const float ends[3] = {-0.5f, 0.0f, 0.5f};
   for (int q = 0; q < 3; ++q) {
@@ -69,13 +63,9 @@ std::string write_banded_gltf() {
     const float corners[4][2] = {{-1.5f, -1.5f}, {ends[q], -1.5f}, {ends[q], 1.5f}, {-1.5f, 1.5f}};
     for (const auto& c : corners) positions.insert(positions.end(), {c[0], c[1], z});
   }
-  std::vector<uint16_t> indices;
-  for (uint16_t q = 0; q < 3; ++q)
-    for (uint16_t i : {0, 1, 2, 0, 2, 3}) indices.push_back(uint16_t(4 * q + i));
-  std::string bin(positions.size() * 4 + indices.size() * 2, '\0');
-  std::memcpy(bin.data(), positions.data(), positions.size() * 4);
-  std::memcpy(bin.data() + positions.size() * 4, indices.data(), indices.size() * 2);
-  std::ofstream(kDir + "/bands.bin", std::ios::binary) << bin;
+  std::vector<uint32_t> indices;
+  for (uint32_t q = 0; q < 3; ++q)
+    for (uint32_t i : {0, 1, 2, 0, 2, 3}) indices.push_back(4 * q + i);
   using nlohmann::json;
   const json gltf = {
       {"asset", {{"version", "2.0"}}},
@@ -87,16 +77,8 @@ std::string write_banded_gltf() {
       {"materials", {{{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.4, 0.2, 0.5}}}},
                       {"alphaMode", "BLEND"},
                       {"extensions", {{"KHR_materials_unlit", json::object()}}}}}},
-      {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 12}, {"type", "VEC3"},
-                      {"min", {-1.5, -1.5, -3.0}}, {"max", {0.5, 1.5, -1.0}}},
-                     {{"bufferView", 1}, {"componentType", 5123}, {"count", 18}, {"type", "SCALAR"}}}},
-      {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 144}},
-                       {{"buffer", 0}, {"byteOffset", 144}, {"byteLength", 36}}}},
-      {"buffers", {{{"uri", "bands.bin"}, {"byteLength", bin.size()}}}},
   };
-  const std::string path = kDir + "/bands.gltf";
-  std::ofstream(path) << gltf.dump(2);
-  return path;
+  return test::write_mesh_gltf("complexity", "bands", gltf, positions, indices, 5123);  // unsigned short
 }
 
 TEST(Complexity, KnownLayersGivePsiHistogramAndHeatmap) {
@@ -207,13 +189,7 @@ TEST(Cameras, MaxListPicksTheViewpointWithTheLongestList) {
 
 TEST(Cameras, HarnessRunsUseTheCameraForImageReferenceAndComplexity) {
   const RawParams spheres = {{"count", "3"}, {"slices", "12"}, {"stacks", "6"}};
-  RunSpec spec;
-  spec.technique = "reference";
-  spec.scene = "spheres";
-  spec.scene_params = spheres;
-  spec.width = spec.height = 32;
-  spec.warmup = 0;
-  spec.frames = 1;
+  RunSpec spec = test::one_frame("reference", {}, "spheres", spheres, 32);
   const RunResult plain = test::harness().run(spec);
   spec.camera = "random:4:2@1";
   const RunResult moved = test::harness().run(spec);

@@ -19,21 +19,11 @@
 #include "tests/gl_fixture.h"
 #include "tests/peeling_checks.h"
 
-namespace oit {
+namespace oit::test {
 namespace {
 
-constexpr int kSize = 32;
-constexpr uint64_t kPixels = uint64_t(kSize) * kSize;
-const RawParams kQuads32 = {{"layers", "32"}};
-
 // What each tie break costs: geometry passes beyond the depth complexity,
-// layers a pass cap of P leaves un-peeled beyond P, memory.
-struct TieBreak {
-  std::string name;
-  uint64_t extra_passes;
-  uint64_t capped_layers_missing;
-  uint64_t bytes;
-};
+// passes a cap spends without peeling a layer (a cap of P peels P - it), memory.
 const TieBreak kTieBreaks[] = {
     // The nearest-depth pass + one per layer + the pass that composites the
     // last; accumulation RGBA32F + 2 RGBA32UI states + RG32F reductions.
@@ -43,37 +33,21 @@ const TieBreak kTieBreaks[] = {
     {"submission", 1, 0, kPixels * (16 + 4 + 2 * 8 + 16) + 4},
 };
 
-using test::passes_avoided;
-
 // One geometry pass per layer.
 uint64_t passes_for_depth(uint64_t depth) { return depth; }
 
 const test::OneFrameOf spec_of{"depth_peeling"};
-using test::run_ok;
 
 TEST(DepthPeeling, ExactOnThirtyTwoQuadLayers) {
   for (const TieBreak& tie : kTieBreaks)
     test::expect_exact_on_thirty_two_quads("depth_peeling", tie.name, 32u + tie.extra_passes, tie.bytes, kSize);
 }
 
-TEST(DepthPeeling, ExactOnLitSpheresInAnySubmissionOrder) {
-  for (const TieBreak& tie : kTieBreaks)
-    test::expect_exact_on_lit_spheres("depth_peeling", tie.name, tie.extra_passes, passes_for_depth);
-}
-
-TEST(DepthPeeling, EarlyExitStopsRightAfterTheLastLayer) {
-  for (const TieBreak& tie : kTieBreaks) {
-    SCOPED_TRACE(tie.name);
-    // d + extra passes with early exit; without it 13; a cap of 5 < d + extra.
-    test::expect_early_exit_and_caps("depth_peeling", tie.name, tie.extra_passes, passes_for_depth, 13, 5, kSize);
-  }
-}
-
-TEST(DepthPeeling, PassesAvoidedOnThirtyTwoLayersAndUnevenDepth) {
-  for (const TieBreak& tie : kTieBreaks) {
-    SCOPED_TRACE(tie.name);
-    test::expect_passes_avoided_on_quads_and_spheres("depth_peeling", tie.name, tie.extra_passes, passes_for_depth);
-  }
+// Exact on the lit spheres in any submission order; early exit stops right
+// after the last layer (d + extra passes), without it 13 run, a cap of 5 <
+// d + extra holds; passes avoided on 32 layers and on uneven depth.
+TEST(DepthPeeling, ExactOnLitSpheresAndEarlyExitStopsRightAfterTheLastLayer) {
+  test::expect_every_tie_break_exact_and_stopping_early("depth_peeling", kTieBreaks, passes_for_depth, 13, 5, kSize);
 }
 
 TEST(DepthPeeling, PassCapLeavesAnErrorThatShrinksWithMorePasses) {
@@ -81,13 +55,13 @@ TEST(DepthPeeling, PassCapLeavesAnErrorThatShrinksWithMorePasses) {
     SCOPED_TRACE(tie.name);
     // The nearest layers are peeled; the rest is counted as dropped.
     test::expect_error_shrinking_with_the_pass_cap(
-        "depth_peeling", tie.name, [&](uint64_t cap) { return cap - tie.capped_layers_missing; }, kSize);
+        "depth_peeling", tie.name, [&](uint64_t cap) { return cap - tie.passes_not_compositing; }, kSize);
     // The same cap without early exit gives the same image.
     const RunResult capped = run_ok(spec_of({{"tie_break", tie.name}, {"max_passes", "8"}}, "quads", kQuads32, kSize));
     const RunResult no_exit = run_ok(spec_of({{"tie_break", tie.name}, {"max_passes", "8"}, {"early_exit", "false"}},
                                              "quads", kQuads32, kSize));
     EXPECT_EQ(capped.image.rgba, no_exit.image.rgba);
-    EXPECT_EQ(no_exit.counters.fragments_dropped, (24u + tie.capped_layers_missing) * kPixels);
+    EXPECT_EQ(no_exit.counters.fragments_dropped, (24u + tie.passes_not_compositing) * kPixels);
   }
 }
 
@@ -150,4 +124,4 @@ TEST(DepthPeeling, RejectsOutOfRangeParametersNamingThem) {
 }
 
 }  // namespace
-}  // namespace oit
+}  // namespace oit::test

@@ -18,21 +18,11 @@
 #include "tests/gl_fixture.h"
 #include "tests/peeling_checks.h"
 
-namespace oit {
+namespace oit::test {
 namespace {
-
-constexpr int kSize = 32;
-constexpr uint64_t kPixels = uint64_t(kSize) * kSize;
-const RawParams kQuads32 = {{"layers", "32"}};
 
 // What each tie break costs: geometry passes beyond ceil(d / 2), passes a
 // cap spends without compositing (layers composited = 2 * (cap - it)), memory.
-struct TieBreak {
-  std::string name;
-  uint64_t extra_passes;
-  uint64_t passes_not_compositing;
-  uint64_t bytes;
-};
 const TieBreak kTieBreaks[] = {
     // The min-max pass + the pass that composites the last selection; front
     // and back RGBA32F + 2 RGBA32UI keys + 2 RG32F next depths + RGBA32F reductions.
@@ -41,13 +31,10 @@ const TieBreak kTieBreaks[] = {
     {"submission", 1, 1, kPixels * (2 * 8 + 2 * 16) + 4},
 };
 
-using test::passes_avoided;
-
 // Two layers per geometry pass, front and back.
 uint64_t passes_for_depth(uint64_t depth) { return (depth + 1) / 2; }
 
 const test::OneFrameOf spec_of{"dual_depth_peeling"};
-using test::run_ok;
 
 TEST(DualDepthPeeling, ExactOnThirtyTwoQuadLayersInHalfThePasses) {
   for (const TieBreak& tie : kTieBreaks)  // 16 passes of 2 layers
@@ -67,25 +54,12 @@ TEST(DualDepthPeeling, OddLayerCountCompositesTheMiddleLayerOnce) {
   }
 }
 
-TEST(DualDepthPeeling, ExactOnLitSpheresInAnySubmissionOrder) {
-  for (const TieBreak& tie : kTieBreaks)
-    test::expect_exact_on_lit_spheres("dual_depth_peeling", tie.name, tie.extra_passes, passes_for_depth);
-}
-
-TEST(DualDepthPeeling, WithoutEarlyExitRunsExactlyMaxPasses) {
-  for (const TieBreak& tie : kTieBreaks) {
-    SCOPED_TRACE(tie.name);
-    // ceil(d/2) + extra passes with early exit; without it 9; a cap of 3 < ceil(d/2) + extra.
-    test::expect_early_exit_and_caps("dual_depth_peeling", tie.name, tie.extra_passes, passes_for_depth, 9, 3, kSize);
-  }
-}
-
-TEST(DualDepthPeeling, PassesAvoidedOnThirtyTwoLayersAndUnevenDepth) {
-  for (const TieBreak& tie : kTieBreaks) {
-    SCOPED_TRACE(tie.name);
-    test::expect_passes_avoided_on_quads_and_spheres("dual_depth_peeling", tie.name, tie.extra_passes,
-                                                     passes_for_depth);
-  }
+// Exact on the lit spheres in any submission order; ceil(d/2) + extra
+// passes with early exit, without it exactly max_passes (9), a cap of 3 <
+// ceil(d/2) + extra holds; passes avoided on 32 layers and on uneven depth.
+TEST(DualDepthPeeling, ExactOnLitSpheresAndWithoutEarlyExitRunsExactlyMaxPasses) {
+  test::expect_every_tie_break_exact_and_stopping_early("dual_depth_peeling", kTieBreaks, passes_for_depth, 9, 3,
+                                                        kSize);
 }
 
 TEST(DualDepthPeeling, PassCapLeavesAnErrorThatShrinksWithMorePasses) {
@@ -186,4 +160,4 @@ TEST(DualDepthPeeling, RejectsOutOfRangeParametersNamingThem) {
 }
 
 }  // namespace
-}  // namespace oit
+}  // namespace oit::test

@@ -9,6 +9,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <stdexcept>
 
 #include "harness/core/image.h"
 #include "harness/core/prepared_run.h"
@@ -49,17 +51,21 @@ glm::vec4 drawn_texel(const Program& program) {
 
 RunSpec one_frame(const std::string& technique, const RawParams& params, const std::string& scene,
                   const RawParams& scene_params, int size, const std::string& order) {
-  RunSpec spec;
-  spec.technique = technique;
-  spec.params = params;
-  spec.scene = scene;
-  spec.scene_params = scene_params;
+  RunSpec spec = single_frame(technique, params, scene, scene_params, size, size);
   spec.submission_order = order;
-  spec.width = size;
-  spec.height = size;
-  spec.warmup = 0;
-  spec.frames = 1;
   return spec;
+}
+
+double extra_counter(const RunResult& r, const std::string& name) {
+  if (auto value = find_figure(r.counters.extra, name)) return *value;
+  ADD_FAILURE() << r.spec.technique << " reports no counter '" << name << "'";
+  return std::nan("");
+}
+
+double work_saved(const RunResult& r, const std::string& name) {
+  if (auto value = find_figure(r.counters.work_saved, name)) return *value;
+  ADD_FAILURE() << r.spec.technique << " reports no work_saved figure '" << name << "'";
+  return std::nan("");
 }
 
 RunResult run_ok(const RunSpec& spec) {
@@ -92,6 +98,36 @@ std::string write_test_file(const std::string& folder, const std::string& name, 
   const std::string path = dir + "/" + name;
   std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
   return path;
+}
+
+std::string write_mesh_gltf(const std::string& folder, const std::string& name, nlohmann::json gltf,
+                            const std::vector<float>& positions, const std::vector<uint32_t>& indices, int index_type) {
+  const std::map<int, size_t> index_sizes = {{5121, 1}, {5123, 2}, {5125, 4}};
+  const size_t index_size = index_sizes.at(index_type);
+  const size_t position_bytes = positions.size() * sizeof(float);
+  std::string bin(position_bytes + indices.size() * index_size, '\0');
+  std::memcpy(bin.data(), positions.data(), position_bytes);
+  for (size_t i = 0; i < indices.size(); ++i) {
+    if (index_size < 4 && indices[i] >> (8 * index_size) != 0)
+      throw std::invalid_argument("index " + std::to_string(indices[i]) + " does not fit glTF componentType " +
+                                  std::to_string(index_type));
+    // glTF is little-endian, like the machines the tests run on: the index's low bytes.
+    std::memcpy(bin.data() + position_bytes + i * index_size, &indices[i], index_size);
+  }
+  write_test_file(folder, name + ".bin", bin);
+  std::vector<float> low(3, INFINITY), high(3, -INFINITY);
+  for (size_t i = 0; i < positions.size(); ++i) {
+    low[i % 3] = std::min(low[i % 3], positions[i]);
+    high[i % 3] = std::max(high[i % 3], positions[i]);
+  }
+  gltf["accessors"] = {
+      {{"bufferView", 0}, {"componentType", 5126}, {"count", positions.size() / 3}, {"type", "VEC3"},
+       {"min", low}, {"max", high}},
+      {{"bufferView", 1}, {"componentType", index_type}, {"count", indices.size()}, {"type", "SCALAR"}}};
+  gltf["bufferViews"] = {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", position_bytes}},
+                         {{"buffer", 0}, {"byteOffset", position_bytes}, {"byteLength", bin.size() - position_bytes}}};
+  gltf["buffers"] = {{{"uri", name + ".bin"}, {"byteLength", bin.size()}}};
+  return write_test_file(folder, name + ".gltf", gltf.dump(2));
 }
 
 std::string write_quads_gltf(const std::string& folder, const std::string& name,

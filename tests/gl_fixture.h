@@ -4,6 +4,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "harness/core/runner.h"
 
 namespace oit::test {
@@ -35,6 +37,11 @@ struct OneFrameOf {
 // Runs `spec`, which must end `ok` and compared with the reference.
 RunResult run_ok(const RunSpec& spec);
 
+// The figure called `name` among a run's extra counters or its work_saved;
+// NaN, and a test failure, when there is none.
+double extra_counter(const RunResult& r, const std::string& name);
+double work_saved(const RunResult& r, const std::string& name);
+
 // The largest difference between two images' channel values.
 double max_abs_difference(const Image& a, const Image& b);
 
@@ -48,6 +55,14 @@ std::string write_test_file(const std::string& folder, const std::string& name, 
 // identical vertices, so their fragments tie exactly in depth. Returns the path.
 std::string write_quads_gltf(const std::string& folder, const std::string& name,
                              const std::vector<std::pair<float, glm::vec4>>& quads, double znear = 0.1);
+
+// Writes <build>/test_output/<folder>/<name>.gltf: `gltf` (everything but
+// the geometry's data) with the accessors, buffer views and buffer of one
+// indexed mesh added: accessor 0 the VEC3 float `positions` (min and max
+// computed), accessor 1 the `indices` as `index_type` (5121 unsigned byte,
+// 5123 unsigned short, 5125 unsigned int), both in <name>.bin. Returns the path.
+std::string write_mesh_gltf(const std::string& folder, const std::string& name, nlohmann::json gltf,
+                            const std::vector<float>& positions, const std::vector<uint32_t>& indices, int index_type);
 
 // Runs one technique with a single untimed-warm-up frame and asserts that
 // the run did not error or skip.

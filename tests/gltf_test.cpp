@@ -113,13 +113,6 @@ TEST(Gltf, UnlitQuadsUnderAnOrthographicCameraRenderExactly) {
 // normals, an alphaMode MASK material, and an orthographic camera placed by
 // its node: three object ids, computed normals, alpha 1 (0.7 >= cutoff 0.5).
 std::string write_instanced_gltf() {
-  std::filesystem::create_directories(kDir);
-  const float positions[12] = {-0.5f, -0.5f, 0.0f, 0.5f, -0.5f, 0.0f, 0.5f, 0.5f, 0.0f, -0.5f, 0.5f, 0.0f};
-  const uint8_t indices[6] = {0, 1, 2, 0, 2, 3};
-  std::string bin(sizeof positions + sizeof indices, '\0');
-  std::memcpy(bin.data(), positions, sizeof positions);
-  std::memcpy(bin.data() + sizeof positions, indices, sizeof indices);
-  std::ofstream(kDir + "/instanced.bin", std::ios::binary) << bin;
   using nlohmann::json;
   const json gltf = {
       {"asset", {{"version", "2.0"}}},
@@ -136,16 +129,10 @@ std::string write_instanced_gltf() {
       {"materials", {{{"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.7, 0.3, 0.7}}}},
                       {"alphaMode", "MASK"},
                       {"alphaCutoff", 0.5}}}},
-      {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"},
-                      {"min", {-0.5, -0.5, 0.0}}, {"max", {0.5, 0.5, 0.0}}},
-                     {{"bufferView", 1}, {"componentType", 5121}, {"count", 6}, {"type", "SCALAR"}}}},
-      {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
-                       {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 6}}}},
-      {"buffers", {{{"uri", "instanced.bin"}, {"byteLength", bin.size()}}}},
   };
-  const std::string path = kDir + "/instanced.gltf";
-  std::ofstream(path) << gltf.dump(2);
-  return path;
+  return test::write_mesh_gltf("gltf", "instanced", gltf,
+                               {-0.5f, -0.5f, 0.0f, 0.5f, -0.5f, 0.0f, 0.5f, 0.5f, 0.0f, -0.5f, 0.5f, 0.0f},
+                               {0, 1, 2, 0, 2, 3}, 5121);  // unsigned byte
 }
 
 TEST(Gltf, InstancesAreObjectsAndTheOrthographicCameraIsPlacedByItsNode) {

@@ -21,12 +21,6 @@ namespace {
 const std::vector<std::string> kSearches = {"triangle_index", "heuristic"};
 constexpr double kFloatTolerance = 1e-5;
 
-double extra(const RunResult& r, const std::string& name) {
-  if (auto value = find_figure(r.counters.extra, name)) return *value;
-  ADD_FAILURE() << "no extra counter '" << name << "'";
-  return -1.0;
-}
-
 double largest_difference(const Image& a, const Image& b) {
   EXPECT_EQ(a.rgba.size(), b.rgba.size());
   double worst = 0.0;
@@ -59,11 +53,11 @@ TEST(IllustrationBuffer, FullScreenQuadsLinkEveryInteriorPairInBothModes) {
   for (const std::string& search : kSearches) {
     const RunResult r = test::render_once("illustration_buffer", {{"neighbors", search}}, "quads",
                                           {{"layers", std::to_string(layers)}}, w, h);
-    EXPECT_EQ(extra(r, "links_left"), double(layers * (w - 1) * h)) << search;
-    EXPECT_EQ(extra(r, "links_right"), double(layers * (w - 1) * h)) << search;
-    EXPECT_EQ(extra(r, "links_down"), double(layers * w * (h - 1))) << search;
-    EXPECT_EQ(extra(r, "links_up"), double(layers * w * (h - 1))) << search;
-    EXPECT_EQ(extra(r, "silhouette_fragments"), 0.0) << search;
+    EXPECT_EQ(test::extra_counter(r, "links_left"), double(layers * (w - 1) * h)) << search;
+    EXPECT_EQ(test::extra_counter(r, "links_right"), double(layers * (w - 1) * h)) << search;
+    EXPECT_EQ(test::extra_counter(r, "links_down"), double(layers * w * (h - 1))) << search;
+    EXPECT_EQ(test::extra_counter(r, "links_up"), double(layers * w * (h - 1))) << search;
+    EXPECT_EQ(test::extra_counter(r, "silhouette_fragments"), 0.0) << search;
     // No silhouettes, no halos, a constant alpha field: the image is plain blending.
     EXPECT_LT(r.error->max_abs, kFloatTolerance) << search;
   }
@@ -77,7 +71,7 @@ void expect_accurate_neighbours(const std::string& scene, const RawParams& scene
     const RunResult r = test::render_once(
         "illustration_buffer", {{"neighbors", search}, {"modulation", "silhouette"}, {"measure_accuracy", "true"}},
         scene, scene_params, 96, 96);
-    const double p = extra(r, "neighbor_precision"), q = extra(r, "neighbor_recall");
+    const double p = test::extra_counter(r, "neighbor_precision"), q = test::extra_counter(r, "neighbor_recall");
     std::printf("[ measured ] %s on %s: precision %.4f recall %.4f\n", search.c_str(), scene.c_str(), p, q);
     EXPECT_GT(p, precision) << search << " on " << scene;
     EXPECT_GT(q, recall) << search << " on " << scene;
@@ -106,7 +100,7 @@ TEST(IllustrationBuffer, PrecisionExposesADegenerateContinuityMeasure) {
                          {"weight_n", "0"},
                          {"measure_accuracy", "true"}},
                         "torus", {}, 96, 96);
-  const double p = extra(r, "neighbor_precision");
+  const double p = test::extra_counter(r, "neighbor_precision");
   std::printf("[ measured ] heuristic with w_z = w_n = 0 on torus: precision %.4f\n", p);
   EXPECT_LT(p, 0.9);
 }
@@ -132,9 +126,9 @@ TEST(IllustrationBuffer, HeuristicMergeFindsTheHeuristicsLinks) {
       const RunResult b = test::render_once("illustration_buffer", merge, scene, scene_params, 64, 64);
       const std::string what = std::string(scene) + (weights.empty() ? "" : " " + weights.begin()->first + "=" +
                                                                               weights.begin()->second);
-      EXPECT_GT(extra(a, "links_left"), 500.0) << what;
+      EXPECT_GT(test::extra_counter(a, "links_left"), 500.0) << what;
       for (const char* name : {"links_left", "links_right", "links_down", "links_up", "link_checksum"})
-        EXPECT_EQ(extra(a, name), extra(b, name)) << what << ": " << name;
+        EXPECT_EQ(test::extra_counter(a, name), test::extra_counter(b, name)) << what << ": " << name;
       EXPECT_EQ(largest_difference(a.image, b.image), 0.0) << what;
     }
   }
@@ -204,7 +198,7 @@ TEST(IllustrationBuffer, SilhouettesGetBetaOneAndEquationNinePropagatesIt) {
         const Image expected = single_quad_closed_form(reference, 0.3f, iterations, 0.25f);
         EXPECT_LT(largest_difference(r.image, expected), kFloatTolerance)
             << search << " iterations " << iterations << " skip_converged " << skip;
-        EXPECT_GT(extra(r, "silhouette_fragments"), 20.0) << search;
+        EXPECT_GT(test::extra_counter(r, "silhouette_fragments"), 20.0) << search;
         EXPECT_GT(r.error->max_abs, 0.5) << "silhouettes must be opaque";
       }
     }
@@ -218,17 +212,9 @@ TEST(IllustrationBuffer, ZeroIterationsKeepTheInitialAlpha) {
   const int layers = 16, w = 32, h = 32;
   StackedQuadsParams p;
   p.layers = layers;
-  auto stack = stacked_quad_layers(p);
-  std::sort(stack.begin(), stack.end(),
-            [](const QuadLayer& a, const QuadLayer& b) { return a.eye_distance < b.eye_distance; });
-  glm::dvec3 accumulated(0.0);
-  double transmittance = 1.0;
-  for (const QuadLayer& layer : stack) {
-    const double alpha = 1.0 - std::pow(1.0 - double(layer.color.a), 1.0 / layers);
-    accumulated += transmittance * alpha * glm::dvec3(layer.color);
-    transmittance *= 1.0 - alpha;
-  }
-  const glm::dvec4 expected(accumulated, 1.0 - transmittance);
+  const glm::dvec4 expected = composite_quad_layers(stacked_quad_layers(p), glm::vec3(0.0f), [&](double alpha) {
+    return 1.0 - std::pow(1.0 - alpha, 1.0 / layers);
+  });
   for (const char* iterations : {"0", "20"}) {
     const RunResult r = test::render_once(
         "illustration_buffer", {{"modulation", "silhouette_halo"}, {"adaptive_alpha", "true"}, {"iterations", iterations}},
@@ -278,16 +264,10 @@ TEST(IllustrationBuffer, ListsLongerThanTheSortArrayAreCounted) {
   const int w = 16, h = 16;
   const RunResult r = test::render_once("illustration_buffer", {{"modulation", "none"}, {"max_per_pixel", "5"}}, "quads",
                                         {{"layers", "12"}}, w, h);
-  EXPECT_EQ(extra(r, "lists_truncated"), double(w * h));
+  EXPECT_EQ(test::extra_counter(r, "lists_truncated"), double(w * h));
   EXPECT_EQ(r.counters.fragments_dropped, 7u * w * h);
   EXPECT_EQ(r.counters.fragments_stored, 5u * w * h);
   EXPECT_GT(r.error->max_abs, 0.0);
-}
-
-double work_saved(const RunResult& r, const std::string& name) {
-  if (auto value = find_figure(r.counters.work_saved, name)) return *value;
-  ADD_FAILURE() << "no work_saved figure '" << name << "'";
-  return -1.0;
 }
 
 TEST(IllustrationBuffer, WithoutModulationNeighboursAndStylizeAreNotDispatched) {
@@ -297,15 +277,15 @@ TEST(IllustrationBuffer, WithoutModulationNeighboursAndStylizeAreNotDispatched) 
   EXPECT_EQ(plain.stage("stylize_init", "wall"), nullptr);
   EXPECT_EQ(plain.stage("diffuse", "wall"), nullptr);
   // The neighbour search, the stylize init and 5 diffusion iterations.
-  EXPECT_EQ(work_saved(plain, "passes_skipped"), 7.0);
-  EXPECT_EQ(extra(plain, "neighbor_passes"), 0.0);
-  EXPECT_EQ(extra(plain, "stylize_passes"), 0.0);
+  EXPECT_EQ(test::work_saved(plain, "passes_skipped"), 7.0);
+  EXPECT_EQ(test::extra_counter(plain, "neighbor_passes"), 0.0);
+  EXPECT_EQ(test::extra_counter(plain, "stylize_passes"), 0.0);
   const RunResult styled = test::render_once("illustration_buffer", {{"iterations", "5"}}, "spheres", {}, 32, 32);
   EXPECT_NE(styled.stage("neighbors", "wall"), nullptr);
   EXPECT_NE(styled.stage("stylize_init", "wall"), nullptr);
   EXPECT_NE(styled.stage("diffuse", "wall"), nullptr);
-  EXPECT_EQ(work_saved(styled, "passes_skipped"), 0.0);
-  EXPECT_EQ(extra(styled, "stylize_passes"), 6.0);
+  EXPECT_EQ(test::work_saved(styled, "passes_skipped"), 0.0);
+  EXPECT_EQ(test::extra_counter(styled, "stylize_passes"), 6.0);
 }
 
 TEST(IllustrationBuffer, SingleFragmentListsSkipTheSortAndMatchTheReference) {
@@ -313,16 +293,16 @@ TEST(IllustrationBuffer, SingleFragmentListsSkipTheSortAndMatchTheReference) {
   // One layer: every list has one fragment.
   const RunResult one = test::render_once("illustration_buffer", {{"modulation", "none"}}, "quads", {{"layers", "1"}}, w, h);
   EXPECT_LT(one.error->max_abs, kFloatTolerance);
-  EXPECT_EQ(work_saved(one, "fragments_not_sorted"), double(w * h));
+  EXPECT_EQ(test::work_saved(one, "fragments_not_sorted"), double(w * h));
   const RunResult full =
       test::render_once("illustration_buffer", {{"modulation", "none"}}, "quads", {{"layers", "32"}}, w, h);
   EXPECT_LT(full.error->max_abs, kFloatTolerance);
-  EXPECT_EQ(work_saved(full, "fragments_not_sorted"), 0.0);
+  EXPECT_EQ(test::work_saved(full, "fragments_not_sorted"), 0.0);
   // Truncated to one fragment per list: those lists were walked, so they count as sorted.
   const RunResult truncated = test::render_once("illustration_buffer", {{"modulation", "none"}, {"max_per_pixel", "1"}},
                                                 "quads", {{"layers", "2"}}, 16, 16);
   EXPECT_EQ(truncated.counters.fragments_stored, 256u);
-  EXPECT_EQ(work_saved(truncated, "fragments_not_sorted"), 0.0);
+  EXPECT_EQ(test::work_saved(truncated, "fragments_not_sorted"), 0.0);
   // Uneven depth complexity (0 to 10 fragments per pixel), plain and stylized:
   // the shortcut and the sort feed the same records to the later stages.
   const RawParams uneven = {{"count", "64"}, {"size", "0.3"}};
@@ -336,9 +316,9 @@ TEST(IllustrationBuffer, SingleFragmentListsSkipTheSortAndMatchTheReference) {
   const RunResult plain = test::render_once("illustration_buffer", {{"modulation", "none"}}, "random_quads", uneven, w, h);
   EXPECT_LT(plain.error->max_abs, kFloatTolerance);
   EXPECT_EQ(plain.counters.fragments_stored, plain.scene_fragments);
-  EXPECT_EQ(work_saved(plain, "fragments_not_sorted"), double(histogram[1]));
+  EXPECT_EQ(test::work_saved(plain, "fragments_not_sorted"), double(histogram[1]));
   const RunResult styled = test::render_once("illustration_buffer", {}, "random_quads", uneven, w, h);
-  EXPECT_EQ(work_saved(styled, "fragments_not_sorted"), double(histogram[1]));
+  EXPECT_EQ(test::work_saved(styled, "fragments_not_sorted"), double(histogram[1]));
   EXPECT_EQ(styled.counters.fragments_stored, styled.scene_fragments);
 }
 
@@ -352,13 +332,7 @@ TEST(IllustrationBuffer, InvalidParametersAreErrorsNamingTheParameter) {
     } catch (const std::exception& e) {
       EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
     }
-    RunSpec spec;
-    spec.technique = "illustration_buffer";
-    spec.params = {{name, value}};
-    spec.width = spec.height = 8;
-    spec.warmup = 0;
-    spec.frames = 1;
-    const RunResult r = test::harness().run(spec);
+    const RunResult r = test::harness().run(test::one_frame("illustration_buffer", {{name, value}}, "quads", {}, 8));
     EXPECT_EQ(r.status, RunStatus::error) << name;
     EXPECT_NE(r.message.find(name), std::string::npos) << r.message;
   }
@@ -434,12 +408,6 @@ TEST(IllustrationBuffer, DiagnosticImagesMarkSilhouettesAndEmptyPixels) {
 namespace oit {
 namespace {
 
-double figure(const std::vector<Figure>& figures, const std::string& name) {
-  if (auto value = find_figure(figures, name)) return *value;
-  ADD_FAILURE() << "no figure '" << name << "'";
-  return -1.0;
-}
-
 // skip_converged diffuses only the pixels around fragments that changed in
 // the previous iteration; every skipped fragment would have recomputed its
 // own value, so the image is bitwise the one of all fragments every iteration.
@@ -462,11 +430,11 @@ TEST(IllustrationBuffer, SkippingConvergedFragmentsGivesTheSameImage) {
     EXPECT_EQ(largest_difference(fast.image, full.image), 0.0) << c.scene;
     const double iterations = c.params.count("iterations") ? 10.0 : 20.0;
     const double all = iterations * double(fast.counters.fragments_stored);
-    const double updates = extra(fast, "fragment_updates");
+    const double updates = test::extra_counter(fast, "fragment_updates");
     std::printf("[ measured ] %s: %.0f of %.0f fragment updates\n", c.scene, updates, all);
     EXPECT_GT(updates, 0.0) << c.scene;
     EXPECT_LT(updates, all) << c.scene;
-    EXPECT_EQ(work_saved(fast, "fragment_updates_skipped"), all - updates) << c.scene;
+    EXPECT_EQ(test::work_saved(fast, "fragment_updates_skipped"), all - updates) << c.scene;
     EXPECT_EQ(find_figure(full.counters.extra, "fragment_updates"), std::nullopt) << c.scene;
   }
 }
@@ -477,8 +445,8 @@ TEST(IllustrationBuffer, ConvergedFullScreenLayersAreDiffusedOnce) {
   // the image is plain blending.
   const int w = 32, h = 24;
   const RunResult r = test::render_once("illustration_buffer", {}, "quads", {{"layers", "8"}}, w, h);
-  EXPECT_EQ(extra(r, "fragment_updates"), 8.0 * w * h);
-  EXPECT_EQ(work_saved(r, "fragment_updates_skipped"), 19.0 * 8 * w * h);
+  EXPECT_EQ(test::extra_counter(r, "fragment_updates"), 8.0 * w * h);
+  EXPECT_EQ(test::work_saved(r, "fragment_updates_skipped"), 19.0 * 8 * w * h);
   EXPECT_LT(r.error->max_abs, kFloatTolerance);
 }
 
@@ -495,9 +463,9 @@ TEST(IllustrationBuffer, ADiffusionToleranceStaysWithinItsMeasuredError) {
   EXPECT_EQ(largest_difference(b.image, c.image), 0.0);
   const double error = largest_difference(a.image, c.image);
   std::printf("[ measured ] tolerance 0.0001: max image difference %.6f, updates %.0f vs %.0f\n", error,
-              extra(a, "fragment_updates"), extra(b, "fragment_updates"));
+              test::extra_counter(a, "fragment_updates"), test::extra_counter(b, "fragment_updates"));
   EXPECT_LT(error, 2e-3);  // measured 6.5e-4 (README)
-  EXPECT_LT(extra(a, "fragment_updates"), extra(b, "fragment_updates"));
+  EXPECT_LT(test::extra_counter(a, "fragment_updates"), test::extra_counter(b, "fragment_updates"));
 }
 
 TEST(IllustrationBuffer, OneIterationTimesInitialisationAndTheStepApart) {
@@ -505,7 +473,7 @@ TEST(IllustrationBuffer, OneIterationTimesInitialisationAndTheStepApart) {
   for (const char* stage : {"clear", "fill", "sort", "neighbors", "stylize_init", "diffuse", "compose"})
     EXPECT_NE(r.stage(stage, "wall"), nullptr) << stage;
   EXPECT_EQ(r.stage("stylize", "wall"), nullptr);
-  EXPECT_EQ(extra(r, "stylize_passes"), 2.0);
+  EXPECT_EQ(test::extra_counter(r, "stylize_passes"), 2.0);
   // measure_accuracy is off unless asked for: no truth records, no precision.
   EXPECT_EQ(find_figure(r.counters.extra, "neighbor_precision"), std::nullopt);
   const RunResult measured =
@@ -537,19 +505,19 @@ TEST(IllustrationBuffer, DynamicSortGivesTheArraySortsImage) {
     const RunResult x = test::render_once("illustration_buffer", automatic, c.scene, c.scene_params, 48, 48);
     EXPECT_EQ(largest_difference(a.image, d.image), 0.0) << c.scene;
     EXPECT_EQ(largest_difference(a.image, x.image), 0.0) << c.scene;
-    EXPECT_EQ(extra(a, "dynamic_sort"), 0.0) << c.scene;
-    EXPECT_EQ(extra(d, "dynamic_sort"), 1.0) << c.scene;
+    EXPECT_EQ(test::extra_counter(a, "dynamic_sort"), 0.0) << c.scene;
+    EXPECT_EQ(test::extra_counter(d, "dynamic_sort"), 1.0) << c.scene;
     // auto: the dynamic sort for lists of at most 4 fragments (the torus), else the array.
-    EXPECT_EQ(extra(x, "dynamic_sort"), x.max_depth_complexity <= 4 ? 1.0 : 0.0) << c.scene;
+    EXPECT_EQ(test::extra_counter(x, "dynamic_sort"), x.max_depth_complexity <= 4 ? 1.0 : 0.0) << c.scene;
     EXPECT_EQ(a.counters.fragments_stored, d.counters.fragments_stored) << c.scene;
     EXPECT_EQ(a.counters.fragments_dropped, d.counters.fragments_dropped) << c.scene;
-    EXPECT_EQ(extra(a, "lists_truncated"), extra(d, "lists_truncated")) << c.scene;
-    EXPECT_EQ(figure(a.counters.work_saved, "fragments_not_sorted"),
-              figure(d.counters.work_saved, "fragments_not_sorted"))
+    EXPECT_EQ(test::extra_counter(a, "lists_truncated"), test::extra_counter(d, "lists_truncated")) << c.scene;
+    EXPECT_EQ(test::work_saved(a, "fragments_not_sorted"),
+              test::work_saved(d, "fragments_not_sorted"))
         << c.scene;
     if (c.params.count("modulation") == 0) {
       for (const char* links : {"links_left", "links_right", "links_down", "links_up"})
-        EXPECT_EQ(extra(a, links), extra(d, links)) << c.scene << " " << links;
+        EXPECT_EQ(test::extra_counter(a, links), test::extra_counter(d, links)) << c.scene << " " << links;
     }
   }
   const RunResult plain = test::render_once("illustration_buffer", {{"sort", "dynamic"}, {"modulation", "none"}},

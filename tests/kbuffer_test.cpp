@@ -8,6 +8,7 @@
 
 #include "harness/core/error_metrics.h"
 #include "tests/gl_fixture.h"
+#include "tests/kbuffer_checks.h"
 
 namespace oit {
 namespace {
@@ -17,12 +18,6 @@ const RawParams kQuads32 = {{"layers", "32"}};
 
 const test::OneFrameOf spec_of{"kbuffer"};
 using test::run_ok;
-
-double named(const std::vector<Figure>& values, const std::string& name) {
-  if (auto value = find_figure(values, name)) return *value;
-  ADD_FAILURE() << "no counter '" << name << "'";
-  return NAN;
-}
 
 bool identical(const Image& a, const Image& b) { return a.width == b.width && a.height == b.height && a.rgba == b.rgba; }
 
@@ -162,26 +157,14 @@ TEST(KBuffer, AutoKIsTheViewsDepthComplexityAndMatchesTheWorstCaseK) {
   const RunResult automatic = run_ok(spec);
   const RunResult worst_case = run_ok(spec_of({{"k", "64"}}, "quads", kQuads32, size));
   ASSERT_TRUE(automatic.error.has_value());
-  EXPECT_EQ(named(automatic.counters.extra, "k_used"), 32.0);
-  EXPECT_EQ(named(automatic.counters.extra, "longest_list"), 32.0);
-  EXPECT_EQ(named(automatic.counters.extra, "k_capped"), 0.0);
   EXPECT_LT(automatic.error->max_abs, 1e-5);
   EXPECT_LE(compare_images(automatic.image, worst_case.image).max_abs, 1e-5);
-  EXPECT_EQ(automatic.counters.fragments_stored, 32u * pixels);
-  EXPECT_EQ(automatic.counters.fragments_dropped, 0u);
-  EXPECT_EQ(automatic.counters.passes, 3u);  // count + fill + store
-  EXPECT_NE(automatic.stage("count", "wall"), nullptr);
-  EXPECT_EQ(automatic.counters.bytes_allocated, pixels * 32u * 24u + 8u + pixels * 4u);
-  EXPECT_EQ(worst_case.counters.bytes_allocated, pixels * 64u * 24u + 8u);
-  EXPECT_EQ(named(automatic.counters.work_saved, "bytes_not_allocated"),
-            double(worst_case.counters.bytes_allocated) - double(automatic.counters.bytes_allocated));
-  EXPECT_EQ(named(automatic.counters.work_saved, "slots_not_cleared"), double(32u * pixels));
-  // Only the harness's own figure (the scene rectangle) remains: nothing of the technique adapts with a fixed k.
-  for (const auto& [name, value, combine] : worst_case.counters.work_saved) EXPECT_EQ(name, "pixels_outside_scene_rect");
+  // 24-byte nodes and an 8-byte counter block.
+  test::expect_auto_k_on_thirty_two_layers(automatic, worst_case, pixels, 24u, 8u);
 
   const RunResult four = run_ok(spec_of({{"k", "auto"}}, "quads", {{"layers", "4"}}, size));
   ASSERT_TRUE(four.error.has_value());
-  EXPECT_EQ(named(four.counters.extra, "k_used"), 4.0);
+  EXPECT_EQ(test::extra_counter(four, "k_used"), 4.0);
   EXPECT_LT(four.error->max_abs, 1e-5);
   EXPECT_EQ(four.counters.bytes_allocated, pixels * 4u * 24u + 8u + pixels * 4u);
 }
@@ -193,10 +176,10 @@ TEST(KBuffer, AutoKIsCappedByItsMemoryBudgetAndCountsWhatItDrops) {
   const uint64_t pixels = size * size;
   const RunResult capped = run_ok(spec_of({{"k", "auto"}, {"auto_k_memory_mb", "1"}}, "quads", kQuads32, size));
   const RunResult fixed = run_ok(spec_of({{"k", "10"}}, "quads", kQuads32, size));
-  EXPECT_EQ(named(capped.counters.extra, "k_used"), 10.0);
-  EXPECT_EQ(named(capped.counters.extra, "k_cap"), 10.0);
-  EXPECT_EQ(named(capped.counters.extra, "longest_list"), 32.0);
-  EXPECT_EQ(named(capped.counters.extra, "k_capped"), 1.0);
+  EXPECT_EQ(test::extra_counter(capped, "k_used"), 10.0);
+  EXPECT_EQ(test::extra_counter(capped, "k_cap"), 10.0);
+  EXPECT_EQ(test::extra_counter(capped, "longest_list"), 32.0);
+  EXPECT_EQ(test::extra_counter(capped, "k_capped"), 1.0);
   EXPECT_EQ(capped.counters.fragments_stored, 10u * pixels);
   EXPECT_EQ(capped.counters.fragments_dropped, 22u * pixels);
   EXPECT_TRUE(identical(capped.image, fixed.image));

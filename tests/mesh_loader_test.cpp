@@ -187,14 +187,7 @@ TEST(MeshLoader, ModelSceneNamesThePackageOfAMissingModel) {
     EXPECT_NE(std::string(e.what()).find("elephant.off"), std::string::npos) << e.what();
   }
   // In a sweep the run is a skipped row that says why, not an error.
-  RunSpec spec;
-  spec.technique = "unsorted";
-  spec.scene = "model";
-  spec.scene_params = {{"name", "elephant"}};
-  spec.width = spec.height = 16;
-  spec.warmup = 0;
-  spec.frames = 1;
-  const RunResult run = test::harness().run(spec);
+  const RunResult run = test::harness().run(test::one_frame("unsorted", {}, "model", {{"name", "elephant"}}, 16));
   EXPECT_EQ(run.status, RunStatus::skipped) << run.message;
   EXPECT_NE(run.message.find("libcgal-demo"), std::string::npos) << run.message;
   if (previous) setenv("OIT_MODEL_DIR", saved.c_str(), 1);

@@ -4,16 +4,12 @@
 // the submission order (additive blending only).
 #include "tests/approximate_oit_fixture.h"
 
-namespace oit {
+namespace oit::test {
 namespace {
 
-using test::garbage_values;
-using test::max_abs_difference;
-using test::run_ok;
-
 constexpr int kSize = 32;
-const test::OneFrameOf spec_of{"moment_oit", kSize};
-const char* const kConfigurations[] = {"power4", "power6", "power8", "trig2", "trig3", "trig4"};
+const OneFrameOf spec_of{"moment_oit", kSize};
+const std::vector<std::string> kConfigurations = {"power4", "power6", "power8", "trig2", "trig3", "trig4"};
 
 // One fragment per pixel: b0 = A = -ln(1 - a), and compose writes
 // (T a c / T a) * (1 - e^-A) = c a whatever transmittance T was
@@ -23,21 +19,14 @@ const char* const kConfigurations[] = {"power4", "power6", "power8", "trig2", "t
 // rounded by 2^-11 moves the average colour (<= 0.9) by 2 * 0.9 * 2^-11 =
 // 8.8e-4, times the coverage 0.3: 2.6e-4; together below 4e-4.
 TEST(MomentOit, SingleLayerEqualsOverCompositingUpToStoragePrecision) {
-  for (const char* moments : kConfigurations) {
-    const RunResult full = run_ok(spec_of({{"moments", moments}}, "quads", {{"layers", "1"}}));
-    ASSERT_TRUE(full.error.has_value());
-    EXPECT_LT(full.error->max_abs, 1e-6) << moments;
-    const RunResult half = run_ok(spec_of({{"moments", moments}, {"precision", "half"}}, "quads", {{"layers", "1"}}));
-    ASSERT_TRUE(half.error.has_value());
-    EXPECT_LT(half.error->max_abs, 4e-4) << moments;
-  }
+  test::expect_single_layer_within_storage_precision(spec_of, "moments", kConfigurations, 1e-6, 4e-4);
 }
 
 // 32 layers of strongly different colours and the lit spheres: every
 // configuration stays finite, inside [0, 1], and within a stated bound of
 // the exact image (weighted_blended's eq10 reaches 0.08 on these quads).
 TEST(MomentOit, FiniteAndBoundedOnQuadsAndSpheres) {
-  for (const char* moments : kConfigurations) {
+  for (const std::string& moments : kConfigurations) {
     for (const char* precision : {"float", "half"}) {
       const RawParams params = {{"moments", moments}, {"precision", precision}};
       const RunResult quads = run_ok(spec_of(params, "quads", {{"layers", "32"}}));
@@ -97,4 +86,4 @@ TEST(MomentOit, RejectsABiasThatDiscardsTheMoments) {
 }
 
 }  // namespace
-}  // namespace oit
+}  // namespace oit::test

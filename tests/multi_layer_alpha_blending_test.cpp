@@ -6,23 +6,14 @@
 #include <sstream>
 
 #include "tests/approximate_oit_fixture.h"
+#include "tests/k_node_claims.h"
 #include "tests/oitbench_process.h"
 
 namespace oit {
 namespace {
 
 constexpr int kSize = 32;
-const char* const kTechnique = "multi_layer_alpha_blending";
-const test::OneFrameOf spec_of{kTechnique, kSize};
-
-TEST(MultiLayerAlphaBlending, ExactWhenKCoversTheDepthComplexityInAnyOrder) {
-  for (const char* order : {"original", "reversed", "shuffled:4"}) {
-    const RunResult r = test::run_ordered(spec_of({{"k", "8"}}, "quads", {{"layers", "8"}}, order));
-    ASSERT_TRUE(r.error.has_value());
-    EXPECT_LT(r.error->max_abs, 1e-5) << order;
-    EXPECT_EQ(test::extra_counter(r, "merges"), 0.0) << order;
-  }
-}
+const test::OneFrameOf spec_of{"multi_layer_alpha_blending", kSize};
 
 // random_quads with order=front_to_back submits the quads sorted, nearest
 // first: each new fragment is the farthest, and merging it into the last
@@ -44,12 +35,6 @@ TEST(MultiLayerAlphaBlending, ExactForSortedSubmission) {
   EXPECT_GT(random.error->max_abs, 0.05);
 }
 
-TEST(MultiLayerAlphaBlending, ErrorFallsAsKGrows) {
-  test::expect_falling(
-      test::rmse_per_value(kTechnique, {}, "k", {"1", "2", "4", "8", "16"}, "random_quads", {}, kSize),
-      "k on random_quads (depth complexity up to 21)");
-}
-
 TEST(MultiLayerAlphaBlending, FiniteAndBoundedOnSpheres) {
   const RunResult r = test::run_ordered(spec_of({}, "spheres", {}));
   ASSERT_TRUE(r.error.has_value());
@@ -57,18 +42,6 @@ TEST(MultiLayerAlphaBlending, FiniteAndBoundedOnSpheres) {
   EXPECT_LT(r.error->max_abs, 0.05);
   // k layers of 20 bytes, count and lock words, two counter words.
   EXPECT_EQ(r.counters.bytes_allocated, uint64_t(kSize) * kSize * (4u * 20u + 8u) + 8u);
-}
-
-// Deterministic frame to frame (llvmpipe shades each pixel in primitive
-// order), but the image moves with the submission order once layers merge,
-// and stays put when they never do.
-TEST(MultiLayerAlphaBlending, CheckOrderShowsTheDependenceOnRasterisationOrder) {
-  const OrderCheck merging = test::order_check(kTechnique, {{"k", "2"}}, "quads", {{"layers", "16"}}, kSize);
-  ASSERT_EQ(merging.status, "ok") << merging.message;
-  EXPECT_EQ(merging.repeat_difference, 0.0);
-  EXPECT_GT(merging.largest_difference, 0.01);
-  const OrderCheck complete = test::order_check(kTechnique, {{"k", "16"}}, "quads", {{"layers", "16"}}, kSize);
-  EXPECT_LT(complete.largest_difference, 1e-5);
 }
 
 // The command itself: its row for the technique says approximate and a
@@ -85,7 +58,7 @@ TEST(MultiLayerAlphaBlending, CheckOrderCommandPrintsTheMovement) {
     std::istringstream fields(line);
     std::string id, kind, verdict;
     double same = -1.0, other = -1.0;
-    if (!(fields >> id >> kind >> verdict >> same >> other) || id != kTechnique) continue;
+    if (!(fields >> id >> kind >> verdict >> same >> other) || id != spec_of.technique) continue;
     found = true;
     EXPECT_EQ(kind, "approximate");
     EXPECT_EQ(same, 0.0) << line;
@@ -93,6 +66,10 @@ TEST(MultiLayerAlphaBlending, CheckOrderCommandPrintsTheMovement) {
   }
   EXPECT_TRUE(found) << out.output;
 }
+
+using test::KNodeClaims;
+INSTANTIATE_TEST_SUITE_P(MultiLayerAlphaBlending, KNodeClaims,
+                         ::testing::Values(test::KNodeTechnique{spec_of.technique, "merges"}));
 
 }  // namespace
 }  // namespace oit

@@ -10,14 +10,9 @@
 namespace oit {
 namespace {
 
-RunSpec base(const std::string& scene, RawParams scene_params, int size) {
-  RunSpec spec;
-  spec.scene = scene;
-  spec.scene_params = std::move(scene_params);
-  spec.width = spec.height = size;
-  spec.warmup = 0;
-  spec.frames = 1;
-  return spec;
+// The technique is check_order's to set.
+RunSpec base(const std::string& scene, const RawParams& scene_params, int size) {
+  return test::one_frame("", {}, scene, scene_params, size);
 }
 
 void expect_exact_techniques_order_independent(const RunSpec& spec) {

@@ -14,12 +14,24 @@
 
 namespace oit::test {
 
+// The frame the peelers' tests render unless they say otherwise, and the
+// 32 quad layers they peel.
+constexpr int kSize = 32;
+constexpr uint64_t kPixels = uint64_t(kSize) * kSize;
+inline const RawParams kQuads32 = {{"layers", "32"}};
+
+// What a tie break costs a peeler: geometry passes beyond passes_for(depth),
+// passes a cap spends without compositing a layer (a cap of P composites
+// the layers of P minus these passes), and the bytes it allocates at kSize.
+struct TieBreak {
+  std::string name;
+  uint64_t extra_passes;
+  uint64_t passes_not_compositing;
+  uint64_t bytes;
+};
+
 // The geometry passes early exit avoided (work_saved passes_avoided).
-inline double passes_avoided(const RunResult& r) {
-  if (auto value = find_figure(r.counters.work_saved, "passes_avoided")) return *value;
-  ADD_FAILURE() << "no passes_avoided in work_saved";
-  return -1.0;
-}
+inline double passes_avoided(const RunResult& r) { return work_saved(r, "passes_avoided"); }
 
 // Geometry passes a peeler needs for depth complexity d, before its tie
 // break's extra passes: d for depth peeling, ceil(d / 2) for dual.
@@ -137,6 +149,22 @@ inline void expect_exact_on_lit_spheres(const std::string& technique, const std:
     EXPECT_EQ(r.counters.fragments_stored, r.scene_fragments);
     EXPECT_EQ(r.counters.fragments_dropped, 0u);
     EXPECT_EQ(r.counters.passes, passes_for(r.max_depth_complexity) + extra);
+  }
+}
+
+// What every tie break of a peeler (`ties`: each with a name and the
+// extra_passes it adds) must do alike: expect_exact_on_lit_spheres,
+// expect_early_exit_and_caps (`no_exit_cap`, `small_cap`) and
+// expect_passes_avoided_on_quads_and_spheres.
+template <class TieBreaks>
+void expect_every_tie_break_exact_and_stopping_early(const std::string& technique, const TieBreaks& ties,
+                                                     PassesForDepth passes_for, int no_exit_cap, int small_cap,
+                                                     int size) {
+  for (const auto& tie : ties) {
+    SCOPED_TRACE(tie.name);
+    expect_exact_on_lit_spheres(technique, tie.name, tie.extra_passes, passes_for);
+    expect_early_exit_and_caps(technique, tie.name, tie.extra_passes, passes_for, no_exit_cap, small_cap, size);
+    expect_passes_avoided_on_quads_and_spheres(technique, tie.name, tie.extra_passes, passes_for);
   }
 }
 

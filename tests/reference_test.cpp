@@ -8,14 +8,6 @@
 namespace oit {
 namespace {
 
-StackedQuadsParams quads(int layers, float alpha, uint32_t seed) {
-  StackedQuadsParams p;
-  p.layers = layers;
-  p.alpha = alpha;
-  p.seed = seed;
-  return p;
-}
-
 RawParams quad_params(const StackedQuadsParams& p) {
   return {{"layers", std::to_string(p.layers)}, {"alpha", std::to_string(p.alpha)}, {"seed", std::to_string(p.seed)}};
 }
@@ -34,7 +26,7 @@ void expect_uniform_image(const Image& image, const glm::vec4& expected) {
 
 TEST(Reference, EqualsClosedFormOnStackedQuadsExactly) {
   for (uint32_t seed : {1u, 7u}) {
-    const StackedQuadsParams p = quads(32, 0.3f, seed);
+    const StackedQuadsParams p{.layers = 32, .seed = seed, .alpha = 0.3f};
     // alpha is passed as text; read it back the way the scene parses it.
     StackedQuadsParams parsed = p;
     parsed.alpha = float(std::stod(std::to_string(p.alpha)));
@@ -48,13 +40,13 @@ TEST(Reference, EqualsClosedFormOverAColouredBackground) {
   spec.background = glm::vec3(0.25f, 0.5f, 1.0f);
   const RunResult r = test::harness().run(spec);
   ASSERT_EQ(r.status, RunStatus::ok) << r.message;
-  StackedQuadsParams p = quads(8, 0.5f, 1);
+  StackedQuadsParams p{.layers = 8, .seed = 1, .alpha = 0.5f};
   expect_uniform_image(r.image, stacked_quads_closed_form(p, spec.background));
 }
 
 TEST(Reference, PoolOverflowIsDetectedGrownAndRetried) {
   // One node per pixel for 16 layers must overflow; the image must still be exact.
-  const StackedQuadsParams p = quads(16, 0.3f, 3);
+  const StackedQuadsParams p{.layers = 16, .seed = 3, .alpha = 0.3f};
   StackedQuadsParams parsed = p;
   parsed.alpha = float(std::stod(std::to_string(p.alpha)));
   const RunResult r = test::render_once("reference", {{"initial_nodes_per_pixel", "1"}}, "quads", quad_params(p), 32, 32);
@@ -70,7 +62,7 @@ TEST(Reference, PoolOverflowIsDetectedGrownAndRetried) {
 
 TEST(Reference, ListsLongerThanTheGpuResolveAreResolvedOnTheCpuExactly) {
   // 600 layers: beyond the GPU resolve's 512-entry array.
-  const StackedQuadsParams p = quads(600, 0.3f, 5);
+  const StackedQuadsParams p{.layers = 600, .seed = 5, .alpha = 0.3f};
   StackedQuadsParams parsed = p;
   parsed.alpha = float(std::stod(std::to_string(p.alpha)));
   const RunResult r = test::render_once("reference", {}, "quads", quad_params(p), 4, 4);

@@ -46,28 +46,33 @@ size_t column(const std::string& name) {
   return size_t(std::find(columns.begin(), columns.end(), name) - columns.begin());
 }
 
+// Each named column of `row` holds the value paired with it.
+void expect_columns(const std::vector<std::string>& row,
+                    const std::vector<std::pair<std::string, std::string>>& expected) {
+  for (const auto& [name, value] : expected) EXPECT_EQ(row[column(name)], value) << name;
+}
+
 TEST(ResultsCsv, OneRowPerStageAndClockWithPerRunColumnsRepeated) {
   const auto rows = csv_rows(finished_run(), context());
   ASSERT_EQ(rows.size(), 6u);
   for (const auto& row : rows) {
     ASSERT_EQ(row.size(), csv_columns().size());
-    EXPECT_EQ(row[column("technique")], "kbuffer");
-    EXPECT_EQ(row[column("params")], "k=16 tail=drop");
-    EXPECT_EQ(row[column("status")], "ok");
-    EXPECT_EQ(row[column("fragments_dropped")], "7");
-    EXPECT_EQ(row[column("error_max")], "0.5");
-    EXPECT_EQ(row[column("median_ms")], "2");
-    EXPECT_EQ(row[column("frames")], "3");
-    EXPECT_EQ(row[column("device")], "llvmpipe (LLVM 15.0.6, 256 bits)");
-    EXPECT_EQ(row[column("extra")], "links_left=12 neighbor_precision=0.5");
-    EXPECT_EQ(row[column("work_saved")], "passes_avoided=30");
-    EXPECT_EQ(row[column("camera")], "random:4:7@2");
-    EXPECT_EQ(row[column("psi")], "0.25");
-    EXPECT_EQ(row[column("scene_rect")], "on");
+    expect_columns(row, {{"technique", "kbuffer"},
+                         {"params", "k=16 tail=drop"},
+                         {"status", "ok"},
+                         {"fragments_dropped", "7"},
+                         {"error_max", "0.5"},
+                         {"median_ms", "2"},
+                         {"frames", "3"},
+                         {"device", "llvmpipe (LLVM 15.0.6, 256 bits)"},
+                         {"extra", "links_left=12 neighbor_precision=0.5"},
+                         {"work_saved", "passes_avoided=30"},
+                         {"camera", "random:4:7@2"},
+                         {"psi", "0.25"},
+                         {"scene_rect", "on"}});
   }
-  EXPECT_EQ(rows[0][column("clock")], "gl");
-  EXPECT_EQ(rows[5][column("clock")], "wall");
-  EXPECT_EQ(rows[5][column("stage")], "total");
+  expect_columns(rows[0], {{"clock", "gl"}});
+  expect_columns(rows[5], {{"clock", "wall"}, {"stage", "total"}});
   RunResult full_screen = finished_run();
   full_screen.spec.scene_rect = false;
   EXPECT_EQ(csv_rows(full_screen, context())[0][column("scene_rect")], "off");
@@ -80,12 +85,12 @@ TEST(ResultsCsv, SkippedAndFailedRunsAreOneRowWithTheReason) {
   skipped.message = "needs 64-bit integers in shaders, which the device lacks";
   auto rows = csv_rows(skipped, context());
   ASSERT_EQ(rows.size(), 1u);
-  EXPECT_EQ(rows[0][column("status")], "skipped");
-  EXPECT_EQ(rows[0][column("message")], skipped.message);
-  EXPECT_EQ(rows[0][column("median_ms")], "");
-  EXPECT_EQ(rows[0][column("error_max")], "");
-  EXPECT_EQ(rows[0][column("camera")], "default");
-  EXPECT_EQ(rows[0][column("psi")], "");
+  expect_columns(rows[0], {{"status", "skipped"},
+                           {"message", skipped.message},
+                           {"median_ms", ""},
+                           {"error_max", ""},
+                           {"camera", "default"},
+                           {"psi", ""}});
 
   RunResult failed = skipped;
   failed.status = RunStatus::error;

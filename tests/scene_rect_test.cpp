@@ -162,13 +162,7 @@ TEST_F(EveryTechnique, SceneOutsideTheViewLeavesTheBackground) {
 // Through Harness::run: the RunSpec switch, the saved pixels in work_saved,
 // the CSV column, and the same image.
 TEST(SceneRectRun, HarnessCountsThePixelsOutsideAndKeepsTheImage) {
-  RunSpec spec;
-  spec.technique = "linked_list";
-  spec.scene = "particles";
-  spec.scene_params = {{"slices", "6"}, {"stacks", "4"}};
-  spec.width = spec.height = 32;
-  spec.warmup = 0;
-  spec.frames = 1;
+  RunSpec spec = test::one_frame("linked_list", {}, "particles", {{"slices", "6"}, {"stacks", "4"}}, 32);
   const RunResult on = test::harness().run(spec);
   spec.scene_rect = false;
   const RunResult off = test::harness().run(spec);

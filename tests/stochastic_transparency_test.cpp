@@ -6,15 +6,11 @@
 
 #include "tests/approximate_oit_fixture.h"
 
-namespace oit {
+namespace oit::test {
 namespace {
 
-using test::garbage_values;
-using test::max_abs_difference;
-using test::run_ok;
-
 constexpr int kSize = 32;
-const test::OneFrameOf spec_of{"stochastic_transparency", kSize};
+const OneFrameOf spec_of{"stochastic_transparency", kSize};
 
 // One fragment: every sample estimate of its transmittance is 1 (nothing
 // lies in front), and compose writes (a c / a) * (1 - (1 - a)) = c a.
@@ -86,4 +82,4 @@ TEST(StochasticTransparency, FiniteAndBoundedOnQuadsAndSpheres) {
 }
 
 }  // namespace
-}  // namespace oit
+}  // namespace oit::test

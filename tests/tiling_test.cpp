@@ -216,12 +216,7 @@ class PaperSize : public testing::TestWithParam<std::string> {};
 TEST_P(PaperSize, EveryTechniqueRuns512x512With32Layers) {
   const std::string id = GetParam();
   const TechniqueDescriptor& descriptor = builtin_techniques().get(id);
-  RunSpec spec;
-  spec.technique = id;
-  spec.scene = "quads";
-  spec.width = spec.height = 512;
-  spec.warmup = 0;
-  spec.frames = 1;
+  RunSpec spec = test::one_frame(id, {}, "quads", {}, 512);
   if (id == "illustration_buffer") spec.params = {{"measure_accuracy", "false"}};
   const RunResult r = test::harness().run(spec);
   ASSERT_EQ(r.status, RunStatus::ok) << r.message;
@@ -263,12 +258,7 @@ TEST(PaperSizeReference, A2048ReferenceWith32LayersEqualsTheClosedForm) {
 TEST(PaperSizeReference, FailingReferenceKeepsTheRunsTimings) {
   // A budget no tile plan can meet for the reference: the run is ok, with
   // its timings, empty error columns and the reason.
-  RunSpec spec;
-  spec.technique = "unsorted";
-  spec.scene = "quads";
-  spec.width = spec.height = 64;
-  spec.warmup = 0;
-  spec.frames = 1;
+  RunSpec spec = test::one_frame("unsorted", {}, "quads", {}, 64);
   spec.memory_budget = 64;  // bytes
   spec.background = {0.125f, 0.25f, 0.375f};  // no cached reference of another test can match
   const RunResult r = test::harness().run(spec);

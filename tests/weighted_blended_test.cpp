@@ -5,13 +5,13 @@
 
 #include <cmath>
 
-#include "tests/gl_fixture.h"
+#include "tests/approximate_oit_fixture.h"
 
 namespace oit {
 namespace {
 
 constexpr int kSize = 32;
-const char* const kWeights[] = {"eq7", "eq8", "eq9", "eq10"};
+const std::vector<std::string> kWeights = {"eq7", "eq8", "eq9", "eq10"};
 
 const test::OneFrameOf spec_of{"weighted_blended", kSize};
 using test::run_ok;
@@ -29,18 +29,11 @@ using test::max_abs_difference;
 // Float: 0.9 * (1.19e-7 * 0.3 + 2.98e-8) = 5.9e-8, plus the float rounding of
 // the compose arithmetic itself (a few ulps of values <= 1): below 1e-6.
 TEST(WeightedBlended, SingleLayerEqualsOverCompositingUpToStoragePrecision) {
-  for (const char* weight : kWeights) {
-    const RunResult full = run_ok(spec_of({{"weight", weight}}, "quads", {{"layers", "1"}}));
-    ASSERT_TRUE(full.error.has_value());
-    EXPECT_LT(full.error->max_abs, 1e-6) << weight;
-    const RunResult half = run_ok(spec_of({{"weight", weight}, {"precision", "half"}}, "quads", {{"layers", "1"}}));
-    ASSERT_TRUE(half.error.has_value());
-    EXPECT_LT(half.error->max_abs, 4.9e-4) << weight;
-  }
+  test::expect_single_layer_within_storage_precision(spec_of, "weight", kWeights, 1e-6, 4.9e-4);
 }
 
 TEST(WeightedBlended, ApproximateButFiniteOnThirtyTwoLayers) {
-  for (const char* weight : kWeights) {
+  for (const std::string& weight : kWeights) {
     const RunResult r = run_ok(spec_of({{"weight", weight}}, "quads", {{"layers", "32"}}));
     ASSERT_TRUE(r.error.has_value());
     EXPECT_TRUE(std::isfinite(r.error->max_abs)) << weight;
@@ -68,7 +61,7 @@ TEST(WeightedBlended, RunsOnSpheres) {
 
 TEST(WeightedBlended, IsIndependentOfSubmissionOrder) {
   // Sums and products in RGBA32F/R32F commute up to float rounding.
-  for (const char* weight : kWeights) {
+  for (const std::string& weight : kWeights) {
     const RunResult original = run_ok(spec_of({{"weight", weight}}, "quads", {{"layers", "32"}}));
     const RunResult shuffled = run_ok(spec_of({{"weight", weight}}, "quads", {{"layers", "32"}}, "shuffled:7"));
     EXPECT_LT(max_abs_difference(original.image, shuffled.image), 1e-5) << weight;

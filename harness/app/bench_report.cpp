@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 
+#include "harness/app/sweep.h"
 #include "harness/core/results_csv.h"
 #include "harness/core/system_load.h"
 #include "scenes/scene_library.h"
@@ -151,13 +152,8 @@ std::string clock_text(double seconds) {
 Progress::Progress(size_t runs) : runs_(runs), start_(std::chrono::steady_clock::now()) {}
 
 std::string Progress::start_text(size_t index, const RunSpec& spec) const {
-  std::string text = "[" + std::to_string(index + 1) + "/" + std::to_string(runs_) + "] " + spec.technique;
-  for (const auto& [key, value] : spec.params) text += " " + key + "=" + value;
-  text += " on " + spec.scene;
-  for (const auto& [key, value] : spec.scene_params) text += " " + key + "=" + value;
-  text += " " + std::to_string(spec.width) + "x" + std::to_string(spec.height);
-  if (spec.camera != "default") text += " camera " + spec.camera;
-  if (!spec.scene_rect) text += " scene_rect off";
+  const std::string text = "[" + std::to_string(index + 1) + "/" + std::to_string(runs_) + "] " +
+                           run_name(spec, {" ", "=", " on ", " camera ", " scene_rect off"});
   // Room for the outcome on the same line.
   return fit(text, kConsoleWidth - 40) + " ... ";
 }

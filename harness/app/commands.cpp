@@ -284,7 +284,8 @@ int BenchSession::report() const {
               ProgramCache::instance().enabled() ? "" : " (OIT_PROGRAM_CACHE=off)");
   // Every row is written; a sweep with failed runs still says so to scripts.
   if (failed == 0) return 0;
-  std::fprintf(stderr, "oitbench bench: %zu run%s failed (error rows in %s)\n", failed, failed == 1 ? "" : "s", csv);
+  std::fprintf(stderr, "oitbench bench: %zu run%s failed (error rows in %s)\n", failed, failed == 1 ? "" : "s",
+               csv.c_str());
   return kExitRunsFailed;
 }
 

@@ -14,19 +14,13 @@
 #include <cstdio>
 
 #include "harness/app/huge_page_malloc.h"
+#include "harness/app/sweep.h"
 #include "harness/app/sweep_cli.h"
 
 namespace {
 
 std::string benchmark_name(const oit::RunSpec& spec) {
-  std::string name = spec.technique;
-  for (const auto& [key, value] : spec.params) name += "/" + key + ":" + value;
-  name += "/scene:" + spec.scene;
-  for (const auto& [key, value] : spec.scene_params) name += "/" + key + ":" + value;
-  name += "/" + std::to_string(spec.width) + "x" + std::to_string(spec.height);
-  if (spec.camera != "default") name += "/camera:" + spec.camera;
-  if (!spec.scene_rect) name += "/scene_rect:off";
-  return name;
+  return oit::run_name(spec, {"/", ":", "/scene:", "/camera:", "/scene_rect:off"});
 }
 
 // One frame per benchmark iteration: a trial of N iterations is one harness

@@ -89,8 +89,7 @@ void add_render_command(CLI::App& app, Commands& c) {
   auto* cmd = app.add_subcommand("render", "render one image (.png: 8-bit sRGB of the composite, .pfm: linear float RGB)");
   cmd->add_option("--technique,-t", render.technique, "technique id (see `list`)");
   cmd->add_option("--set", render.sets, "technique parameter key=value (repeatable)");
-  cmd->add_option("--scene,-s", render.scene, "scene id or .gltf/.glb/.obj/.off/.ply/.stl file");
-  cmd->add_option("--scene-set", render.scene_sets, "scene parameter key=value (repeatable)");
+  oit::add_scene_cli_options(cmd, render.scene, render.scene_sets);
   cmd->add_option("--size", render.size, "WIDTHxHEIGHT");
   cmd->add_option("--background", render.background, "r,g,b (linear)");
   cmd->add_option("--out,-o", render.out, "output .png or .pfm")->required();
@@ -130,8 +129,7 @@ void add_adaptive_command(CLI::App& app, Commands& c) {
   auto* cmd = app.add_subcommand(
       "adaptive", "every adaptive feature (each technique's switches and the harness's scene rectangle) on and off "
                   "on the same scenes: time and memory ratios, image difference, work saved");
-  cmd->add_option("--technique,-t", adaptive.techniques,
-                  "technique ids or 'all' (repeatable; default: those that declare adaptive switches)");
+  oit::add_techniques_cli_option(cmd, adaptive.techniques, "; default: those that declare adaptive switches");
   cmd->add_option("--feature", adaptive.features, "only these features, e.g. early_exit, scene_rect (repeatable)");
   cmd->add_option("--scene,-s", adaptive.scenes,
                   "ID or ID:key=value,key=value (repeatable; default quads:layers=4, quads:layers=32, "
@@ -149,7 +147,7 @@ void add_adaptive_command(CLI::App& app, Commands& c) {
 void add_stress_command(CLI::App& app, Commands& c) {
   auto* cmd = app.add_subcommand("stress", "numerical and robustness stress cases on every technique: "
                                             "pass/fail/skip table (each run in its own process)");
-  cmd->add_option("--technique,-t", c.stress.techniques, "technique ids or 'all' (repeatable)");
+  oit::add_techniques_cli_option(cmd, c.stress.techniques);
   cmd->add_flag("--full", c.stress.full, "every case (default: the reduced set that CI runs)");
   cmd->add_option("--case", c.stress.case_filter, "only cases whose name contains this text");
   cmd->add_option("--timeout", c.stress.timeout_s, "seconds per case and technique before it counts as a hang")
@@ -161,9 +159,8 @@ void add_stress_command(CLI::App& app, Commands& c) {
 void add_check_order_command(CLI::App& app, Commands& c) {
   auto* cmd = app.add_subcommand("check-order", "how far each technique's image moves when the triangles "
                                                  "are submitted in other orders (exact ones must not)");
-  cmd->add_option("--technique,-t", c.order.techniques, "technique ids or 'all' (repeatable)");
-  cmd->add_option("--scene,-s", c.order.scene, "scene id or file");
-  cmd->add_option("--scene-set", c.order.scene_sets, "scene parameter key=value (repeatable)");
+  oit::add_techniques_cli_option(cmd, c.order.techniques);
+  oit::add_scene_cli_options(cmd, c.order.scene, c.order.scene_sets);
   cmd->add_option("--size", c.order.size,
                   "WIDTHxHEIGHT (smaller than the other commands' default: every technique renders the scene "
                   "in 2N+1 other submission orders, N = --seeds)");
@@ -174,8 +171,7 @@ void add_check_order_command(CLI::App& app, Commands& c) {
 void add_stats_and_export_commands(CLI::App& app, Commands& c) {
   auto* stats = app.add_subcommand("stats", "fragments per pixel of one scene view: triangles, objects, depth "
                                              "complexity, list-length histogram, Psi, heatmap");
-  stats->add_option("--scene,-s", c.stats.scene, "scene id or file");
-  stats->add_option("--scene-set", c.stats.scene_sets, "scene parameter key=value (repeatable)");
+  oit::add_scene_cli_options(stats, c.stats.scene, c.stats.scene_sets);
   stats->add_option("--camera", c.stats.camera, "default, random:N:SEED, random:N:SEED@I or max_list[:N:SEED]");
   stats->add_option("--size", c.stats.size, "WIDTHxHEIGHT");
   stats->add_option("--heatmap", c.stats.heatmap, "list-length heatmap .png (viridis 0 .. longest, colour bar below)");

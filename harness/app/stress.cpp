@@ -252,15 +252,7 @@ StressOutcome run_stress_case(const CommonOptions& common, const TechniqueDescri
     try {
       auto context = create_headless_context(parse_device_choice(common.device));
       Harness harness(*context, builtin_techniques());
-      RunSpec spec;
-      spec.technique = technique.id;
-      spec.params = c.technique_params;
-      spec.scene = c.scene;
-      spec.scene_params = c.scene_params;
-      spec.width = c.width;
-      spec.height = c.height;
-      spec.warmup = 0;
-      spec.frames = 1;
+      const RunSpec spec = single_frame(technique.id, c.technique_params, c.scene, c.scene_params, c.width, c.height);
       line = serialize(judge(technique, c, harness.run(spec)), context->device().renderer);
     } catch (const std::exception& e) {
       StressOutcome o;

@@ -154,14 +154,8 @@ std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRe
               if ((a.scope.empty() || a.scope == t->id) && has_param(*t, a.key)) own.push_back(a);
             for (const auto& params : combinations(own)) {
               for (const bool scene_rect : scene_rects) {
-                RunSpec spec;
-                spec.technique = t->id;
-                spec.params = params;
-                spec.scene = scene;
-                spec.scene_params = scene_params;
+                RunSpec spec = run_of(t->id, params, scene, scene_params, width, height);
                 spec.camera = camera;
-                spec.width = width;
-                spec.height = height;
                 spec.frames = options.frames;
                 spec.warmup = options.warmup;
                 spec.clock = clock;
@@ -214,6 +208,17 @@ std::optional<RunKey> resume_key(const RunSpec& spec, const TechniqueRegistry& r
   }
 }
 
+std::string run_name(const RunSpec& spec, const RunNaming& naming) {
+  std::string name = spec.technique;
+  for (const auto& [key, value] : spec.params) name += naming.separator + key + naming.assign + value;
+  name += naming.scene + spec.scene;
+  for (const auto& [key, value] : spec.scene_params) name += naming.separator + key + naming.assign + value;
+  name += naming.separator + std::to_string(spec.width) + "x" + std::to_string(spec.height);
+  if (spec.camera != "default") name += naming.camera + spec.camera;
+  if (!spec.scene_rect) name += naming.scene_rect_off;
+  return name;
+}
+
 std::string run_label(const RunResult& result) {
   const RunSpec& spec = result.spec;
   // A scene file is named by its file name (a path's directories would make
@@ -222,13 +227,9 @@ std::string run_label(const RunResult& result) {
   const std::string scene = spec.scene.find_first_of("/.") == std::string::npos
                                 ? spec.scene
                                 : std::filesystem::path(spec.scene).filename().string();
-  std::string label = spec.technique;
-  for (const auto& [key, value] : spec.params) label += "_" + key + "-" + value;
-  label += "_" + scene;
-  for (const auto& [key, value] : spec.scene_params) label += "_" + key + "-" + value;
-  label += "_" + std::to_string(spec.width) + "x" + std::to_string(spec.height);
-  if (spec.camera != "default") label += "_camera-" + spec.camera;
-  if (!spec.scene_rect) label += "_scene-rect-off";
+  RunSpec named = spec;
+  named.scene = scene;
+  std::string label = run_name(named, {"_", "-", "_", "_camera-", "_scene-rect-off"});
   for (char& c : label)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-' && c != '.') c = '-';
   // File names end at 255 bytes: a long one keeps its start and a hash of the whole.

@@ -55,6 +55,22 @@ void parse_size(const std::string& text, int& width, int& height);
 glm::vec3 parse_background(const std::string& text);
 // "on" -> true, "off" -> false; throws naming the text otherwise.
 bool parse_on_off(const std::string& option, const std::string& text);
+// How one place writes a run's name: what goes between the fields, between
+// a parameter's key and its value, before the scene and a camera that is not
+// the default, and for a scene rectangle that is off.
+struct RunNaming {
+  const char* separator;
+  const char* assign;
+  const char* scene;
+  const char* camera;
+  const char* scene_rect_off;
+};
+// The fields that tell the runs of a sweep apart, in one order: technique
+// and its parameters as given, scene and its parameters, size, camera,
+// scene rectangle; e.g. "kbuffer k=16 on quads layers=8 64x64" with
+// {" ", "=", " on ", " camera ", " scene_rect off"}.
+std::string run_name(const RunSpec& spec, const RunNaming& naming);
+
 // Label for file names, distinct for every run a sweep expands to:
 // technique and its parameters as given, scene (a file's name) and its
 // parameters, size, then "_camera-..." when the camera is not the default

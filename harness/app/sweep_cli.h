@@ -1,9 +1,11 @@
 #pragma once
 // The sweep options of `oitbench bench` and `pareto` and of oitbench_gbench,
-// declared once so the three take the same flags with the same meaning.
+// declared once so the three take the same flags with the same meaning, and
+// the scene and technique options the other commands share.
 #include <CLI/CLI.hpp>
 
 #include <string>
+#include <vector>
 
 #include "harness/app/sweep.h"
 
@@ -33,6 +35,20 @@ inline void add_sweep_cli_options(CLI::App* command, SweepOptions& sweep, const 
   command->add_option("--memory-budget", sweep.memory_budget,
                       "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G "
                       "(default: the device's, see `list`)");
+}
+
+// --scene and --scene-set of the commands that take one scene (render,
+// check-order, stats, view).
+inline void add_scene_cli_options(CLI::App* command, std::string& scene, std::vector<std::string>& scene_sets) {
+  command->add_option("--scene,-s", scene, "scene id or .gltf/.glb/.obj/.off/.ply/.stl file");
+  command->add_option("--scene-set", scene_sets, "scene parameter key=value (repeatable)");
+}
+
+// --technique of the commands that run several techniques in turn
+// (adaptive, stress, check-order); `note` follows "repeatable".
+inline void add_techniques_cli_option(CLI::App* command, std::vector<std::string>& techniques,
+                                      const std::string& note = "") {
+  command->add_option("--technique,-t", techniques, "technique ids or 'all' (repeatable" + note + ")");
 }
 
 }  // namespace oit

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "base/params.h"
 #include "harness/core/memory_failure.h"
 #include "harness/core/prepared_run.h"
 #include "harness/core/system_load.h"
@@ -15,12 +16,29 @@
 namespace oit {
 
 std::string to_string(RunStatus status) {
-  switch (status) {
-    case RunStatus::ok: return "ok";
-    case RunStatus::skipped: return "skipped";
-    case RunStatus::error: return "error";
-  }
-  return "?";
+  static const Choices<RunStatus> statuses = {
+      {RunStatus::ok, "ok"}, {RunStatus::skipped, "skipped"}, {RunStatus::error, "error"}};
+  return statuses.name(status);
+}
+
+RunSpec run_of(const std::string& technique, const RawParams& params, const std::string& scene,
+               const RawParams& scene_params, int width, int height) {
+  RunSpec spec;
+  spec.technique = technique;
+  spec.params = params;
+  spec.scene = scene;
+  spec.scene_params = scene_params;
+  spec.width = width;
+  spec.height = height;
+  return spec;
+}
+
+RunSpec single_frame(const std::string& technique, const RawParams& params, const std::string& scene,
+                     const RawParams& scene_params, int width, int height) {
+  RunSpec spec = run_of(technique, params, scene, scene_params, width, height);
+  spec.warmup = 0;
+  spec.frames = 1;
+  return spec;
 }
 
 const StageResult* RunResult::stage(const std::string& name, const std::string& clock_name) const {
@@ -193,15 +211,9 @@ const Image& Harness::reference_image(const std::string& scene_spec, const RawPa
     return references_.emplace(key.str(), std::move(*cached)).first->second;
   }
   RunResult result;
+  result.spec = single_frame(registry_.reference().id, {}, scene_spec, scene_params, width, height);
   RunSpec& spec = result.spec;
-  spec.technique = registry_.reference().id;
-  spec.scene = scene_spec;
-  spec.scene_params = scene_params;
   spec.camera = camera;
-  spec.width = width;
-  spec.height = height;
-  spec.warmup = 0;
-  spec.frames = 1;
   spec.clock = result.clock = ClockKind::wall;
   spec.background = background;
   spec.scene_rect = false;  // the reference does not depend on the harness's shortcuts

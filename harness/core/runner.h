@@ -50,6 +50,15 @@ struct RunSpec {
   std::optional<uint64_t> memory_budget;
 };
 
+// `technique` with `params` on `scene` with `scene_params`, width x height:
+// what a run renders; the other fields at their defaults.
+RunSpec run_of(const std::string& technique, const RawParams& params, const std::string& scene,
+               const RawParams& scene_params, int width, int height);
+// run_of() for one frame without warm-up: the runs that take an image
+// rather than times (the reference, stress, the tests).
+RunSpec single_frame(const std::string& technique, const RawParams& params, const std::string& scene,
+                     const RawParams& scene_params, int width, int height);
+
 // The work_saved entry of a run with RunSpec::scene_rect: pixels outside the
 // scene's rectangle, which every scissored pass skipped.
 inline constexpr const char* kPixelsOutsideSceneRect = "pixels_outside_scene_rect";

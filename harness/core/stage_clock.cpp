@@ -4,23 +4,25 @@
 #include <stdexcept>
 #include <utility>
 
+#include "base/params.h"
+
 namespace oit {
 
+namespace {
+const Choices<ClockKind>& clock_kinds() {
+  static const Choices<ClockKind> kinds = {{ClockKind::gl, "gl"}, {ClockKind::wall, "wall"}, {ClockKind::both, "both"}};
+  return kinds;
+}
+}  // namespace
+
 ClockKind parse_clock_kind(const std::string& text) {
-  if (text == "gl") return ClockKind::gl;
-  if (text == "wall") return ClockKind::wall;
-  if (text == "both") return ClockKind::both;
-  throw std::invalid_argument("clock '" + text + "' is not one of gl, wall, both");
+  if (const ClockKind* kind = clock_kinds().find(text)) return *kind;
+  std::string names;
+  for (const std::string& name : clock_kinds().names()) names += (names.empty() ? "" : ", ") + name;
+  throw std::invalid_argument("clock '" + text + "' is not one of " + names);
 }
 
-std::string to_string(ClockKind kind) {
-  switch (kind) {
-    case ClockKind::gl: return "gl";
-    case ClockKind::wall: return "wall";
-    case ClockKind::both: return "both";
-  }
-  return "?";
-}
+std::string to_string(ClockKind kind) { return clock_kinds().name(kind); }
 
 bool is_stage_name(std::string_view name) {
   if (name.empty() || name.front() < 'a' || name.front() > 'z') return false;

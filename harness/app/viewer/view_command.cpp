@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "harness/app/sweep_cli.h"
 #include "harness/app/viewer/viewer.h"
 #include "harness/gl/glfw_window.h"
 
@@ -15,8 +16,7 @@ CLI::App* add_view_command(CLI::App& app, ViewOptions& o) {
       "view", "interactive viewer (needs a display; under xvfb-run with --frames N --screenshot for scripts)");
   view->add_option("--technique,-t", o.technique, "technique A (see `list`)");
   view->add_option("--set", o.sets, "technique A parameter key=value (repeatable)");
-  view->add_option("--scene,-s", o.scene, "scene id or .gltf/.glb/.obj/.off/.ply/.stl file");
-  view->add_option("--scene-set", o.scene_sets, "scene parameter key=value (repeatable)");
+  add_scene_cli_options(view, o.scene, o.scene_sets);
   view->add_option("--size", o.size,
                    "WIDTHxHEIGHT of the rendered image (larger than bench's 256x256: an image to look at in a "
                    "window, and murray2016 Fig. 10's size, which software GL renders in screen tiles)");
