@@ -108,10 +108,10 @@ class LinearizedFragmentBuffer final : public Technique {
       pool_.set_record_bytes(node_bytes());
       longest_ = list_lengths_.longest_list(frame);
       prefix_sum_.scan_counts(list_lengths_.counts(), width_, offsets_);
-      GLuint total = 0;
-      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the read-back and the copy below read the scan's writes
-      glGetNamedBufferSubData(offsets_.id(), GLintptr(uint64_t(width_) * uint64_t(height_) * 4), 4, &total);
-      fragments_ = total;
+      // The total comes from the counts already read back, so the scan is
+      // not waited for here (the fill is queued behind it).
+      fragments_ = list_lengths_.total_fragments();
+      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the copy below reads the scan's writes
       pool_.before_fill(frame);
       pool_.set_exact(fragments_);
       glCopyNamedBufferSubData(offsets_.id(), cursors_.id(), 0, 0, GLsizeiptr(uint64_t(width_) * uint64_t(height_) * 4));

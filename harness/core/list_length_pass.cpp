@@ -44,7 +44,12 @@ uint32_t ListLengthPass::longest_list(const Frame& frame) {
   glDisable(GL_BLEND);
   glGetTextureImage(counts_.id(), 0, GL_RED, GL_FLOAT, GLsizei(readback_.size() * sizeof(float)), readback_.data());
   gl_check("list-length counting pass");
-  const float longest = readback_.empty() ? 0.0f : *std::max_element(readback_.begin(), readback_.end());
+  float longest = 0.0f;
+  total_ = 0;
+  for (const float count : readback_) {
+    longest = std::max(longest, count);
+    total_ += uint64_t(count);
+  }
   return uint32_t(longest);
 }
 

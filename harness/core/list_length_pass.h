@@ -21,6 +21,9 @@ class ListLengthPass {
   // so it waits for the pass: the caller needs the number before going on.
   // Leaves another framebuffer and program bound.
   uint32_t longest_list(const Frame& frame);
+  // The fragments that pass counted, summed from the same read-back (exact:
+  // every count is a whole number below 2^24).
+  uint64_t total_fragments() const { return total_; }
   // The R32F count target (4 bytes per pixel).
   uint64_t bytes_allocated() const;
   // That target, holding the last pass's per-pixel counts (e.g. for a prefix sum).
@@ -32,6 +35,7 @@ class ListLengthPass {
   Framebuffer framebuffer_;
   std::vector<float> readback_;
   int width_ = 0, height_ = 0;
+  uint64_t total_ = 0;
 };
 
 // The most slots per pixel (at least 1, at most max_slots) that a technique
