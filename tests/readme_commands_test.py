@@ -231,11 +231,14 @@ def csv_rows(path):
 
 def summary_rows(text):
     """technique -> (status, max error, dropped, the lines below it) of a
-    bench summary table (parameters empty, as in the README's example)."""
+    bench summary table (parameters empty, as in the README's example). The
+    noisy column is "yes" or empty, so a row has 7 or 8 words; whether a run
+    was noisy depends on the machine's load, not on what the README shows."""
     rows, last = {}, None
     for line in text.splitlines():
         words = line.split()
-        if len(words) == 8 and words[1] in ("ok", "error", "skipped"):
+        noisy_column = len(words) == 7 or (len(words) == 8 and words[7] == "yes")
+        if noisy_column and words[1] in ("ok", "error", "skipped"):
             last = words[0]
             rows[last] = (words[1], words[5], words[6], [])
         elif last and line.startswith("    "):
