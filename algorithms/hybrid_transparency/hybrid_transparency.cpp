@@ -127,18 +127,17 @@ class HybridTransparency final : public Technique {
 }  // namespace
 
 void register_technique_hybrid_transparency(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "hybrid_transparency";
-  d.display_name = "Hybrid transparency";
-  d.paper = "Maule, Comba, Torchelsen & Bastos 2013, Hybrid Transparency, I3D 2013";
-  d.params = {ParamSpec::integer("k", 4, 1, 64,
-                                 "core layers per pixel: the k nearest fragments are composed exactly, the rest as "
-                                 "one weighted-average tail behind them")};
-  d.stages = {"clear", "fill", "store", "compose"};
-  d.exactness = Exactness::approximate;
-  d.quality_sweep = {{"k", {"1", "2", "4", "8", "16"}}};
-  d.create = [](const ParamSet& params) { return std::make_unique<HybridTransparency>(params); };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "hybrid_transparency",
+      .display_name = "Hybrid transparency",
+      .paper = "Maule, Comba, Torchelsen & Bastos 2013, Hybrid Transparency, I3D 2013",
+      .params = {ParamSpec::integer("k", 4, 1, 64,
+                                    "core layers per pixel: the k nearest fragments are composed exactly, the "
+                                    "rest as one weighted-average tail behind them")},
+      .stages = {"clear", "fill", "store", "compose"},
+      .quality_sweep = {{"k", {"1", "2", "4", "8", "16"}}},
+      .create = make_technique<HybridTransparency>,
+  });
 }
 
 }  // namespace oit

@@ -257,30 +257,33 @@ class KBuffer final : public Technique {
 }  // namespace
 
 void register_technique_kbuffer(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "kbuffer";
-  d.display_name = "Dual-pass k-buffer";
-  d.paper = "Kubisch 2014, Order independent transparency in OpenGL 4.x (GTC 2014); murray2016 section 4";
-  d.params = {ParamSpec::integer_or_auto("k", "16", 1, kMaxK,
-                                         "slots per pixel: the K nearest fragments are sorted exactly; auto = the "
-                                         "view's depth complexity, counted every frame (capped by auto_k_memory_mb)"),
-              kTails.spec("tail", Tail::drop,
-                          "fragments beyond the K nearest: drop (counted) or blend unsorted behind them"),
-              ParamSpec::integer("auto_k_memory_mb", 1024, 1, 1 << 20,
-                                 "k=auto only: most MiB of slot storage (24 bytes per slot); k is capped to fit")};
-  d.stages = {"count", "clear", "fill", "store", "compose"};  // count: only with k=auto
-  d.exactness = Exactness::exact;
-  d.quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32"}}, {"tail", kTails.names()}};
-  d.adaptive_switches = {{"k_auto", "sizes k from the view's depth complexity (a counting pass) instead of the "
-                                    "worst-case constant 64",
-                          {{"k", "auto"}}, {{"k", "64"}}}};
-  d.create = [](const ParamSet& params) { return std::make_unique<KBuffer>(params); };
-  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
-    const uint64_t slots = content.pixels() * fragment_pool::slots_per_pixel(content, params, kMaxK);
-    const uint64_t tail = params.choice("tail", kTails) == Tail::blend ? kTailBytesPerPixel : 0;
-    return StorageNeed{slots * kColorBytes, slots * kSlotBytes + content.pixels() * (tail + 4)};
-  };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "kbuffer",
+      .display_name = "Dual-pass k-buffer",
+      .paper = "Kubisch 2014, Order independent transparency in OpenGL 4.x (GTC 2014); murray2016 section 4",
+      .params = {ParamSpec::integer_or_auto("k", "16", 1, kMaxK,
+                                            "slots per pixel: the K nearest fragments are sorted exactly; auto = "
+                                            "the view's depth complexity, counted every frame (capped by "
+                                            "auto_k_memory_mb)"),
+                 kTails.spec("tail", Tail::drop,
+                             "fragments beyond the K nearest: drop (counted) or blend unsorted behind them"),
+                 ParamSpec::integer("auto_k_memory_mb", 1024, 1, 1 << 20,
+                                    "k=auto only: most MiB of slot storage (24 bytes per slot); k is capped to fit")},
+      .stages = {"count", "clear", "fill", "store", "compose"},  // count: only with k=auto
+      .exactness = Exactness::exact,
+      .quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32"}}, {"tail", kTails.names()}},
+      .adaptive_switches = {{"k_auto",
+                             "sizes k from the view's depth complexity (a counting pass) instead of the worst-case "
+                             "constant 64",
+                             {{"k", "auto"}},
+                             {{"k", "64"}}}},
+      .create = make_technique<KBuffer>,
+      .storage_need = [](const ParamSet& params, const FrameContent& content) {
+        const uint64_t slots = content.pixels() * fragment_pool::slots_per_pixel(content, params, kMaxK);
+        const uint64_t tail = params.choice("tail", kTails) == Tail::blend ? kTailBytesPerPixel : 0;
+        return StorageNeed{slots * kColorBytes, slots * kSlotBytes + content.pixels() * (tail + 4)};
+      },
+  });
 }
 
 }  // namespace oit

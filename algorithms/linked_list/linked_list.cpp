@@ -338,58 +338,60 @@ class LinkedList final : public Technique {
 }  // namespace
 
 void register_technique_linked_list(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "linked_list";
-  d.display_name = "Per-pixel linked lists (A-buffer), float blend";
-  d.paper = "Yang et al. 2010; Carnecky et al. 2013; Pastyrik & Kolingerova 2016";
-  d.params = {
-      kSorts.spec("sort", Sort::network,
-                  "resolve sort: insertion (Yang 2010), selection (Carnecky 2013) or an unrolled "
-                  "odd-even merge sorting network on registers"),
-      ParamSpec::integer("max_per_pixel", 64, 1, 1024,
-                         "local array size; longer lists keep their nearest max_per_pixel fragments and count "
-                         "the rest as dropped"),
-      ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,
-                         "first frame's pool per pixel with pool_sizing=previous_frame; later frames size it "
-                         "from the last count"),
-      kPoolSizings.spec("pool_sizing", PoolSizing::previous_frame,
-                        "node pool: previous_frame (1.25 x the last frame's fragments, grown with a re-render "
-                        "on overflow), count (a counting pass first, then exactly that many nodes; never "
-                        "overflows) or worst_case (W x H x max_per_pixel nodes, allocated once)"),
-      kStorages.spec("storage", Storage::full,
-                     "node layout: full (32 bytes: float RGBA, view depth, triangle id, next; exact) or "
-                     "compact (12 bytes: view depth, RGBA8 colour, next; colour quantised to 1/255 and "
-                     "coplanar fragments ordered by allocation instead of triangle id)"),
-      ParamSpec::boolean("length_classes", true,
-                         "sort=network only: resolve each 4x4 tile with the smallest network that holds its "
-                         "longest list: a compute pass classifies the tiles (1 = no sort, 8, 16, ... the frame's "
-                         "array, when that is over 8) and each class is drawn as one point per tile; false: one "
-                         "full-screen draw sorts every pixel in the array of the frame's longest list")};
-  d.stages = {"count", "clear", "fill", "compose"};
-  // Every fragment is kept and exactly ordered (float blend) unless a list exceeds max_per_pixel.
-  d.exactness = Exactness::exact;
-  d.quality_sweep = {{"max_per_pixel", {"1", "2", "4", "8", "16", "32", "64"}},
-                     {"sort", {"insertion", "network"}},
-                     {"storage", {"compact", "full"}}};
-  d.adaptive_switches = {
-      {"pool_count", "sizes the node pool exactly from a counting pass instead of W x H x max_per_pixel",
-       {{"pool_sizing", "count"}}, {{"pool_sizing", "worst_case"}}},
-      {"pool_previous_frame", "sizes the node pool from the previous frame's count instead of W x H x max_per_pixel",
-       {{"pool_sizing", "previous_frame"}}, {{"pool_sizing", "worst_case"}}},
-      {"length_classes", "sort=network: resolves each 4x4 tile with the smallest network that holds its longest "
-       "list (no sort for 0/1-fragment tiles) instead of the frame's largest network everywhere",
-       {{"length_classes", "true"}}, {{"length_classes", "false"}}}};
-  d.create = [](const ParamSet& params) { return std::make_unique<LinkedList>(params); };
-  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
-    const PoolSizing sizing = params.choice("pool_sizing", kPoolSizings);
-    const uint64_t nodes =
-        sizing == PoolSizing::count        ? std::max<uint64_t>(content.fragments, 1)
-        : sizing == PoolSizing::worst_case ? content.pixels() * uint64_t(params.integer("max_per_pixel"))
-                                           : fragment_pool::nodes_for(content, uint64_t(params.integer("initial_nodes_per_pixel")));
-    const uint64_t node = params.choice("storage", kStorages) == Storage::compact ? kCompactNodeBytes : kNodeBytes;
-    return StorageNeed{nodes * node, content.pixels() * (kPixelBytes + 2) + nodes * node};
-  };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "linked_list",
+      .display_name = "Per-pixel linked lists (A-buffer), float blend",
+      .paper = "Yang et al. 2010; Carnecky et al. 2013; Pastyrik & Kolingerova 2016",
+      .params = {
+          kSorts.spec("sort", Sort::network,
+                      "resolve sort: insertion (Yang 2010), selection (Carnecky 2013) or an unrolled "
+                      "odd-even merge sorting network on registers"),
+          ParamSpec::integer("max_per_pixel", 64, 1, 1024,
+                             "local array size; longer lists keep their nearest max_per_pixel fragments and count "
+                             "the rest as dropped"),
+          ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,
+                             "first frame's pool per pixel with pool_sizing=previous_frame; later frames size it "
+                             "from the last count"),
+          kPoolSizings.spec("pool_sizing", PoolSizing::previous_frame,
+                            "node pool: previous_frame (1.25 x the last frame's fragments, grown with a re-render "
+                            "on overflow), count (a counting pass first, then exactly that many nodes; never "
+                            "overflows) or worst_case (W x H x max_per_pixel nodes, allocated once)"),
+          kStorages.spec("storage", Storage::full,
+                         "node layout: full (32 bytes: float RGBA, view depth, triangle id, next; exact) or "
+                         "compact (12 bytes: view depth, RGBA8 colour, next; colour quantised to 1/255 and "
+                         "coplanar fragments ordered by allocation instead of triangle id)"),
+          ParamSpec::boolean("length_classes", true,
+                             "sort=network only: resolve each 4x4 tile with the smallest network that holds its "
+                             "longest list: a compute pass classifies the tiles (1 = no sort, 8, 16, ... the frame's "
+                             "array, when that is over 8) and each class is drawn as one point per tile; false: one "
+                             "full-screen draw sorts every pixel in the array of the frame's longest list")},
+      .stages = {"count", "clear", "fill", "compose"},
+      // Every fragment is kept and exactly ordered (float blend) unless a list exceeds max_per_pixel.
+      .exactness = Exactness::exact,
+      .quality_sweep = {{"max_per_pixel", {"1", "2", "4", "8", "16", "32", "64"}},
+                        {"sort", {"insertion", "network"}},
+                        {"storage", {"compact", "full"}}},
+      .adaptive_switches = {
+          {"pool_count", "sizes the node pool exactly from a counting pass instead of W x H x max_per_pixel",
+           {{"pool_sizing", "count"}}, {{"pool_sizing", "worst_case"}}},
+          {"pool_previous_frame",
+           "sizes the node pool from the previous frame's count instead of W x H x max_per_pixel",
+           {{"pool_sizing", "previous_frame"}}, {{"pool_sizing", "worst_case"}}},
+          {"length_classes", "sort=network: resolves each 4x4 tile with the smallest network that holds its longest "
+           "list (no sort for 0/1-fragment tiles) instead of the frame's largest network everywhere",
+           {{"length_classes", "true"}}, {{"length_classes", "false"}}}},
+      .create = make_technique<LinkedList>,
+      .storage_need = [](const ParamSet& params, const FrameContent& content) {
+        const PoolSizing sizing = params.choice("pool_sizing", kPoolSizings);
+        const uint64_t initial = uint64_t(params.integer("initial_nodes_per_pixel"));
+        const uint64_t nodes =
+            sizing == PoolSizing::count        ? std::max<uint64_t>(content.fragments, 1)
+            : sizing == PoolSizing::worst_case ? content.pixels() * uint64_t(params.integer("max_per_pixel"))
+                                               : fragment_pool::nodes_for(content, initial);
+        const uint64_t node = params.choice("storage", kStorages) == Storage::compact ? kCompactNodeBytes : kNodeBytes;
+        return StorageNeed{nodes * node, content.pixels() * (kPixelBytes + 2) + nodes * node};
+      },
+  });
 }
 
 }  // namespace oit

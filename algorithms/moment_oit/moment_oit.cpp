@@ -184,29 +184,29 @@ class MomentOit final : public Technique {
 }  // namespace
 
 void register_technique_moment_oit(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "moment_oit";
-  d.display_name = "Moment-based OIT";
-  d.paper = "Münstermann, Krumpen, Klein & Peters 2018, Moment-Based Order-Independent Transparency, PACMCGIT 1(1)";
-  d.params = {
-      kMomentConfigs.spec("moments", {false, 6},
-                          "power moments (4, 6 or 8 of depth) or trigonometric moments (2, 3 or 4 of an angle)"),
-      kPrecisions.spec("precision", Precision::single,
-                       "moment and accumulation targets: 32-bit floats, or the paper's 16-bit (half) storage"),
-      ParamSpec::real("moment_bias_scale", 1.0, 0.0, 1e4,
-                      "multiplies the paper's moment bias of the configuration (e.g. 5e-6 for power6 at 32 bits); "
-                      "0 = no bias"),
-      ParamSpec::real("overestimation", 0.25, 0.0, 1.0,
-                      "the paper's beta: 0 = lower bound of the absorbance in front, 1 = upper bound"),
-      ParamSpec::real("wrapping_zone_degrees", 18.0, 1.0, 180.0,
-                      "trigonometric moments: the angle between the far and the near end of the depth range "
-                      "(the paper's 0.1 pi)")};
-  d.stages = {"clear", "fill", "store", "compose"};
-  d.exactness = Exactness::approximate;
-  d.quality_sweep = {{"moments", {"power4", "trig2", "power6", "trig3", "power8", "trig4"}},
-                     {"precision", {"half", "float"}}};
-  d.create = [](const ParamSet& params) { return std::make_unique<MomentOit>(params); };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "moment_oit",
+      .display_name = "Moment-based OIT",
+      .paper = "Münstermann, Krumpen, Klein & Peters 2018, Moment-Based Order-Independent Transparency, PACMCGIT 1(1)",
+      .params = {kMomentConfigs.spec("moments", {false, 6},
+                                     "power moments (4, 6 or 8 of depth) or trigonometric moments (2, 3 or 4 of "
+                                     "an angle)"),
+                 kPrecisions.spec("precision", Precision::single,
+                                  "moment and accumulation targets: 32-bit floats, or the paper's 16-bit (half) "
+                                  "storage"),
+                 ParamSpec::real("moment_bias_scale", 1.0, 0.0, 1e4,
+                                 "multiplies the paper's moment bias of the configuration (e.g. 5e-6 for power6 "
+                                 "at 32 bits); 0 = no bias"),
+                 ParamSpec::real("overestimation", 0.25, 0.0, 1.0,
+                                 "the paper's beta: 0 = lower bound of the absorbance in front, 1 = upper bound"),
+                 ParamSpec::real("wrapping_zone_degrees", 18.0, 1.0, 180.0,
+                                 "trigonometric moments: the angle between the far and the near end of the depth "
+                                 "range (the paper's 0.1 pi)")},
+      .stages = {"clear", "fill", "store", "compose"},
+      .quality_sweep = {{"moments", {"power4", "trig2", "power6", "trig3", "power8", "trig4"}},
+                        {"precision", {"half", "float"}}},
+      .create = make_technique<MomentOit>,
+  });
 }
 
 }  // namespace oit

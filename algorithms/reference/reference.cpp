@@ -182,23 +182,22 @@ class Reference final : public Technique {
 }  // namespace
 
 void register_technique_reference(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "reference";
-  d.display_name = "Exact reference (all fragments, double-precision blend)";
-  d.paper = "A-buffer (Carpenter 1984) as linked lists (Yang et al. 2010)";
-  d.params = {ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,
-                                 "initial pool size per pixel; the pool grows on overflow")};
-  d.stages = {"clear", "fill", "compose"};
-  d.needs.fp64 = true;
-  d.needs.int64 = true;
-  d.exactness = Exactness::exact;
-  d.is_reference = true;
-  d.create = [](const ParamSet& params) { return std::make_unique<Reference>(params); };
-  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
-    const uint64_t nodes = fragment_pool::nodes_for(content, uint64_t(params.integer("initial_nodes_per_pixel")));
-    return StorageNeed{nodes * kNodeBytes, content.pixels() * 8 + nodes * kNodeBytes};
-  };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "reference",
+      .display_name = "Exact reference (all fragments, double-precision blend)",
+      .paper = "A-buffer (Carpenter 1984) as linked lists (Yang et al. 2010)",
+      .params = {ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,
+                                    "initial pool size per pixel; the pool grows on overflow")},
+      .stages = {"clear", "fill", "compose"},
+      .needs = {.fp64 = true, .int64 = true},
+      .exactness = Exactness::exact,
+      .is_reference = true,
+      .create = make_technique<Reference>,
+      .storage_need = [](const ParamSet& params, const FrameContent& content) {
+        const uint64_t nodes = fragment_pool::nodes_for(content, uint64_t(params.integer("initial_nodes_per_pixel")));
+        return StorageNeed{nodes * kNodeBytes, content.pixels() * 8 + nodes * kNodeBytes};
+      },
+  });
 }
 
 }  // namespace oit

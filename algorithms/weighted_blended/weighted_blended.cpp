@@ -108,22 +108,23 @@ class WeightedBlended final : public Technique {
 }  // namespace
 
 void register_technique_weighted_blended(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "weighted_blended";
-  d.display_name = "Weighted blended OIT";
-  d.paper = "McGuire & Bavoil 2013, Weighted Blended Order-Independent Transparency, JCGT 2(2)";
-  d.params = {kWeights.spec("weight", 10,
-                            "depth weight: the paper's eq. 7, 8, 9 (view depth rescaled from [near, far] to "
-                            "[0.1, 500]) or 10 (window depth)"),
-              kPrecisions.spec("precision", Precision::single,
-                               "accumulation/revealage targets: RGBA32F + R32F, or the paper's RGBA16F + R16F")};
-  d.stages = {"clear", "fill", "compose"};
-  d.exactness = Exactness::approximate;
-  d.quality_sweep = {{"weight", kWeights.names()}};
-  d.create = [](const ParamSet& params) { return std::make_unique<WeightedBlended>(params); };
-  // Two accumulation textures (precision=float's 20 bytes per pixel, the larger).
-  d.storage_need = [](const ParamSet&, const FrameContent& content) { return StorageNeed{0, content.pixels() * 20}; };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "weighted_blended",
+      .display_name = "Weighted blended OIT",
+      .paper = "McGuire & Bavoil 2013, Weighted Blended Order-Independent Transparency, JCGT 2(2)",
+      .params = {kWeights.spec("weight", 10,
+                               "depth weight: the paper's eq. 7, 8, 9 (view depth rescaled from [near, far] to "
+                               "[0.1, 500]) or 10 (window depth)"),
+                 kPrecisions.spec("precision", Precision::single,
+                                  "accumulation/revealage targets: RGBA32F + R32F, or the paper's RGBA16F + R16F")},
+      .stages = {"clear", "fill", "compose"},
+      .quality_sweep = {{"weight", kWeights.names()}},
+      .create = make_technique<WeightedBlended>,
+      // Two accumulation textures (precision=float's 20 bytes per pixel, the larger).
+      .storage_need = [](const ParamSet&, const FrameContent& content) {
+        return StorageNeed{0, content.pixels() * 20};
+      },
+  });
 }
 
 }  // namespace oit

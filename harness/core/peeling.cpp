@@ -23,8 +23,8 @@ const Choices<TieBreak> kTieBreaks{{TieBreak::triangle_id, "triangle_id"}, {TieB
 
 }  // namespace
 
-void describe_peeler(TechniqueDescriptor& d, const PeelingText& text, uint64_t bytes_per_pixel,
-                     PeelerFactory by_triangle_id, PeelerFactory by_submission) {
+TechniqueDescriptor describe_peeler(TechniqueDescriptor d, const PeelingText& text, uint64_t bytes_per_pixel,
+                                    PeelerFactory by_triangle_id, PeelerFactory by_submission) {
   d.params = {
       ParamSpec::integer("max_passes", 64, 1, 4096, text.max_passes),
       ParamSpec::boolean("early_exit", true, text.early_exit),
@@ -42,6 +42,7 @@ void describe_peeler(TechniqueDescriptor& d, const PeelingText& text, uint64_t b
     if (params.choice("tie_break", kTieBreaks) == TieBreak::submission) return by_submission(max_passes, early_exit);
     return by_triangle_id(max_passes, early_exit);
   };
+  return d;
 }
 
 TechniqueCounters peeling_counters(uint64_t bytes_allocated, uint64_t passes, int max_passes, bool early_exit) {

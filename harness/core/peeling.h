@@ -24,14 +24,20 @@ struct PeelingText {
   std::string max_passes, early_exit, tie_break, early_exit_saves;
 };
 using PeelerFactory = std::unique_ptr<Technique> (*)(int max_passes, bool early_exit);
+// The PeelerFactory of a peeler class constructed from (max_passes, early_exit).
+template <class T>
+std::unique_ptr<Technique> make_peeler(int max_passes, bool early_exit) {
+  return std::make_unique<T>(max_passes, early_exit);
+}
 
-// Fills d.params, d.stages (clear, peel, compose), d.exactness (exact),
-// d.adaptive_switches (early_exit on and off), d.storage_need (per-pixel
-// textures only, `bytes_per_pixel` of the larger variant: tiled only under
-// a small --memory-budget) and d.create, which picks `by_triangle_id` or
-// `by_submission` by tie_break.
-void describe_peeler(TechniqueDescriptor& d, const PeelingText& text, uint64_t bytes_per_pixel,
-                     PeelerFactory by_triangle_id, PeelerFactory by_submission);
+// `d` (the peeler's id, names, paper and quality_sweep) with what both
+// peelers share filled in: params, stages (clear, peel, compose), exactness
+// (exact), adaptive_switches (early_exit on and off), storage_need
+// (per-pixel textures only, `bytes_per_pixel` of the larger variant: tiled
+// only under a small --memory-budget) and create, which picks
+// `by_triangle_id` or `by_submission` by tie_break.
+TechniqueDescriptor describe_peeler(TechniqueDescriptor d, const PeelingText& text, uint64_t bytes_per_pixel,
+                                    PeelerFactory by_triangle_id, PeelerFactory by_submission);
 
 // bytes_allocated, passes and work_saved passes_avoided (geometry passes
 // early exit did not run; zero without it, where all max_passes run).
