@@ -115,8 +115,7 @@ class LinearizedFragmentBuffer final : public Technique {
       pool_.before_fill(frame);
       pool_.set_exact(fragments_);
       glCopyNamedBufferSubData(offsets_.id(), cursors_.id(), 0, 0, GLsizeiptr(uint64_t(width_) * uint64_t(height_) * 4));
-      const GLuint zero = 0;
-      glClearNamedBufferData(mismatched_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      fill_buffer_u32(mismatched_, 0);
     }
     fill(frame);
     auto compose = frame.clock.stage("compose");

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "harness/core/fragment_pool.h"
+#include "harness/core/passes.h"
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
@@ -104,9 +105,7 @@ class LinkedList final : public Technique {
       case PoolSizing::count: pool_.reset(1); break;  // the counting pass sizes it before every fill
       case PoolSizing::worst_case: pool_.reset(worst_case_nodes()); break;
     }
-    dummy_framebuffer_ = make_framebuffer();
-    glNamedFramebufferParameteri(dummy_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
-    glNamedFramebufferParameteri(dummy_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+    dummy_framebuffer_ = make_attachmentless_framebuffer(width, height);
     set_uniform(fill_.id(), LINKED_LIST_WIDTH_LOCATION, width_);
     for (auto& [key, program] : programs_) set_uniform(program.id(), LINKED_LIST_WIDTH_LOCATION, width_);
   }
@@ -119,19 +118,14 @@ class LinkedList final : public Technique {
       {
         auto clear = frame.clock.stage("clear");
         pool_.before_fill(frame);
-        const GLuint nil = 0xffffffffu, zero = 0;
-        glClearNamedBufferData(heads_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &nil);
-        glClearNamedBufferData(lengths_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-        glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        fill_buffer_u32(heads_, 0xffffffffu);  // LL_NIL (nodes.glsl)
+        fill_buffer_u32(lengths_, 0);
+        fill_buffer_u32(counters_, 0);
       }
       {
         auto fill = frame.clock.stage("fill");
-        glBindFramebuffer(GL_FRAMEBUFFER, dummy_framebuffer_.id());
-        glViewport(0, 0, width_, height_);
-        glUseProgram(fill_.id());
-        frame.set_shared_uniforms(fill_.id());
         bind_storage();
-        frame.scene.draw();
+        draw_scene_pass(frame, fill_, dummy_framebuffer_);
         ++passes_;
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
@@ -205,12 +199,8 @@ class LinkedList final : public Technique {
   // that count (only when it changed).
   void count_fragments(const Frame& frame) {
     auto count = frame.clock.stage("count");
-    glBindFramebuffer(GL_FRAMEBUFFER, dummy_framebuffer_.id());
-    glViewport(0, 0, width_, height_);
-    glUseProgram(count_.id());
-    frame.set_shared_uniforms(count_.id());
     glBeginQuery(GL_SAMPLES_PASSED, count_query_.id());
-    frame.scene.draw();
+    draw_scene_pass(frame, count_, dummy_framebuffer_);
     glEndQuery(GL_SAMPLES_PASSED);
     ++passes_;
     GLuint fragments = 0;

@@ -54,13 +54,6 @@ double paper_moment_bias(const MomentConfig& config, bool half) {
   }
 }
 
-// View depths of the near and far planes of a GL projection matrix
-// (glm: m[column][row]); perspective when m[2][3] == -1, else orthographic.
-glm::vec2 near_far_of(const glm::mat4& p) {
-  if (p[2][3] != 0.0f) return {p[3][2] / (p[2][2] - 1.0f), p[3][2] / (p[2][2] + 1.0f)};
-  return {(p[3][2] + 1.0f) / p[2][2], (p[3][2] - 1.0f) / p[2][2]};
-}
-
 class MomentOit final : public Technique {
  public:
   explicit MomentOit(const ParamSet& params)
@@ -100,7 +93,7 @@ class MomentOit final : public Technique {
   }
 
   void render(const Frame& frame) override {
-    set_depth_warp(frame.projection);
+    set_depth_warp(frame);
     {
       auto clear = frame.clock.stage("clear");
       const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -156,9 +149,9 @@ class MomentOit final : public Technique {
   // logarithmically under perspective (the paper's warp: relative depth
   // differences matter equally near and far), linearly for an orthographic
   // projection, whose near plane may sit at or behind the eye.
-  void set_depth_warp(const glm::mat4& projection) const {
-    const bool perspective = projection[2][3] != 0.0f;
-    glm::vec2 near_far = near_far_of(projection);
+  void set_depth_warp(const Frame& frame) const {
+    const bool perspective = frame.projection[2][3] != 0.0f;
+    glm::vec2 near_far = frame.near_far();
     if (perspective) near_far = glm::log(near_far);
     for (GLuint program : {fill_.id(), store_.id()}) {
       set_uniform(program, MOMENT_OIT_DEPTH_WARP_LOCATION, glm::vec2(near_far.x, 1.0f / (near_far.y - near_far.x)));

@@ -75,12 +75,8 @@ class Reference final : public Technique {
       resolve_on_cpu(frame);
       return;
     }
-    const GLuint resolve = resolve_program(max_length_);
-    frame.bind_target();
-    glUseProgram(resolve);
-    frame.set_shared_uniforms(resolve);
     bind_storage();
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    draw_fullscreen_pass(frame, resolve_program(max_length_));
   }
 
   TechniqueCounters counters() const override {
@@ -139,7 +135,7 @@ class Reference final : public Technique {
   }
 
   // Resolve programs by local array size (powers of two from 16).
-  GLuint resolve_program(uint32_t max_length) {
+  const Program& resolve_program(uint32_t max_length) {
     const uint32_t size = std::max<uint32_t>(16, std::bit_ceil(std::max<uint32_t>(max_length, 1)));
     auto it = resolve_.find(size);
     if (it == resolve_.end()) {
@@ -148,7 +144,7 @@ class Reference final : public Technique {
                .first;
       set_uniform(it->second.id(), REFERENCE_WIDTH_LOCATION, width_);
     }
-    return it->second.id();
+    return it->second;
   }
 
   void allocate_pool(uint64_t capacity) {

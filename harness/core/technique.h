@@ -117,6 +117,9 @@ struct Frame {
   void set_shared_uniforms(GLuint program) const;
   // Binds the target framebuffer with a full viewport.
   void bind_target() const;
+  // View depths of the projection's near and far planes (perspective or
+  // orthographic).
+  glm::vec2 near_far() const;
 };
 
 class Technique {
