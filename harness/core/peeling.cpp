@@ -98,6 +98,18 @@ bool TriangleIdPeeler::continue_after(int pass, const std::function<bool()>& res
   return resolve() || !early_exit_;
 }
 
+void TriangleIdPeeler::draw_counting_init_pass(const Frame& frame, const Program& init, const Framebuffer& target,
+                                               GLenum reduction) const {
+  glEnable(GL_BLEND);
+  glBindFramebuffer(GL_FRAMEBUFFER, target.id());
+  glBlendEquation(reduction);
+  glUseProgram(init.id());
+  glBeginQuery(GL_SAMPLES_PASSED, fragments_query_.id());
+  frame.scene.draw();
+  glEndQuery(GL_SAMPLES_PASSED);
+  glDisable(GL_BLEND);
+}
+
 void TriangleIdPeeler::compose(const Frame& frame, const Program& program,
                                std::initializer_list<const Texture*> inputs) const {
   restore_default_blending();

@@ -100,6 +100,11 @@ class TriangleIdPeeler : public Technique {
   // needed), else after `resolve` (which writes the next state) unless it
   // selected nothing and early exit is on.
   bool continue_after(int pass, const std::function<bool()>& resolve);
+  // Pass 1: `init` into `target`, blended by `reduction` (GL_MIN or GL_MAX
+  // of the depths it writes), with nothing discarded and no depth test, so
+  // that fragments_query_ counts every fragment; blending off afterwards.
+  void draw_counting_init_pass(const Frame& frame, const Program& init, const Framebuffer& target,
+                               GLenum reduction) const;
   // Whether pass `pass`'s resolve selected a fragment anywhere; waits for the
   // pass only when early exit needs to know.
   bool selected_anything(int pass) const { return !early_exit_ || selected_queries_.result(size_t(pass)) != 0; }
