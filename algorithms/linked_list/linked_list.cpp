@@ -114,26 +114,22 @@ class LinkedList final : public Technique {
     passes_ = 0;
     GLuint counts[3] = {0, 0, 0};  // node_count, max_length, dropped
     if (pool_sizing_ == PoolSizing::count) count_fragments(frame);
-    for (;;) {
-      {
-        auto clear = frame.clock.stage("clear");
-        pool_.before_fill(frame);
-        fill_buffer_u32(heads_, 0xffffffffu);  // LL_NIL (nodes.glsl)
-        fill_buffer_u32(lengths_, 0);
-        fill_buffer_u32(counters_, 0);
-      }
-      {
-        auto fill = frame.clock.stage("fill");
-        bind_storage();
-        draw_scene_pass(frame, fill_, dummy_framebuffer_);
-        ++passes_;
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
-      }
-      // pool_sizing=count never overflows: the counting pass ran the same
-      // geometry, so the fill produces exactly that count.
-      if (pool_.fits(frame, counts[0])) break;
-    }
+    // pool_sizing=count never overflows: the counting pass ran the same
+    // geometry, so the fill produces exactly that count.
+    passes_ += pool_.fill_until_fits(
+        frame,
+        [&] {
+          fill_buffer_u32(heads_, 0xffffffffu);  // LL_NIL (nodes.glsl)
+          fill_buffer_u32(lengths_, 0);
+          fill_buffer_u32(counters_, 0);
+        },
+        [&] {
+          bind_storage();
+          draw_scene_pass(frame, fill_, dummy_framebuffer_);
+          glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+          glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
+          return uint64_t(counts[0]);
+        });
     dropped_ = counts[2];
     stored_ = counts[0] - counts[2];
 

@@ -47,29 +47,23 @@ class Reference final : public Technique {
   }
 
   void render(const Frame& frame) override {
-    passes_ = 0;
-    for (;;) {
-      {
-        auto clear = frame.clock.stage("clear");
-        pool_.before_fill(frame);
-        const GLuint nil = 0xffffffffu;
-        fill_buffer_u32(heads_, nil);
-        fill_buffer_u32(lengths_, 0);
-        fill_buffer_u32(counter_, 0);
-      }
-      {
-        auto fill = frame.clock.stage("fill");
-        bind_storage();
-        draw_scene_pass(frame, fill_, no_attachments_);
-        ++passes_;
-      }
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-      GLuint counts[2] = {0, 0};  // node_count, max_length
-      glGetNamedBufferSubData(counter_.id(), 0, sizeof(counts), counts);
-      max_length_ = counts[1];
-      stored_ = counts[0];
-      if (pool_.fits(frame, counts[0])) break;
-    }
+    passes_ = pool_.fill_until_fits(
+        frame,
+        [&] {
+          fill_buffer_u32(heads_, 0xffffffffu);  // REFERENCE_NIL (reference_nodes.glsl)
+          fill_buffer_u32(lengths_, 0);
+          fill_buffer_u32(counter_, 0);
+        },
+        [&] {
+          bind_storage();
+          draw_scene_pass(frame, fill_, no_attachments_);
+          glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+          GLuint counts[2] = {0, 0};  // node_count, max_length
+          glGetNamedBufferSubData(counter_.id(), 0, sizeof(counts), counts);
+          max_length_ = counts[1];
+          stored_ = counts[0];
+          return uint64_t(counts[0]);
+        });
     auto compose = frame.clock.stage("compose");
     if (max_length_ > kMaxGpuListLength) {
       resolve_on_cpu(frame);
