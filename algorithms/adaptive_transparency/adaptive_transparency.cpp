@@ -110,22 +110,21 @@ class AdaptiveTransparency final : public Technique {
 }  // namespace
 
 void register_technique_adaptive_transparency(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "adaptive_transparency";
-  d.display_name = "Adaptive transparency";
-  d.paper = "Salvi, Montgomery & Lefohn 2011, Adaptive Transparency, HPG 2011";
-  d.params = {ParamSpec::integer("k", 4, 1, 32,
-                                 "nodes of each pixel's visibility function; one more is compressed away by the "
-                                 "smallest area change")};
-  d.stages = {"clear", "fill", "store", "compose"};
-  d.exactness = Exactness::approximate;
-  d.quality_sweep = {{"k", {"1", "2", "4", "8", "16"}}};
-  d.create = [](const ParamSet& params) { return std::make_unique<AdaptiveTransparency>(params); };
-  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
-    const uint64_t nodes = content.pixels() * uint64_t(params.integer("k") + 1);
-    return StorageNeed{nodes * kNodeBytes, nodes * kNodeBytes + content.pixels() * kPixelBytes};
-  };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "adaptive_transparency",
+      .display_name = "Adaptive transparency",
+      .paper = "Salvi, Montgomery & Lefohn 2011, Adaptive Transparency, HPG 2011",
+      .params = {ParamSpec::integer("k", 4, 1, 32,
+                                    "nodes of each pixel's visibility function; one more is compressed away by "
+                                    "the smallest area change")},
+      .stages = {"clear", "fill", "store", "compose"},
+      .quality_sweep = {{"k", {"1", "2", "4", "8", "16"}}},
+      .create = make_technique<AdaptiveTransparency>,
+      .storage_need = [](const ParamSet& params, const FrameContent& content) {
+        const uint64_t nodes = content.pixels() * uint64_t(params.integer("k") + 1);
+        return StorageNeed{nodes * kNodeBytes, nodes * kNodeBytes + content.pixels() * kPixelBytes};
+      },
+  });
 }
 
 }  // namespace oit

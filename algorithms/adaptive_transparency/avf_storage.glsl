@@ -4,6 +4,7 @@
 // depth z is the T of the last node strictly in front of z, 1 before the
 // first. How many nodes a pixel holds is its count word.
 #include "shaders/bindings.h"
+#include "shaders/pixel_storage.glsl"
 #include "algorithms/adaptive_transparency/bindings.h"
 
 layout(std430, binding = ADAPTIVE_TRANSPARENCY_NODES_BINDING) coherent buffer AvfNodes { vec2 avf_nodes[]; };
@@ -16,4 +17,4 @@ layout(std430, binding = ADAPTIVE_TRANSPARENCY_COUNTS_BINDING) coherent buffer A
 layout(location = ADAPTIVE_TRANSPARENCY_WIDTH_LOCATION) uniform int u_width;
 layout(location = ADAPTIVE_TRANSPARENCY_NODES_LOCATION) uniform int u_k;
 
-uint avf_pixel() { return uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x); }
+uint avf_pixel() { return oit_pixel_index(u_width); }

@@ -54,9 +54,7 @@ enum class Search { brute_force = 0, hashed = 1, single_bucket = 2 };
 class BucketedKBuffer final : public Technique {
  public:
   explicit BucketedKBuffer(const ParamSet& params)
-      : auto_k_(params.is_auto("k")),
-        k_parameter_(auto_k_ ? 0 : int(params.integer("k"))),
-        memory_cap_bytes_(uint64_t(params.integer("auto_k_memory_mb")) << 20),
+      : slots_(params, kMaxK),
         depth_bits_(params.choice("depth_bits", bkb::kDepthBits)),
         color_texels_(bkb::color_transfer_texels(params.choice("color_transfer", bkb::kColorTransfers),
                                                  params.path("color_transfer_file"))),
@@ -69,8 +67,7 @@ class BucketedKBuffer final : public Technique {
         curvature_scale_(params.real("curvature_scale")),
         mode_(params.choice("buckets", bkb::kBucketModes)) {
     counter_ = make_buffer(sizeof(GLuint));
-    if (auto_k_) count_pass_.emplace();
-    else programs_for(k_parameter_);  // compile errors surface at construction
+    if (!slots_.automatic()) programs_for(slots_.fixed());  // compile errors surface at construction
     if (!identity_) {
       if (!color_texels_.empty()) color_transfer_ = bkb::make_color_texture(color_texels_);
       if (!opacity_texels_.empty()) opacity_transfer_ = bkb::make_opacity_texture(opacity_texels_);
@@ -82,28 +79,22 @@ class BucketedKBuffer final : public Technique {
     width_ = width;
     height_ = height;
     no_attachments_ = make_attachmentless_framebuffer(width, height);
-    if (auto_k_) {
-      count_pass_->resize(width, height);
-      k_cap_ = auto_k_cap();
+    if (slots_.automatic()) {
+      // The largest single array: 16-byte truth records with measure_accuracy, else 4-byte words.
+      slots_.resize(width, height, bytes_per_slot(), measure_ ? 16u : 4u);
       // The slots are allocated by the first frame, once its count is known.
       for (Buffer* b : {&z_, &buckets_, &colors_, &normals_, &features_, &links_, &expected_, &estimated_, &truth_})
         *b = Buffer();
       allocated_k_ = 0;
     } else {
-      allocate_slots(k_parameter_);
+      allocate_slots(slots_.fixed());
     }
   }
 
   // Per-slot arrays for k slots per pixel.
   void allocate_slots(int k) {
     const GLsizeiptr slots = GLsizeiptr(width_) * height_ * k;
-    GLint64 max_block = 0;  // each per-slot array is one storage block
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    if (max_block > 0 && slots * 4 > max_block)
-      throw std::runtime_error("bucketed_kbuffer: k=" + std::to_string(k) + " at " + std::to_string(width_) + "x" +
-                               std::to_string(height_) + " needs " + std::to_string((slots * 4) >> 20) +
-                               " MiB per slot array, above the device's largest storage block (" +
-                               std::to_string(max_block >> 20) + " MiB); lower k or the size");
+    check_slots_fit("bucketed_kbuffer", k, width_, height_, uint64_t(slots) * 4, "each slot array");
     z_ = make_buffer(slots * 4);
     buckets_ = make_buffer(slots * 4);
     colors_ = make_buffer(slots * 4);
@@ -119,23 +110,11 @@ class BucketedKBuffer final : public Technique {
     allocated_k_ = k;
   }
 
-  // k=auto: the most slots per pixel that fit both the memory cap and the
-  // device's largest storage block, at least 1 and at most the maximum.
-  int auto_k_cap() const {
-    // The largest single array: 16-byte truth records with measure_accuracy, else 4-byte words.
-    return slots_per_pixel_cap(width_, height_, memory_cap_bytes_, bytes_per_slot(), measure_ ? 16u : 4u, kMaxK);
-  }
-
   // Z + B + colour + normal + features (+ links, expected, estimated, truth)
   uint64_t bytes_per_slot() const { return measure_ ? 48 : 20; }
 
   void render(const Frame& frame) override {
-    int k = k_parameter_;
-    if (auto_k_) {
-      auto count = frame.clock.stage("count");
-      longest_list_ = count_pass_->longest_list(frame);
-      k = std::clamp(int(std::min<uint32_t>(longest_list_, kMaxK)), 1, k_cap_);
-    }
+    const int k = slots_.for_frame(frame);
     programs_ = &programs_for(k);
     programs_k_ = k;
     prepare_frame(frame);
@@ -170,10 +149,10 @@ class BucketedKBuffer final : public Technique {
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
-    c.passes = auto_k_ ? 3 : 2;
+    c.passes = 2 + slots_.passes();
     const size_t k = size_t(allocated_k_), slots = size_t(width_) * size_t(height_) * k;
-    c.bytes_allocated = bytes_for(allocated_k_) + (auto_k_ ? count_pass_->bytes_allocated() : 0);
-    if (auto_k_) {
+    c.bytes_allocated = bytes_for(allocated_k_) + slots_.bytes_allocated();
+    if (slots_.automatic()) {
       // Against the worst-case constant k = 64 (the parameter's maximum).
       c.work_saved = {{"bytes_not_allocated", double(bytes_for(kMaxK)) - double(c.bytes_allocated)},
                       {"slots_not_cleared", double(size_t(width_) * size_t(height_) * size_t(kMaxK - allocated_k_))}};
@@ -205,14 +184,7 @@ class BucketedKBuffer final : public Technique {
                {"depth_near", depth_near_},
                {"depth_far", depth_far_},
                {"depth_step", (depth_far_ - depth_near_) / double((1u << depth_bits_) - 2u)}};
-    c.extra.push_back({"k_used", double(allocated_k_), Combine::max});
-    if (auto_k_) {
-      // k_capped = 1: the view needed more slots than the cap allows, so the
-      // fragments beyond k_used were dropped (and counted) as with a fixed k.
-      c.extra.push_back({"longest_list", double(longest_list_), Combine::max});
-      c.extra.push_back({"k_cap", double(k_cap_), Combine::max});
-      c.extra.push_back({"k_capped", longest_list_ > uint32_t(k_cap_) ? 1.0 : 0.0, Combine::max});
-    }
+    slots_.add_figures(c.extra, allocated_k_);
     if (measure_) {
       c.extra.push_back({"link_checksum", double(s.link_checksum)});
       c.extra.push_back({"neighbor_mutual_links", double(bkb::mutual_links(r, width_, height_, int(k)))});
@@ -423,9 +395,7 @@ class BucketedKBuffer final : public Technique {
     return values;
   }
 
-  bool auto_k_;
-  int k_parameter_;  // 0 with k=auto
-  uint64_t memory_cap_bytes_;
+  SlotsPerPixel slots_;
   int depth_bits_;
   std::vector<float> color_texels_, opacity_texels_;  // empty: identity (built-in choice, no file)
   bool identity_, measure_;
@@ -435,9 +405,7 @@ class BucketedKBuffer final : public Technique {
   std::map<int, KPrograms> programs_by_k_;
   KPrograms* programs_ = nullptr;  // this frame's
   int programs_k_ = 0;
-  std::optional<ListLengthPass> count_pass_;  // k=auto only
-  int allocated_k_ = 0, k_cap_ = kMaxK;
-  uint32_t longest_list_ = 0;
+  int allocated_k_ = 0;
   Buffer z_, buckets_, colors_, normals_, features_, counter_, links_, expected_, estimated_, truth_;
   Texture color_transfer_, opacity_transfer_;
   Framebuffer no_attachments_;

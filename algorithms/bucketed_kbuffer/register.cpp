@@ -11,82 +11,83 @@ namespace oit {
 std::unique_ptr<Technique> make_bucketed_kbuffer(const ParamSet& params);  // bucketed_kbuffer.cpp
 
 void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "bucketed_kbuffer";
-  d.display_name = "Bucketed k-buffer (mean curvature transparency)";
-  d.paper = "Murray, Baril, Granier 2016, Shape depiction for transparent objects with bucketed k-buffer";
-  d.params = {
-      ParamSpec::integer_or_auto("k", "16", 1, 64,
-                                 "slots per pixel: the k nearest fragments are kept; auto = the view's depth "
-                                 "complexity, counted every frame (capped by auto_k_memory_mb)"),
-      bkb::kBucketModes.spec("buckets", bkb::BucketMode::automatic,
-                             "how store (and, with neighbor_search=bucket, the neighbour query) finds a shape's "
-                             "fragments: one hashed bucket (on), all fragments (off: brute force query, hashed "
-                             "store), or on unless the scene has a single object (auto), where each list is the "
-                             "one bucket: no bucket pass, no hash look-ups"),
-      bkb::kNeighborSearches.spec("neighbor_search", bkb::NeighborSearch::merge,
-                                  "neighbour query: walk the two sorted lists from the depth-nearest fragment of "
-                                  "the shape until the depth difference alone exceeds the best score (merge), or "
-                                  "scan the bucket or list that buckets selects (bucket); both find the same links"),
-      ParamSpec::boolean("reverse_check", true,
-                         "keep a link only if no other fragment of the pixel is closer to the candidate "
-                         "(carnecky2013 Algorithm 2, murray2016 Figure 5); false links every best candidate, "
-                         "mutual or not"),
-      bkb::kColorTransfers.spec(
-          "color_transfer", bkb::ColorTransfer::mean_curvature_shading,
-          "1D colour transfer function of kappa: murray2016 Figure 6(a), 6(b), or colour unchanged"),
-      bkb::kOpacityTransfers.spec("opacity_transfer", bkb::OpacityTransfer::front_focus,
-                                  "2D opacity transfer function of |kappa| and depth: murray2016 Figure 7/8(a), "
-                                  "7/8(b), or alpha unchanged"),
-      ParamSpec::path("color_transfer_file", "",
-                      "colour transfer function from a file, overriding color_transfer: text (m, r g b, kappa m "
-                      "or kappa r g b per line) or PNG (first row, kappa -1 .. 1); see the technique README"),
-      ParamSpec::path("opacity_transfer_file", "",
-                      "opacity transfer function from a file, overriding opacity_transfer: text grid or PNG, "
-                      "rows = depth (first/top = near), columns = |kappa| (first/left = 0); see the technique README"),
-      bkb::kDepthBits.spec("depth_bits", 16,
-                           "depth bits of the 32-bit key; the shape id gets the rest (24: at most 256 objects)"),
-      ParamSpec::real("curvature_scale", 1.0, 1e-3, 1e3,
-                      "kappa = tanh(curvature_scale * (k1 + k2)), curvatures in 1 / scene units"),
-      ParamSpec::boolean("measure_accuracy", false,
-                         "keep links, curvatures and surface id/uv for counters(): link checksum, link "
-                         "precision/recall, kappa error on analytic scenes"),
-      ParamSpec::integer("auto_k_memory_mb", 1024, 1, 1 << 20,
-                         "k=auto only: most MiB of slot storage (20 bytes per slot, 48 with measure_accuracy); "
-                         "k is capped to fit")};
-  d.stages = {"count", "clear", "fill", "sort", "bucket", "store", "neighbors", "stylize", "compose"};
-  d.exactness = Exactness::approximate;
-  d.quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32", "64"}}};
-  d.adaptive_switches = {{"buckets_auto",
-                          "on a one-object scene skips the bucket pass (no hash tables) and searches each whole "
-                          "list as the single bucket, without hash look-ups or shape tests",
-                          {{"buckets", "auto"}}, {{"buckets", "on"}}},
-                         {"neighbor_merge",
-                          "walks both sorted lists from the depth-nearest fragment and stops where the depth "
-                          "difference alone exceeds the best score, instead of scoring every fragment of the "
-                          "bucket (and of its own bucket for the reverse check); the same links",
-                          {{"neighbor_search", "merge"}}, {{"neighbor_search", "bucket"}}},
-                         {"k_auto", "sizes k from the view's depth complexity (a counting pass) instead of the "
-                                    "worst-case constant 64",
-                          {{"k", "auto"}}, {{"k", "64"}}}};
-  d.extra_support_check = [](const ParamSet& params, const SceneFacts& scene) -> std::string {
-    const int depth_bits = params.choice("depth_bits", bkb::kDepthBits);
-    const uint32_t limit = 1u << (32 - depth_bits);
-    if (scene.objects > limit)
-      return "bucketed_kbuffer: depth_bits=" + std::to_string(depth_bits) + " leaves room for " +
-             std::to_string(limit) + " shape ids; the scene has " + std::to_string(scene.objects) + " objects";
-    return "";
-  };
-  d.create = make_bucketed_kbuffer;
-  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
-    const bool measure = params.boolean("measure_accuracy");
-    const uint64_t slots = content.pixels() * fragment_pool::slots_per_pixel(content, params, 64);
-    return StorageNeed{slots * (measure ? 16 : 4), slots * (measure ? 48 : 20) + content.pixels() * 4};
-  };
-  // Links reach the 4 adjacent pixels, and a link is kept only when the
-  // neighbour's own search finds the pixel back (reverse check).
-  d.tile_halo = [](const ParamSet&) { return 2; };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "bucketed_kbuffer",
+      .display_name = "Bucketed k-buffer (mean curvature transparency)",
+      .paper = "Murray, Baril, Granier 2016, Shape depiction for transparent objects with bucketed k-buffer",
+      .params = {
+          ParamSpec::integer_or_auto("k", "16", 1, 64,
+                                     "slots per pixel: the k nearest fragments are kept; auto = the view's depth "
+                                     "complexity, counted every frame (capped by auto_k_memory_mb)"),
+          bkb::kBucketModes.spec("buckets", bkb::BucketMode::automatic,
+                                 "how store (and, with neighbor_search=bucket, the neighbour query) finds a shape's "
+                                 "fragments: one hashed bucket (on), all fragments (off: brute force query, hashed "
+                                 "store), or on unless the scene has a single object (auto), where each list is the "
+                                 "one bucket: no bucket pass, no hash look-ups"),
+          bkb::kNeighborSearches.spec(
+              "neighbor_search", bkb::NeighborSearch::merge,
+              "neighbour query: walk the two sorted lists from the depth-nearest fragment of the shape until the "
+              "depth difference alone exceeds the best score (merge), or scan the bucket or list that buckets "
+              "selects (bucket); both find the same links"),
+          ParamSpec::boolean("reverse_check", true,
+                             "keep a link only if no other fragment of the pixel is closer to the candidate "
+                             "(carnecky2013 Algorithm 2, murray2016 Figure 5); false links every best candidate, "
+                             "mutual or not"),
+          bkb::kColorTransfers.spec(
+              "color_transfer", bkb::ColorTransfer::mean_curvature_shading,
+              "1D colour transfer function of kappa: murray2016 Figure 6(a), 6(b), or colour unchanged"),
+          bkb::kOpacityTransfers.spec("opacity_transfer", bkb::OpacityTransfer::front_focus,
+                                      "2D opacity transfer function of |kappa| and depth: murray2016 Figure 7/8(a), "
+                                      "7/8(b), or alpha unchanged"),
+          ParamSpec::path("color_transfer_file", "",
+                          "colour transfer function from a file, overriding color_transfer: text (m, r g b, kappa m "
+                          "or kappa r g b per line) or PNG (first row, kappa -1 .. 1); see the technique README"),
+          ParamSpec::path("opacity_transfer_file", "",
+                          "opacity transfer function from a file, overriding opacity_transfer: text grid or PNG, "
+                          "rows = depth (first/top = near), columns = |kappa| (first/left = 0); see the technique "
+                          "README"),
+          bkb::kDepthBits.spec("depth_bits", 16,
+                               "depth bits of the 32-bit key; the shape id gets the rest (24: at most 256 objects)"),
+          ParamSpec::real("curvature_scale", 1.0, 1e-3, 1e3,
+                          "kappa = tanh(curvature_scale * (k1 + k2)), curvatures in 1 / scene units"),
+          ParamSpec::boolean("measure_accuracy", false,
+                             "keep links, curvatures and surface id/uv for counters(): link checksum, link "
+                             "precision/recall, kappa error on analytic scenes"),
+          ParamSpec::integer("auto_k_memory_mb", 1024, 1, 1 << 20,
+                             "k=auto only: most MiB of slot storage (20 bytes per slot, 48 with measure_accuracy); "
+                             "k is capped to fit")},
+      .stages = {"count", "clear", "fill", "sort", "bucket", "store", "neighbors", "stylize", "compose"},
+      .quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32", "64"}}},
+      .adaptive_switches = {{"buckets_auto",
+                              "on a one-object scene skips the bucket pass (no hash tables) and searches each whole "
+                              "list as the single bucket, without hash look-ups or shape tests",
+                              {{"buckets", "auto"}}, {{"buckets", "on"}}},
+                             {"neighbor_merge",
+                              "walks both sorted lists from the depth-nearest fragment and stops where the depth "
+                              "difference alone exceeds the best score, instead of scoring every fragment of the "
+                              "bucket (and of its own bucket for the reverse check); the same links",
+                              {{"neighbor_search", "merge"}}, {{"neighbor_search", "bucket"}}},
+                             {"k_auto", "sizes k from the view's depth complexity (a counting pass) instead of the "
+                                        "worst-case constant 64",
+                              {{"k", "auto"}}, {{"k", "64"}}}},
+      .extra_support_check = [](const ParamSet& params, const SceneFacts& scene) -> std::string {
+        const int depth_bits = params.choice("depth_bits", bkb::kDepthBits);
+        const uint32_t limit = 1u << (32 - depth_bits);
+        if (scene.objects > limit)
+          return "bucketed_kbuffer: depth_bits=" + std::to_string(depth_bits) + " leaves room for " +
+                 std::to_string(limit) + " shape ids; the scene has " + std::to_string(scene.objects) + " objects";
+        return "";
+      },
+      .create = make_bucketed_kbuffer,
+      .storage_need = [](const ParamSet& params, const FrameContent& content) {
+        const bool measure = params.boolean("measure_accuracy");
+        const uint64_t slots = content.pixels() * fragment_pool::slots_per_pixel(content, params, 64);
+        return StorageNeed{slots * (measure ? 16 : 4), slots * (measure ? 48 : 20) + content.pixels() * 4};
+      },
+      // Links reach the 4 adjacent pixels, and a link is kept only when the
+      // neighbour's own search finds the pixel back (reverse check).
+      .tile_halo = [](const ParamSet&) { return 2; },
+  });
 }
 
 }  // namespace oit

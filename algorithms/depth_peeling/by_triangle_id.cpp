@@ -77,16 +77,10 @@ class DepthPeelingByTriangleId final : public TriangleIdPeeler {
       // Pass p writes state p % 2 and reads the one pass p - 1 wrote.
       const int current = pass % 2, previous = 1 - current;
       glClearNamedFramebufferfv(peel_target_.id(), GL_COLOR, 1, no_candidate);
-      glEnable(GL_BLEND);
       if (pass == 1) {
-        glBindFramebuffer(GL_FRAMEBUFFER, init_target_.id());
-        glBlendEquation(GL_MIN);
-        glUseProgram(init_.id());
-        // Nothing is discarded and there is no depth test: this counts every fragment.
-        glBeginQuery(GL_SAMPLES_PASSED, fragments_query_.id());
-        frame.scene.draw();
-        glEndQuery(GL_SAMPLES_PASSED);
+        draw_counting_init_pass(frame, init_, init_target_, GL_MIN);
       } else {
+        glEnable(GL_BLEND);
         glBindFramebuffer(GL_FRAMEBUFFER, peel_target_.id());
         // Accumulation, under: rgb += transmittance (dst alpha) * premultiplied; alpha *= 1 - a.
         glBlendEquationi(0, GL_FUNC_ADD);
@@ -95,8 +89,8 @@ class DepthPeelingByTriangleId final : public TriangleIdPeeler {
         glUseProgram(peel_.id());
         glBindTextureUnit(DP_ID_STATE_UNIT, state_[previous].id());
         frame.scene.draw();
+        glDisable(GL_BLEND);
       }
-      glDisable(GL_BLEND);
       if (!continue_after(pass, [&] { return resolve(current, previous, pass, nothing_here); })) break;
     }
     compose(frame, compose_, {&accumulation_});

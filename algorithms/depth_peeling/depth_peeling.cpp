@@ -185,12 +185,11 @@ class DepthPeelingBySubmission final : public Technique {
 }  // namespace
 
 void register_technique_depth_peeling(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "depth_peeling";
-  d.display_name = "Depth peeling";
-  d.paper = "Everitt 2001, Interactive order-independent transparency (NVIDIA)";
-  describe_peeler(
-      d,
+  registry.add(describe_peeler(
+      {.id = "depth_peeling",
+       .display_name = "Depth peeling",
+       .paper = "Everitt 2001, Interactive order-independent transparency (NVIDIA)",
+       .quality_sweep = {{"max_passes", {"2", "4", "8", "16", "32", "64"}}}},
       {"most geometry passes per frame (layers peeled); fewer than the depth complexity leaves the farther layers "
        "out",
        "stop at the first pass that peels nothing (occlusion query); false runs exactly max_passes passes",
@@ -199,12 +198,7 @@ void register_technique_depth_peeling(TechniqueRegistry& registry) {
        "d + 1 passes, but the image of coplanar geometry depends on the submission order)",
        "stops peeling at the first pass that an occlusion query finds empty (depth complexity + 1 passes)"},
       56,  // bytes per pixel of tie_break=triangle_id, the larger variant
-      make_depth_peeling_by_triangle_id,
-      [](int max_passes, bool early_exit) -> std::unique_ptr<Technique> {
-        return std::make_unique<DepthPeelingBySubmission>(max_passes, early_exit);
-      });
-  d.quality_sweep = {{"max_passes", {"2", "4", "8", "16", "32", "64"}}};
-  registry.add(std::move(d));
+      make_depth_peeling_by_triangle_id, make_peeler<DepthPeelingBySubmission>));
 }
 
 }  // namespace oit

@@ -83,19 +83,12 @@ class DualDepthPeelingByTriangleId final : public TriangleIdPeeler {
       auto peel = frame.clock.stage("peel");
       // Pass p writes state p % 2 and reads the one pass p - 1 wrote.
       const int current = pass % 2, previous = 1 - current;
-      glEnable(GL_BLEND);
       if (pass == 1) {
-        glBindFramebuffer(GL_FRAMEBUFFER, init_target_.id());
-        glBlendEquation(GL_MAX);
-        glUseProgram(init_.id());
-        // Nothing is discarded and there is no depth test: this counts every fragment.
-        glBeginQuery(GL_SAMPLES_PASSED, fragments_query_.id());
-        frame.scene.draw();
-        glEndQuery(GL_SAMPLES_PASSED);
+        draw_counting_init_pass(frame, init_, init_target_, GL_MAX);
         ++passes_;
-        glDisable(GL_BLEND);
         continue;
       }
+      glEnable(GL_BLEND);
       glClearNamedFramebufferfv(peel_target_.id(), GL_COLOR, 2, no_candidate);
       glBindFramebuffer(GL_FRAMEBUFFER, peel_target_.id());
       // Front, under: rgb += transmittance (dst alpha) * premultiplied; alpha *= 1 - a.

@@ -162,12 +162,11 @@ class DualDepthPeelingBySubmission final : public Technique {
 }  // namespace
 
 void register_technique_dual_depth_peeling(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "dual_depth_peeling";
-  d.display_name = "Dual depth peeling";
-  d.paper = "Bavoil & Myers 2008, Order independent transparency with dual depth peeling (NVIDIA)";
-  describe_peeler(
-      d,
+  registry.add(describe_peeler(
+      {.id = "dual_depth_peeling",
+       .display_name = "Dual depth peeling",
+       .paper = "Bavoil & Myers 2008, Order independent transparency with dual depth peeling (NVIDIA)",
+       .quality_sweep = {{"max_passes", {"2", "3", "5", "9", "17", "33"}}}},
       {"most geometry passes per frame, the min-max pass included (2 layers per later pass); too few leave the "
        "middle layers out",
        "stop once no depth range is left (occlusion query on a full-screen check); false runs exactly max_passes "
@@ -178,12 +177,7 @@ void register_technique_dual_depth_peeling(TechniqueRegistry& registry) {
        "submission order)",
        "stops peeling when an occlusion query finds a pass empty (about half the depth complexity + 1 passes)"},
       96,  // bytes per pixel of tie_break=triangle_id, the larger variant
-      make_dual_depth_peeling_by_triangle_id,
-      [](int max_passes, bool early_exit) -> std::unique_ptr<Technique> {
-        return std::make_unique<DualDepthPeelingBySubmission>(max_passes, early_exit);
-      });
-  d.quality_sweep = {{"max_passes", {"2", "3", "5", "9", "17", "33"}}};
-  registry.add(std::move(d));
+      make_dual_depth_peeling_by_triangle_id, make_peeler<DualDepthPeelingBySubmission>));
 }
 
 }  // namespace oit

@@ -4,6 +4,7 @@
 // the paper's budget of one 32-bit depth and one RGBA8 colour per core
 // fragment.
 #include "shaders/bindings.h"
+#include "shaders/pixel_storage.glsl"
 #include "algorithms/hybrid_transparency/bindings.h"
 
 #define CORE_EMPTY 0xffffffffu
@@ -25,14 +26,10 @@ layout(std430, binding = HYBRID_TRANSPARENCY_COUNTERS_BINDING) coherent buffer C
 layout(location = HYBRID_TRANSPARENCY_WIDTH_LOCATION) uniform int u_width;
 layout(location = HYBRID_TRANSPARENCY_SLOTS_LOCATION) uniform int u_k;
 
-uint core_first_slot() { return (uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x)) * uint(u_k); }
+uint core_first_slot() { return oit_pixel_index(u_width) * uint(u_k); }
 
-// Unsigned key that orders like the float view depth (sign-magnitude to
-// offset binary), kept below EMPTY.
-uint core_depth_key(float depth) {
-  const uint bits = floatBitsToUint(depth);
-  return min((bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u, CORE_EMPTY - 1u);
-}
+// Unsigned key that orders like the float view depth, kept below EMPTY.
+uint core_depth_key(float depth) { return min(oit_depth_order(floatBitsToUint(depth)), CORE_EMPTY - 1u); }
 
 // The first slot whose key is >= key (u_k when none): the keys are sorted.
 uint core_lower_bound(uint first, uint key) {

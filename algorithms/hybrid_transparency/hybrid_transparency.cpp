@@ -6,9 +6,9 @@
 // the k nearest depth keys, store writes the core colours and accumulates
 // the tail. Exact (up to the RGBA8 core colours) when k >= the depth
 // complexity; otherwise only the tail is approximate.
-#include <stdexcept>
 #include <string>
 
+#include "harness/core/list_length_pass.h"
 #include "harness/core/passes.h"
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
@@ -44,7 +44,7 @@ class HybridTransparency final : public Technique {
     for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
       set_uniform(program, HYBRID_TRANSPARENCY_WIDTH_LOCATION, width);
     const uint64_t slots = uint64_t(width) * uint64_t(height) * uint64_t(k_);
-    check_fits(slots * 4, width, height);
+    check_slots_fit("hybrid_transparency", k_, width, height, slots * 4, "each core buffer");
     keys_ = make_buffer(GLsizeiptr(slots * 4));
     colors_ = make_buffer(GLsizeiptr(slots * 4));
     gl_check("allocating the hybrid transparency core of " + std::to_string(width) + "x" + std::to_string(height) +
@@ -105,17 +105,6 @@ class HybridTransparency final : public Technique {
   }
 
  private:
-  void check_fits(uint64_t buffer_bytes, int width, int height) const {
-    GLint64 max_block = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    if (max_block > 0 && buffer_bytes > uint64_t(max_block)) {
-      throw std::runtime_error("hybrid_transparency: k=" + std::to_string(k_) + " at " + std::to_string(width) + "x" +
-                               std::to_string(height) + " needs " + std::to_string(buffer_bytes >> 20) +
-                               " MiB per core buffer, more than the device's largest storage block (" +
-                               std::to_string(max_block >> 20) + " MiB); lower k or the size");
-    }
-  }
-
   int k_;
   Program fill_, store_, compose_;
   Buffer counters_, keys_, colors_;
@@ -127,18 +116,17 @@ class HybridTransparency final : public Technique {
 }  // namespace
 
 void register_technique_hybrid_transparency(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "hybrid_transparency";
-  d.display_name = "Hybrid transparency";
-  d.paper = "Maule, Comba, Torchelsen & Bastos 2013, Hybrid Transparency, I3D 2013";
-  d.params = {ParamSpec::integer("k", 4, 1, 64,
-                                 "core layers per pixel: the k nearest fragments are composed exactly, the rest as "
-                                 "one weighted-average tail behind them")};
-  d.stages = {"clear", "fill", "store", "compose"};
-  d.exactness = Exactness::approximate;
-  d.quality_sweep = {{"k", {"1", "2", "4", "8", "16"}}};
-  d.create = [](const ParamSet& params) { return std::make_unique<HybridTransparency>(params); };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "hybrid_transparency",
+      .display_name = "Hybrid transparency",
+      .paper = "Maule, Comba, Torchelsen & Bastos 2013, Hybrid Transparency, I3D 2013",
+      .params = {ParamSpec::integer("k", 4, 1, 64,
+                                    "core layers per pixel: the k nearest fragments are composed exactly, the "
+                                    "rest as one weighted-average tail behind them")},
+      .stages = {"clear", "fill", "store", "compose"},
+      .quality_sweep = {{"k", {"1", "2", "4", "8", "16"}}},
+      .create = make_technique<HybridTransparency>,
+  });
 }
 
 }  // namespace oit

@@ -50,86 +50,90 @@ Settings settings_from(const ParamSet& p) {
 }  // namespace illustration_buffer
 
 void register_technique_illustration_buffer(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "illustration_buffer";
-  d.display_name = "Illustration buffer (linked lists + geodesic neighbours, non-local opacity)";
-  d.paper = "Carnecky et al. 2013 (IEEE TVCG 19(5)); Pastyrik & Cmolik 2016 (CESCG)";
-  d.params = {
-      illustration_buffer::kNeighborSearches.spec(
-          "neighbors", illustration_buffer::NeighborSearch::triangle_index,
-          "neighbour search: carnecky2013 Algorithm 2 (continuity measure eq. 1-3, mutual check), the same "
-          "links found by a walk from the predicted depth in the depth-sorted list (heuristic_merge), or "
-          "pastyrik2016 Algorithm 3 (triangles sharing a vertex index)"),
-      illustration_buffer::kModulations.spec(
-          "modulation", illustration_buffer::Modulation::silhouette_halo,
-          "opacity modulation (carnecky2013 section 5): none = plain alpha blending (no neighbour search, no "
-          "stylize), silhouette = beta field, halo = gamma field, or both; angle and normal_variation = the "
-          "purely local baselines of carnecky2013 Fig. 11 (opacity from the angle between normal and view ray, "
-          "or from the normal's screen-space variation)"),
-      ParamSpec::boolean("adaptive_alpha", false, "initial alpha 1-(1-s)^(1/n) (eq. 5) instead of s (eq. 4)"),
-      ParamSpec::integer("iterations", 20, 0, 1000, "diffusion iterations of alpha (eq. 8) and beta/gamma (eq. 9)"),
-      ParamSpec::boolean("skip_converged", true,
-                         "diffuse only the pixels around fragments that changed in the previous iteration (the "
-                         "others would recompute their value; exact with diffusion_tolerance 0)"),
-      ParamSpec::real("diffusion_tolerance", 0.0, 0.0, 1.0,
-                      "skip_converged: a fragment whose fields move by at most this keeps its value and does not "
-                      "wake its neighbours (0: the same image as every fragment every iteration)"),
-      ParamSpec::real("lambda_alpha", 1.0, 0.0, 1.0, "diffusion coefficient of alpha (eq. 8, normalised Laplacian)"),
-      ParamSpec::real("lambda_beta", 0.05, 0.0, 1.0, "decrement per step of the silhouette field (eq. 9)"),
-      ParamSpec::real("lambda_gamma", 0.1, 0.0, 1.0, "decrement per step of the halo field (eq. 9)"),
-      illustration_buffer::kProfiles.spec("profile", illustration_buffer::Profile::none,
-                                          "profile applied to beta and gamma before compositing: eq. 10 or eq. 11"),
-      ParamSpec::real("exponential_p", 3.0, 0.01, 50.0, "p of the exponential profile (eq. 10)"),
-      ParamSpec::real("power_p", 0.3, 0.01, 10.0, "p of the power profile (eq. 11)"),
-      ParamSpec::real("weight_z", 1.0, 0.0, 1000.0, "w_z of the continuity measure (eq. 3; heuristic)"),
-      ParamSpec::real("weight_n", 1.0, 0.0, 1000.0, "w_n of the continuity measure (eq. 3; heuristic)"),
-      ParamSpec::boolean("weld_vertices", true,
-                         "triangle_index: vertices at bitwise-equal positions count as one index (closes UV seams)"),
-      illustration_buffer::kSorts.spec(
-          "sort", illustration_buffer::SortMethod::automatic,
-          "array = rank sort in a local array (carnecky2013 4.3); dynamic = insertion sort of the linked list in "
-          "the buffers (pastyrik2016 Algorithm 2); auto = dynamic when the frame's longest list has at most 4 "
-          "fragments, else array; the same records either way"),
-      ParamSpec::real("normal_variation_scale", 10.0, 0.0, 1000.0,
-                      "modulation=normal_variation: opacity = min(1, scale * |grad n|), grad n the view normal's "
-                      "change per pixel (dFdx, dFdy)"),
-      ParamSpec::integer("max_per_pixel", 64, 1, 1024,
-                         "sort array size; longer lists keep their nearest max_per_pixel fragments (counted)"),
-      ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,
-                         "first frame's pool per pixel; it grows (with a re-render) on overflow"),
-      ParamSpec::boolean("measure_accuracy", false,
-                         "record surface id and (u, v) per fragment and report neighbor_precision/recall "
-                         "(16 B per fragment more; computed after the timed frames)"),
-      ParamSpec::real("accuracy_footprints", 1.5, 0.5, 10.0,
-                      "a link is correct when |du|, |dv| are within this many pixel footprints (fwidth(uv))")};
-  // stylize_init sets the fields (carnecky2013 5.2-5.3); diffuse runs the
-  // `iterations` steps of eq. 8-9 (iterations=1 times the paper's one solve step).
-  d.stages = {"clear", "fill", "sort", "neighbors", "stylize_init", "diffuse", "compose"};
-  d.exactness = Exactness::approximate;  // exact (float blend) only with modulation=none
-  d.extra_support_check = [](const ParamSet& params, const SceneFacts& scene) -> std::string {
-    const illustration_buffer::Settings s = illustration_buffer::settings_from(params);
-    if (s.diffused() && s.neighbors == illustration_buffer::NeighborSearch::triangle_index && !scene.indexed)
-      return "neighbors=triangle_index needs indexed geometry (shared vertex indices)";
-    return "";
-  };
-  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
-    return illustration_buffer::storage_need(illustration_buffer::settings_from(params), content);
-  };
-  // A pixel's links reach the 4 adjacent pixels, and each diffusion
-  // iteration carries values one link further (also when skip_converged
-  // leaves fragments out: it computes the same iterations).
-  d.tile_halo = [](const ParamSet& params) {
-    const illustration_buffer::Settings s = illustration_buffer::settings_from(params);
-    return s.diffused() ? s.iterations + 2 : 0;
-  };
-  d.adaptive_switches = {{"skip_converged",
-                          "diffuses only the pixels around fragments that changed in the previous iteration",
-                          {{"skip_converged", "true"}},
-                          {{"skip_converged", "false"}}}};
-  d.create = [](const ParamSet& params) {
-    return illustration_buffer::make_illustration_buffer(illustration_buffer::settings_from(params));
-  };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "illustration_buffer",
+      .display_name = "Illustration buffer (linked lists + geodesic neighbours, non-local opacity)",
+      .paper = "Carnecky et al. 2013 (IEEE TVCG 19(5)); Pastyrik & Cmolik 2016 (CESCG)",
+      .params = {
+          illustration_buffer::kNeighborSearches.spec(
+              "neighbors", illustration_buffer::NeighborSearch::triangle_index,
+              "neighbour search: carnecky2013 Algorithm 2 (continuity measure eq. 1-3, mutual check), the same "
+              "links found by a walk from the predicted depth in the depth-sorted list (heuristic_merge), or "
+              "pastyrik2016 Algorithm 3 (triangles sharing a vertex index)"),
+          illustration_buffer::kModulations.spec(
+              "modulation", illustration_buffer::Modulation::silhouette_halo,
+              "opacity modulation (carnecky2013 section 5): none = plain alpha blending (no neighbour search, no "
+              "stylize), silhouette = beta field, halo = gamma field, or both; angle and normal_variation = the "
+              "purely local baselines of carnecky2013 Fig. 11 (opacity from the angle between normal and view ray, "
+              "or from the normal's screen-space variation)"),
+          ParamSpec::boolean("adaptive_alpha", false, "initial alpha 1-(1-s)^(1/n) (eq. 5) instead of s (eq. 4)"),
+          ParamSpec::integer("iterations", 20, 0, 1000,
+                             "diffusion iterations of alpha (eq. 8) and beta/gamma (eq. 9)"),
+          ParamSpec::boolean("skip_converged", true,
+                             "diffuse only the pixels around fragments that changed in the previous iteration (the "
+                             "others would recompute their value; exact with diffusion_tolerance 0)"),
+          ParamSpec::real("diffusion_tolerance", 0.0, 0.0, 1.0,
+                          "skip_converged: a fragment whose fields move by at most this keeps its value and does not "
+                          "wake its neighbours (0: the same image as every fragment every iteration)"),
+          ParamSpec::real("lambda_alpha", 1.0, 0.0, 1.0,
+                          "diffusion coefficient of alpha (eq. 8, normalised Laplacian)"),
+          ParamSpec::real("lambda_beta", 0.05, 0.0, 1.0, "decrement per step of the silhouette field (eq. 9)"),
+          ParamSpec::real("lambda_gamma", 0.1, 0.0, 1.0, "decrement per step of the halo field (eq. 9)"),
+          illustration_buffer::kProfiles.spec(
+              "profile", illustration_buffer::Profile::none,
+              "profile applied to beta and gamma before compositing: eq. 10 or eq. 11"),
+          ParamSpec::real("exponential_p", 3.0, 0.01, 50.0, "p of the exponential profile (eq. 10)"),
+          ParamSpec::real("power_p", 0.3, 0.01, 10.0, "p of the power profile (eq. 11)"),
+          ParamSpec::real("weight_z", 1.0, 0.0, 1000.0, "w_z of the continuity measure (eq. 3; heuristic)"),
+          ParamSpec::real("weight_n", 1.0, 0.0, 1000.0, "w_n of the continuity measure (eq. 3; heuristic)"),
+          ParamSpec::boolean(
+              "weld_vertices", true,
+              "triangle_index: vertices at bitwise-equal positions count as one index (closes UV seams)"),
+          illustration_buffer::kSorts.spec(
+              "sort", illustration_buffer::SortMethod::automatic,
+              "array = rank sort in a local array (carnecky2013 4.3); dynamic = insertion sort of the linked list in "
+              "the buffers (pastyrik2016 Algorithm 2); auto = dynamic when the frame's longest list has at most 4 "
+              "fragments, else array; the same records either way"),
+          ParamSpec::real("normal_variation_scale", 10.0, 0.0, 1000.0,
+                          "modulation=normal_variation: opacity = min(1, scale * |grad n|), grad n the view normal's "
+                          "change per pixel (dFdx, dFdy)"),
+          ParamSpec::integer("max_per_pixel", 64, 1, 1024,
+                             "sort array size; longer lists keep their nearest max_per_pixel fragments (counted)"),
+          ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,
+                             "first frame's pool per pixel; it grows (with a re-render) on overflow"),
+          ParamSpec::boolean("measure_accuracy", false,
+                             "record surface id and (u, v) per fragment and report neighbor_precision/recall "
+                             "(16 B per fragment more; computed after the timed frames)"),
+          ParamSpec::real("accuracy_footprints", 1.5, 0.5, 10.0,
+                          "a link is correct when |du|, |dv| are within this many pixel footprints (fwidth(uv))")},
+      // stylize_init sets the fields (carnecky2013 5.2-5.3); diffuse runs the
+      // `iterations` steps of eq. 8-9 (iterations=1 times the paper's one solve step).
+      .stages = {"clear", "fill", "sort", "neighbors", "stylize_init", "diffuse", "compose"},
+      // Approximate (the default): exact (float blend) only with modulation=none.
+      .adaptive_switches = {{"skip_converged",
+                              "diffuses only the pixels around fragments that changed in the previous iteration",
+                              {{"skip_converged", "true"}},
+                              {{"skip_converged", "false"}}}},
+      .extra_support_check = [](const ParamSet& params, const SceneFacts& scene) -> std::string {
+        const illustration_buffer::Settings s = illustration_buffer::settings_from(params);
+        if (s.diffused() && s.neighbors == illustration_buffer::NeighborSearch::triangle_index && !scene.indexed)
+          return "neighbors=triangle_index needs indexed geometry (shared vertex indices)";
+        return "";
+      },
+      .create = [](const ParamSet& params) {
+        return illustration_buffer::make_illustration_buffer(illustration_buffer::settings_from(params));
+      },
+      .storage_need = [](const ParamSet& params, const FrameContent& content) {
+        return illustration_buffer::storage_need(illustration_buffer::settings_from(params), content);
+      },
+      // A pixel's links reach the 4 adjacent pixels, and each diffusion
+      // iteration carries values one link further (also when skip_converged
+      // leaves fragments out: it computes the same iterations).
+      .tile_halo = [](const ParamSet& params) {
+        const illustration_buffer::Settings s = illustration_buffer::settings_from(params);
+        return s.diffused() ? s.iterations + 2 : 0;
+      },
+  });
 }
 
 }  // namespace oit

@@ -7,8 +7,6 @@
 // Exact whenever K >= the depth complexity of every pixel.
 #include <algorithm>
 #include <map>
-#include <optional>
-#include <stdexcept>
 #include <string>
 
 #include "harness/core/fragment_pool.h"
@@ -41,15 +39,12 @@ const Choices<Tail> kTails{{Tail::drop, "drop"}, {Tail::blend, "blend"}};
 class KBuffer final : public Technique {
  public:
   explicit KBuffer(const ParamSet& params)
-      : auto_k_(params.is_auto("k")),
-        k_parameter_(auto_k_ ? 0 : int(params.integer("k"))),
-        memory_cap_bytes_(uint64_t(params.integer("auto_k_memory_mb")) << 20),
+      : slots_(params, kMaxK),
         tail_blend_(params.choice("tail", kTails) == Tail::blend),
         fill_(build_geometry_program("algorithms/kbuffer/fill.frag")),
         store_(build_geometry_program("algorithms/kbuffer/store.frag", tail_defines())),
         counters_(make_buffer(kCounterBytes, kZeroCounters)) {
-    if (auto_k_) count_pass_.emplace();
-    else compose_for(k_parameter_);  // compile errors surface at construction
+    if (!slots_.automatic()) compose_for(slots_.fixed());  // compile errors surface at construction
   }
 
   void resize(int width, int height) override {
@@ -57,16 +52,17 @@ class KBuffer final : public Technique {
     height_ = height;
     for (const Program* program : {&fill_, &store_}) set_uniform(program->id(), KBUFFER_WIDTH_LOCATION, width);
     for (const auto& [capacity, compose] : composes_) set_uniform(compose.id(), KBUFFER_WIDTH_LOCATION, width);
-    if (auto_k_) {
-      count_pass_->resize(width, height);
-      k_cap_ = auto_k_cap();
+    if (slots_.automatic()) {
+      // k=auto: the most slots per pixel that fit both the memory cap and
+      // the device's largest storage block (the colour buffer is the biggest).
+      slots_.resize(width, height, kSlotBytes, kColorBytes);
       // The slots are allocated by the first frame, once its count is known.
       keys_ = Buffer();
       owners_ = Buffer();
       colors_ = Buffer();
       allocated_k_ = 0;
     } else {
-      allocate_slots(k_parameter_);
+      allocate_slots(slots_.fixed());
     }
 
     // The fill pass (and store without a tail) writes no colour: an
@@ -75,23 +71,13 @@ class KBuffer final : public Technique {
     if (tail_blend_) {
       tail_accumulation_ = make_texture_2d(GL_RGBA16F, width, height);
       tail_revealage_ = make_texture_2d(GL_R16F, width, height);
-      tail_framebuffer_ = make_framebuffer();
-      glNamedFramebufferTexture(tail_framebuffer_.id(), GL_COLOR_ATTACHMENT0, tail_accumulation_.id(), 0);
-      glNamedFramebufferTexture(tail_framebuffer_.id(), GL_COLOR_ATTACHMENT1, tail_revealage_.id(), 0);
-      const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-      glNamedFramebufferDrawBuffers(tail_framebuffer_.id(), 2, attachments);
-      if (glCheckNamedFramebufferStatus(tail_framebuffer_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw GlError("kbuffer: tail framebuffer (RGBA16F + R16F) is incomplete");
+      tail_framebuffer_ = make_target_framebuffer({&tail_accumulation_, &tail_revealage_},
+                                                  "kbuffer: tail framebuffer (RGBA16F + R16F)");
     }
   }
 
   void render(const Frame& frame) override {
-    int k = k_parameter_;
-    if (auto_k_) {
-      auto count = frame.clock.stage("count");
-      longest_list_ = count_pass_->longest_list(frame);
-      k = std::clamp(int(std::min<uint32_t>(longest_list_, kMaxK)), 1, k_cap_);
-    }
+    const int k = slots_.for_frame(frame);
     const Program& compose = compose_for(k);
     for (GLuint program : {fill_.id(), store_.id(), compose.id()})
       set_uniform(program, KBUFFER_SLOTS_LOCATION, k);
@@ -111,39 +97,23 @@ class KBuffer final : public Technique {
     bind_storage();
     {
       auto fill = frame.clock.stage("fill");
-      glBindFramebuffer(GL_FRAMEBUFFER, no_attachments_.id());
-      glViewport(0, 0, width_, height_);
-      glUseProgram(fill_.id());
-      frame.set_shared_uniforms(fill_.id());
-      frame.scene.draw();
+      draw_scene_pass(frame, fill_, no_attachments_);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     {
+      // The tail, if any: weighted blended OIT with weight 1 (store.frag).
       auto store = frame.clock.stage("store");
-      glBindFramebuffer(GL_FRAMEBUFFER, tail_blend_ ? tail_framebuffer_.id() : no_attachments_.id());
-      glViewport(0, 0, width_, height_);
-      if (tail_blend_) {
-        glEnablei(GL_BLEND, 0);
-        glEnablei(GL_BLEND, 1);
-        glBlendFunci(0, GL_ONE, GL_ONE);
-        glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
-      }
-      glUseProgram(store_.id());
-      frame.set_shared_uniforms(store_.id());
-      frame.scene.draw();
-      glDisable(GL_BLEND);
+      if (tail_blend_) draw_weighted_blended_scene_pass(frame, store_, tail_framebuffer_);
+      else draw_scene_pass(frame, store_, no_attachments_);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     {
       auto stage = frame.clock.stage("compose");
-      frame.bind_target();
       if (tail_blend_) {
         glBindTextureUnit(KBUFFER_TAIL_ACCUMULATION_UNIT, tail_accumulation_.id());
         glBindTextureUnit(KBUFFER_TAIL_REVEALAGE_UNIT, tail_revealage_.id());
       }
-      glUseProgram(compose.id());
-      frame.set_shared_uniforms(compose.id());
-      glDrawArrays(GL_TRIANGLES, 0, 3);
+      draw_fullscreen_pass(frame, compose);
     }
   }
 
@@ -152,17 +122,12 @@ class KBuffer final : public Technique {
     GLuint counts[2] = {0, 0};  // stored, dropped
     glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
     TechniqueCounters c;
-    c.bytes_allocated = bytes_for(allocated_k_) + (auto_k_ ? count_pass_->bytes_allocated() : 0);
+    c.bytes_allocated = bytes_for(allocated_k_) + slots_.bytes_allocated();
     c.fragments_stored = counts[0];
     c.fragments_dropped = counts[1];
-    c.passes = auto_k_ ? 3 : 2;
-    c.extra = {{"k_used", double(allocated_k_), Combine::max}};
-    if (auto_k_) {
-      // k_capped = 1: the view needed more slots than the cap allows, so
-      // fragments beyond k_used were dropped (or blended) as with a fixed k.
-      c.extra.push_back({"longest_list", double(longest_list_), Combine::max});
-      c.extra.push_back({"k_cap", double(k_cap_), Combine::max});
-      c.extra.push_back({"k_capped", longest_list_ > uint32_t(k_cap_) ? 1.0 : 0.0, Combine::max});
+    c.passes = 2 + slots_.passes();
+    slots_.add_figures(c.extra, allocated_k_);
+    if (slots_.automatic()) {
       // Against the worst-case constant k = 64 (the parameter's maximum).
       const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
       c.work_saved = {{"bytes_not_allocated", double(bytes_for(kMaxK)) - double(c.bytes_allocated)},
@@ -178,20 +143,13 @@ class KBuffer final : public Technique {
     return pixels * uint64_t(k) * kSlotBytes + (tail_blend_ ? pixels * kTailBytesPerPixel : 0) + kCounterBytes;
   }
 
-  // k=auto: the most slots per pixel that fit both the memory cap and the
-  // device's largest storage block (the colour buffer is the biggest), at
-  // least 1 and at most the parameter's maximum.
-  int auto_k_cap() const {
-    return slots_per_pixel_cap(width_, height_, memory_cap_bytes_, kSlotBytes, kColorBytes, kMaxK);
-  }
-
   // The compose program for k slots. Only compose depends on the define K
   // (the size of its local arrays, K >= u_k): a fixed k compiles K = k;
   // k=auto compiles K = the next power of two, so at most 7 programs serve
   // every view (README, "k=auto").
   const Program& compose_for(int k) {
     int capacity = k;
-    if (auto_k_) {
+    if (slots_.automatic()) {
       capacity = 1;
       while (capacity < k) capacity *= 2;
     }
@@ -212,24 +170,13 @@ class KBuffer final : public Technique {
 
   void allocate_slots(int k) {
     const uint64_t slots = uint64_t(width_) * uint64_t(height_) * uint64_t(k);
-    check_fits(k, slots * kColorBytes);
+    check_slots_fit("kbuffer", k, width_, height_, slots * kColorBytes, "the colour buffer");
     keys_ = make_buffer(GLsizeiptr(slots * kKeyBytes));
     owners_ = make_buffer(GLsizeiptr(slots * kOwnerBytes));
     colors_ = make_buffer(GLsizeiptr(slots * kColorBytes));
     gl_check("allocating the k-buffer of " + std::to_string(width_) + "x" + std::to_string(height_) + "x" +
              std::to_string(k));
     allocated_k_ = k;
-  }
-
-  void check_fits(int k, uint64_t largest_buffer_bytes) const {
-    GLint64 max_block = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    if (max_block > 0 && largest_buffer_bytes > uint64_t(max_block)) {
-      throw std::runtime_error("kbuffer: k=" + std::to_string(k) + " at " + std::to_string(width_) + "x" +
-                               std::to_string(height_) + " needs a " + std::to_string(largest_buffer_bytes >> 20) +
-                               " MiB colour buffer, more than the device's largest storage block (" +
-                               std::to_string(max_block >> 20) + " MiB); lower k or the size");
-    }
   }
 
   void bind_storage() const {
@@ -239,48 +186,47 @@ class KBuffer final : public Technique {
                           {KBUFFER_COUNTERS_BINDING, &counters_}});
   }
 
-  bool auto_k_;
-  int k_parameter_;  // 0 with k=auto
-  uint64_t memory_cap_bytes_;
+  SlotsPerPixel slots_;
   bool tail_blend_;
   Program fill_, store_;
   std::map<int, Program> composes_;  // by K
-  std::optional<ListLengthPass> count_pass_;  // k=auto only
   Buffer counters_, keys_, owners_, colors_;
   Texture tail_accumulation_, tail_revealage_;
   Framebuffer no_attachments_, tail_framebuffer_;
   int width_ = 0, height_ = 0;
-  int allocated_k_ = 0, k_cap_ = kMaxK;
-  uint32_t longest_list_ = 0;
+  int allocated_k_ = 0;
 };
 
 }  // namespace
 
 void register_technique_kbuffer(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "kbuffer";
-  d.display_name = "Dual-pass k-buffer";
-  d.paper = "Kubisch 2014, Order independent transparency in OpenGL 4.x (GTC 2014); murray2016 section 4";
-  d.params = {ParamSpec::integer_or_auto("k", "16", 1, kMaxK,
-                                         "slots per pixel: the K nearest fragments are sorted exactly; auto = the "
-                                         "view's depth complexity, counted every frame (capped by auto_k_memory_mb)"),
-              kTails.spec("tail", Tail::drop,
-                          "fragments beyond the K nearest: drop (counted) or blend unsorted behind them"),
-              ParamSpec::integer("auto_k_memory_mb", 1024, 1, 1 << 20,
-                                 "k=auto only: most MiB of slot storage (24 bytes per slot); k is capped to fit")};
-  d.stages = {"count", "clear", "fill", "store", "compose"};  // count: only with k=auto
-  d.exactness = Exactness::exact;
-  d.quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32"}}, {"tail", kTails.names()}};
-  d.adaptive_switches = {{"k_auto", "sizes k from the view's depth complexity (a counting pass) instead of the "
-                                    "worst-case constant 64",
-                          {{"k", "auto"}}, {{"k", "64"}}}};
-  d.create = [](const ParamSet& params) { return std::make_unique<KBuffer>(params); };
-  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
-    const uint64_t slots = content.pixels() * fragment_pool::slots_per_pixel(content, params, kMaxK);
-    const uint64_t tail = params.choice("tail", kTails) == Tail::blend ? kTailBytesPerPixel : 0;
-    return StorageNeed{slots * kColorBytes, slots * kSlotBytes + content.pixels() * (tail + 4)};
-  };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "kbuffer",
+      .display_name = "Dual-pass k-buffer",
+      .paper = "Kubisch 2014, Order independent transparency in OpenGL 4.x (GTC 2014); murray2016 section 4",
+      .params = {ParamSpec::integer_or_auto("k", "16", 1, kMaxK,
+                                            "slots per pixel: the K nearest fragments are sorted exactly; auto = "
+                                            "the view's depth complexity, counted every frame (capped by "
+                                            "auto_k_memory_mb)"),
+                 kTails.spec("tail", Tail::drop,
+                             "fragments beyond the K nearest: drop (counted) or blend unsorted behind them"),
+                 ParamSpec::integer("auto_k_memory_mb", 1024, 1, 1 << 20,
+                                    "k=auto only: most MiB of slot storage (24 bytes per slot); k is capped to fit")},
+      .stages = {"count", "clear", "fill", "store", "compose"},  // count: only with k=auto
+      .exactness = Exactness::exact,
+      .quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32"}}, {"tail", kTails.names()}},
+      .adaptive_switches = {{"k_auto",
+                             "sizes k from the view's depth complexity (a counting pass) instead of the worst-case "
+                             "constant 64",
+                             {{"k", "auto"}},
+                             {{"k", "64"}}}},
+      .create = make_technique<KBuffer>,
+      .storage_need = [](const ParamSet& params, const FrameContent& content) {
+        const uint64_t slots = content.pixels() * fragment_pool::slots_per_pixel(content, params, kMaxK);
+        const uint64_t tail = params.choice("tail", kTails) == Tail::blend ? kTailBytesPerPixel : 0;
+        return StorageNeed{slots * kColorBytes, slots * kSlotBytes + content.pixels() * (tail + 4)};
+      },
+  });
 }
 
 }  // namespace oit

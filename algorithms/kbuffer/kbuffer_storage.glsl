@@ -3,6 +3,7 @@
 // keys are contiguous: llvmpipe shades a pixel on one CPU thread, and its
 // cache lines then hold a whole pixel's list.
 #include "shaders/bindings.h"
+#include "shaders/pixel_storage.glsl"
 #include "algorithms/kbuffer/bindings.h"
 
 #define KBUFFER_EMPTY 0xffffffffu
@@ -30,15 +31,9 @@ layout(location = KBUFFER_WIDTH_LOCATION) uniform int u_width;
 // on llvmpipe (README, "k=auto"). K only sizes compose's local arrays.
 layout(location = KBUFFER_SLOTS_LOCATION) uniform int u_k;
 
-uint kbuffer_first_slot() { return (uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x)) * uint(u_k); }
+uint kbuffer_first_slot() { return oit_pixel_index(u_width) * uint(u_k); }
 
-// 32-bit sort key of a view depth. IEEE floats order like sign-magnitude
-// integers; flipping maps them onto unsigned order (negative depths, behind
-// the eye, sort first, as in the reference). Only the all-ones pattern
-// (a NaN) would collide with EMPTY, so it is clamped below it. Equal depths
-// give equal keys: ties are resolved by the store pass, not here.
-uint kbuffer_depth_key(float depth) {
-  uint bits = floatBitsToUint(depth);
-  bits = (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
-  return min(bits, KBUFFER_EMPTY - 1u);
-}
+// 32-bit sort key of a view depth. Only the all-ones pattern (a NaN) would
+// collide with EMPTY, so it is clamped below it. Equal depths give equal
+// keys: ties are resolved by the store pass, not here.
+uint kbuffer_depth_key(float depth) { return min(oit_depth_order(floatBitsToUint(depth)), KBUFFER_EMPTY - 1u); }

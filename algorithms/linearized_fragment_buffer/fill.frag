@@ -16,10 +16,10 @@ layout(binding = LFB_NODES_IMAGE_UNIT, rg32ui) writeonly uniform uimageBuffer u_
 layout(location = LFB_WIDTH_LOCATION) uniform int u_width;
 
 void main() {
-  const int pixel = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
+  const int pixel = int(oit_pixel_index(u_width));
   // No bounds check here: lengths.comp checks every pixel's range once.
   const uint slot = imageAtomicAdd(u_cursors, pixel, 1u);
-  imageStore(u_nodes, lfb_key_texel(slot), uvec4(lfb_depth_order(floatBitsToUint(oit_view_depth())), oit_triangle_id(), 0u, 0u));
+  imageStore(u_nodes, lfb_key_texel(slot), uvec4(oit_depth_order(floatBitsToUint(oit_view_depth())), oit_triangle_id(), 0u, 0u));
 #if !defined(LFB_FLAT_COLOR)
   const uvec4 color = floatBitsToUint(oit_shade());
   imageStore(u_nodes, lfb_key_texel(slot) + 1, color.xyyy);

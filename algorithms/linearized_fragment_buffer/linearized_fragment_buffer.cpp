@@ -115,8 +115,7 @@ class LinearizedFragmentBuffer final : public Technique {
       pool_.before_fill(frame);
       pool_.set_exact(fragments_);
       glCopyNamedBufferSubData(offsets_.id(), cursors_.id(), 0, 0, GLsizeiptr(uint64_t(width_) * uint64_t(height_) * 4));
-      const GLuint zero = 0;
-      glClearNamedBufferData(mismatched_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      fill_buffer_u32(mismatched_, 0);
     }
     fill(frame);
     auto compose = frame.clock.stage("compose");
@@ -244,40 +243,43 @@ class LinearizedFragmentBuffer final : public Technique {
 }  // namespace
 
 void register_technique_linearized_fragment_buffer(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "linearized_fragment_buffer";
-  d.display_name = "Linearized fragment buffer (l-LFB), float blend";
-  d.paper = "Knowles et al. 2012; register-based block sort and backwards memory allocation: Knowles et al. 2013, 2014";
-  d.params = {
-      kSorts.spec("sort", Sort::network,
-                  "network: the whole list in registers, sorted by an unrolled odd-even merge network "
-                  "(up to 128 fragments; longer lists use register blocks); register_block: blocks of "
-                  "block_size fragments sorted by their network in registers, written back sorted and "
-                  "merged (Knowles et al. 2014)"),
-      kBlockSizes.spec("block_size", 16, "sort=register_block: fragments per register block"),
-      ParamSpec::boolean("backwards_allocation", true,
-                         "resolve each 4x4 tile with the smallest array that holds its longest list (backwards "
-                         "memory allocation, Knowles et al. 2013; 0/1-fragment tiles unsorted); false: one "
-                         "full-screen resolve sized for the frame's longest list"),
-      ParamSpec::boolean("flat_color_nodes", true,
-                         "unlit scenes (every fragment has its triangle's flat colour): 8-byte nodes holding the "
-                         "sort key alone, the exact colour fetched by triangle id in the resolve; false, or lit "
-                         "scenes: 24-byte nodes with the float colour")};
-  d.stages = {"count", "fill", "compose"};
-  d.exactness = Exactness::exact;
-  d.adaptive_switches = {
-      {"backwards_allocation", "resolves each 4x4 tile with the smallest array that holds its longest list instead "
-       "of the frame's largest array everywhere",
-       {{"backwards_allocation", "true"}}, {{"backwards_allocation", "false"}}},
-      {"flat_color_nodes", "stores 8-byte keys on unlit scenes and fetches each fragment's flat colour by triangle id "
-       "instead of storing 24-byte nodes with the colour",
-       {{"flat_color_nodes", "true"}}, {{"flat_color_nodes", "false"}}}};
-  d.create = [](const ParamSet& params) { return std::make_unique<LinearizedFragmentBuffer>(params); };
-  d.storage_need = [](const ParamSet&, const FrameContent& content) {
-    const uint64_t fragments = std::max<uint64_t>(content.fragments, 1);
-    return StorageNeed{fragments * kNodeBytes, content.pixels() * kPixelBytes + fragments * kNodeBytes};
-  };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "linearized_fragment_buffer",
+      .display_name = "Linearized fragment buffer (l-LFB), float blend",
+      .paper =
+          "Knowles et al. 2012; register-based block sort and backwards memory allocation: Knowles et al. 2013, 2014",
+      .params = {
+          kSorts.spec("sort", Sort::network,
+                      "network: the whole list in registers, sorted by an unrolled odd-even merge network "
+                      "(up to 128 fragments; longer lists use register blocks); register_block: blocks of "
+                      "block_size fragments sorted by their network in registers, written back sorted and "
+                      "merged (Knowles et al. 2014)"),
+          kBlockSizes.spec("block_size", 16, "sort=register_block: fragments per register block"),
+          ParamSpec::boolean("backwards_allocation", true,
+                             "resolve each 4x4 tile with the smallest array that holds its longest list (backwards "
+                             "memory allocation, Knowles et al. 2013; 0/1-fragment tiles unsorted); false: one "
+                             "full-screen resolve sized for the frame's longest list"),
+          ParamSpec::boolean("flat_color_nodes", true,
+                             "unlit scenes (every fragment has its triangle's flat colour): 8-byte nodes holding the "
+                             "sort key alone, the exact colour fetched by triangle id in the resolve; false, or lit "
+                             "scenes: 24-byte nodes with the float colour")},
+      .stages = {"count", "fill", "compose"},
+      .exactness = Exactness::exact,
+      .adaptive_switches = {
+          {"backwards_allocation",
+           "resolves each 4x4 tile with the smallest array that holds its longest list instead of the frame's "
+           "largest array everywhere",
+           {{"backwards_allocation", "true"}}, {{"backwards_allocation", "false"}}},
+          {"flat_color_nodes",
+           "stores 8-byte keys on unlit scenes and fetches each fragment's flat colour by triangle id instead of "
+           "storing 24-byte nodes with the colour",
+           {{"flat_color_nodes", "true"}}, {{"flat_color_nodes", "false"}}}},
+      .create = make_technique<LinearizedFragmentBuffer>,
+      .storage_need = [](const ParamSet&, const FrameContent& content) {
+        const uint64_t fragments = std::max<uint64_t>(content.fragments, 1);
+        return StorageNeed{fragments * kNodeBytes, content.pixels() * kPixelBytes + fragments * kNodeBytes};
+      },
+  });
 }
 
 }  // namespace oit

@@ -74,7 +74,7 @@ uvec3 e[LL_CAPACITY];
 #define LL_BLEND(i) if (uint(i) < available) blend(color_of(e[i]));
 
 void main() {
-  const int pixel = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
+  const int pixel = int(oit_pixel_index(u_width));
   const uint base = texelFetch(u_offsets, pixel).x;
   const uint available = texelFetch(u_lengths, pixel).x;
   LL_LOAD_ALL
@@ -116,7 +116,7 @@ vec4 colors[LL_CAPACITY];
 uvec3 heads[LFB_BLOCKS];
 
 void main() {
-  const int pixel = int(gl_FragCoord.y) * u_width + int(gl_FragCoord.x);
+  const int pixel = int(oit_pixel_index(u_width));
   const uint start = texelFetch(u_offsets, pixel).x;
   const uint count = texelFetch(u_lengths, pixel).x;
   // A loop over the blocks, the network unrolled inside: code size grows with

@@ -8,10 +8,8 @@
 // keys and colours apart: the fill's scattered writes then touch one or two
 // cache lines per fragment instead of two or three (fill 70 -> 35 ms,
 // compose 19 -> 9 ms on 32 quads at 256x256, README).
+#include "shaders/pixel_storage.glsl"
 #include "algorithms/linearized_fragment_buffer/bindings.h"
-
-// IEEE floats compare like sign-magnitude integers; mapped to unsigned order.
-uint lfb_depth_order(uint bits) { return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u; }
 
 #if defined(LFB_FLAT_COLOR)
 #define LFB_NODE_TEXELS 1u

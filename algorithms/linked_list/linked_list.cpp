@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "harness/core/fragment_pool.h"
+#include "harness/core/passes.h"
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
@@ -104,9 +105,7 @@ class LinkedList final : public Technique {
       case PoolSizing::count: pool_.reset(1); break;  // the counting pass sizes it before every fill
       case PoolSizing::worst_case: pool_.reset(worst_case_nodes()); break;
     }
-    dummy_framebuffer_ = make_framebuffer();
-    glNamedFramebufferParameteri(dummy_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
-    glNamedFramebufferParameteri(dummy_framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+    dummy_framebuffer_ = make_attachmentless_framebuffer(width, height);
     set_uniform(fill_.id(), LINKED_LIST_WIDTH_LOCATION, width_);
     for (auto& [key, program] : programs_) set_uniform(program.id(), LINKED_LIST_WIDTH_LOCATION, width_);
   }
@@ -115,31 +114,22 @@ class LinkedList final : public Technique {
     passes_ = 0;
     GLuint counts[3] = {0, 0, 0};  // node_count, max_length, dropped
     if (pool_sizing_ == PoolSizing::count) count_fragments(frame);
-    for (;;) {
-      {
-        auto clear = frame.clock.stage("clear");
-        pool_.before_fill(frame);
-        const GLuint nil = 0xffffffffu, zero = 0;
-        glClearNamedBufferData(heads_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &nil);
-        glClearNamedBufferData(lengths_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-        glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-      }
-      {
-        auto fill = frame.clock.stage("fill");
-        glBindFramebuffer(GL_FRAMEBUFFER, dummy_framebuffer_.id());
-        glViewport(0, 0, width_, height_);
-        glUseProgram(fill_.id());
-        frame.set_shared_uniforms(fill_.id());
-        bind_storage();
-        frame.scene.draw();
-        ++passes_;
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
-      }
-      // pool_sizing=count never overflows: the counting pass ran the same
-      // geometry, so the fill produces exactly that count.
-      if (pool_.fits(frame, counts[0])) break;
-    }
+    // pool_sizing=count never overflows: the counting pass ran the same
+    // geometry, so the fill produces exactly that count.
+    passes_ += pool_.fill_until_fits(
+        frame,
+        [&] {
+          fill_buffer_u32(heads_, 0xffffffffu);  // LL_NIL (nodes.glsl)
+          fill_buffer_u32(lengths_, 0);
+          fill_buffer_u32(counters_, 0);
+        },
+        [&] {
+          bind_storage();
+          draw_scene_pass(frame, fill_, dummy_framebuffer_);
+          glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+          glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
+          return uint64_t(counts[0]);
+        });
     dropped_ = counts[2];
     stored_ = counts[0] - counts[2];
 
@@ -205,12 +195,8 @@ class LinkedList final : public Technique {
   // that count (only when it changed).
   void count_fragments(const Frame& frame) {
     auto count = frame.clock.stage("count");
-    glBindFramebuffer(GL_FRAMEBUFFER, dummy_framebuffer_.id());
-    glViewport(0, 0, width_, height_);
-    glUseProgram(count_.id());
-    frame.set_shared_uniforms(count_.id());
     glBeginQuery(GL_SAMPLES_PASSED, count_query_.id());
-    frame.scene.draw();
+    draw_scene_pass(frame, count_, dummy_framebuffer_);
     glEndQuery(GL_SAMPLES_PASSED);
     ++passes_;
     GLuint fragments = 0;
@@ -338,58 +324,60 @@ class LinkedList final : public Technique {
 }  // namespace
 
 void register_technique_linked_list(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "linked_list";
-  d.display_name = "Per-pixel linked lists (A-buffer), float blend";
-  d.paper = "Yang et al. 2010; Carnecky et al. 2013; Pastyrik & Kolingerova 2016";
-  d.params = {
-      kSorts.spec("sort", Sort::network,
-                  "resolve sort: insertion (Yang 2010), selection (Carnecky 2013) or an unrolled "
-                  "odd-even merge sorting network on registers"),
-      ParamSpec::integer("max_per_pixel", 64, 1, 1024,
-                         "local array size; longer lists keep their nearest max_per_pixel fragments and count "
-                         "the rest as dropped"),
-      ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,
-                         "first frame's pool per pixel with pool_sizing=previous_frame; later frames size it "
-                         "from the last count"),
-      kPoolSizings.spec("pool_sizing", PoolSizing::previous_frame,
-                        "node pool: previous_frame (1.25 x the last frame's fragments, grown with a re-render "
-                        "on overflow), count (a counting pass first, then exactly that many nodes; never "
-                        "overflows) or worst_case (W x H x max_per_pixel nodes, allocated once)"),
-      kStorages.spec("storage", Storage::full,
-                     "node layout: full (32 bytes: float RGBA, view depth, triangle id, next; exact) or "
-                     "compact (12 bytes: view depth, RGBA8 colour, next; colour quantised to 1/255 and "
-                     "coplanar fragments ordered by allocation instead of triangle id)"),
-      ParamSpec::boolean("length_classes", true,
-                         "sort=network only: resolve each 4x4 tile with the smallest network that holds its "
-                         "longest list: a compute pass classifies the tiles (1 = no sort, 8, 16, ... the frame's "
-                         "array, when that is over 8) and each class is drawn as one point per tile; false: one "
-                         "full-screen draw sorts every pixel in the array of the frame's longest list")};
-  d.stages = {"count", "clear", "fill", "compose"};
-  // Every fragment is kept and exactly ordered (float blend) unless a list exceeds max_per_pixel.
-  d.exactness = Exactness::exact;
-  d.quality_sweep = {{"max_per_pixel", {"1", "2", "4", "8", "16", "32", "64"}},
-                     {"sort", {"insertion", "network"}},
-                     {"storage", {"compact", "full"}}};
-  d.adaptive_switches = {
-      {"pool_count", "sizes the node pool exactly from a counting pass instead of W x H x max_per_pixel",
-       {{"pool_sizing", "count"}}, {{"pool_sizing", "worst_case"}}},
-      {"pool_previous_frame", "sizes the node pool from the previous frame's count instead of W x H x max_per_pixel",
-       {{"pool_sizing", "previous_frame"}}, {{"pool_sizing", "worst_case"}}},
-      {"length_classes", "sort=network: resolves each 4x4 tile with the smallest network that holds its longest "
-       "list (no sort for 0/1-fragment tiles) instead of the frame's largest network everywhere",
-       {{"length_classes", "true"}}, {{"length_classes", "false"}}}};
-  d.create = [](const ParamSet& params) { return std::make_unique<LinkedList>(params); };
-  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
-    const PoolSizing sizing = params.choice("pool_sizing", kPoolSizings);
-    const uint64_t nodes =
-        sizing == PoolSizing::count        ? std::max<uint64_t>(content.fragments, 1)
-        : sizing == PoolSizing::worst_case ? content.pixels() * uint64_t(params.integer("max_per_pixel"))
-                                           : fragment_pool::nodes_for(content, uint64_t(params.integer("initial_nodes_per_pixel")));
-    const uint64_t node = params.choice("storage", kStorages) == Storage::compact ? kCompactNodeBytes : kNodeBytes;
-    return StorageNeed{nodes * node, content.pixels() * (kPixelBytes + 2) + nodes * node};
-  };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "linked_list",
+      .display_name = "Per-pixel linked lists (A-buffer), float blend",
+      .paper = "Yang et al. 2010; Carnecky et al. 2013; Pastyrik & Kolingerova 2016",
+      .params = {
+          kSorts.spec("sort", Sort::network,
+                      "resolve sort: insertion (Yang 2010), selection (Carnecky 2013) or an unrolled "
+                      "odd-even merge sorting network on registers"),
+          ParamSpec::integer("max_per_pixel", 64, 1, 1024,
+                             "local array size; longer lists keep their nearest max_per_pixel fragments and count "
+                             "the rest as dropped"),
+          ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,
+                             "first frame's pool per pixel with pool_sizing=previous_frame; later frames size it "
+                             "from the last count"),
+          kPoolSizings.spec("pool_sizing", PoolSizing::previous_frame,
+                            "node pool: previous_frame (1.25 x the last frame's fragments, grown with a re-render "
+                            "on overflow), count (a counting pass first, then exactly that many nodes; never "
+                            "overflows) or worst_case (W x H x max_per_pixel nodes, allocated once)"),
+          kStorages.spec("storage", Storage::full,
+                         "node layout: full (32 bytes: float RGBA, view depth, triangle id, next; exact) or "
+                         "compact (12 bytes: view depth, RGBA8 colour, next; colour quantised to 1/255 and "
+                         "coplanar fragments ordered by allocation instead of triangle id)"),
+          ParamSpec::boolean("length_classes", true,
+                             "sort=network only: resolve each 4x4 tile with the smallest network that holds its "
+                             "longest list: a compute pass classifies the tiles (1 = no sort, 8, 16, ... the frame's "
+                             "array, when that is over 8) and each class is drawn as one point per tile; false: one "
+                             "full-screen draw sorts every pixel in the array of the frame's longest list")},
+      .stages = {"count", "clear", "fill", "compose"},
+      // Every fragment is kept and exactly ordered (float blend) unless a list exceeds max_per_pixel.
+      .exactness = Exactness::exact,
+      .quality_sweep = {{"max_per_pixel", {"1", "2", "4", "8", "16", "32", "64"}},
+                        {"sort", {"insertion", "network"}},
+                        {"storage", {"compact", "full"}}},
+      .adaptive_switches = {
+          {"pool_count", "sizes the node pool exactly from a counting pass instead of W x H x max_per_pixel",
+           {{"pool_sizing", "count"}}, {{"pool_sizing", "worst_case"}}},
+          {"pool_previous_frame",
+           "sizes the node pool from the previous frame's count instead of W x H x max_per_pixel",
+           {{"pool_sizing", "previous_frame"}}, {{"pool_sizing", "worst_case"}}},
+          {"length_classes", "sort=network: resolves each 4x4 tile with the smallest network that holds its longest "
+           "list (no sort for 0/1-fragment tiles) instead of the frame's largest network everywhere",
+           {{"length_classes", "true"}}, {{"length_classes", "false"}}}},
+      .create = make_technique<LinkedList>,
+      .storage_need = [](const ParamSet& params, const FrameContent& content) {
+        const PoolSizing sizing = params.choice("pool_sizing", kPoolSizings);
+        const uint64_t initial = uint64_t(params.integer("initial_nodes_per_pixel"));
+        const uint64_t nodes =
+            sizing == PoolSizing::count        ? std::max<uint64_t>(content.fragments, 1)
+            : sizing == PoolSizing::worst_case ? content.pixels() * uint64_t(params.integer("max_per_pixel"))
+                                               : fragment_pool::nodes_for(content, initial);
+        const uint64_t node = params.choice("storage", kStorages) == Storage::compact ? kCompactNodeBytes : kNodeBytes;
+        return StorageNeed{nodes * node, content.pixels() * (kPixelBytes + 2) + nodes * node};
+      },
+  });
 }
 
 }  // namespace oit

@@ -1,5 +1,6 @@
 // Storage of the per-pixel linked lists (Yang et al. 2010): LL_HEADS head
 // pointers and a list length per pixel, one pool of nodes, and global counters.
+#include "shaders/pixel_storage.glsl"
 #include "algorithms/linked_list/bindings.h"
 
 #define LL_NIL 0xffffffffu
@@ -46,4 +47,4 @@ layout(location = LINKED_LIST_CAPACITY_LOCATION) uniform uint u_capacity;
 layout(location = LINKED_LIST_WIDTH_LOCATION) uniform int u_width;
 layout(location = LINKED_LIST_MAX_PER_PIXEL_LOCATION) uniform uint u_max_per_pixel;
 
-uint ll_pixel() { return uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x); }
+uint ll_pixel() { return oit_pixel_index(u_width); }

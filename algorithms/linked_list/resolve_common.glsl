@@ -36,10 +36,7 @@ vec4 color_of(uint node) { return uintBitsToFloat(imageLoad(u_nodes, int(2u * no
 // A sort element: x = view depth bits mapped to unsigned order, y = stable
 // triangle id (unique per pixel: the deterministic tie-break), z = node index.
 uvec3 sort_element(uint node, uvec4 link) {
-  uint bits = link.x;
-  // IEEE floats compare like sign-magnitude integers; map them to unsigned order.
-  bits = (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
-  return uvec3(bits, link.y, node);
+  return uvec3(oit_depth_order(link.x), link.y, node);
 }
 
 bool precedes(uvec3 a, uvec3 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }

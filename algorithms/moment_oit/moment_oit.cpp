@@ -54,13 +54,6 @@ double paper_moment_bias(const MomentConfig& config, bool half) {
   }
 }
 
-// View depths of the near and far planes of a GL projection matrix
-// (glm: m[column][row]); perspective when m[2][3] == -1, else orthographic.
-glm::vec2 near_far_of(const glm::mat4& p) {
-  if (p[2][3] != 0.0f) return {p[3][2] / (p[2][2] - 1.0f), p[3][2] / (p[2][2] + 1.0f)};
-  return {(p[3][2] + 1.0f) / p[2][2], (p[3][2] - 1.0f) / p[2][2]};
-}
-
 class MomentOit final : public Technique {
  public:
   explicit MomentOit(const ParamSet& params)
@@ -100,7 +93,7 @@ class MomentOit final : public Technique {
   }
 
   void render(const Frame& frame) override {
-    set_depth_warp(frame.projection);
+    set_depth_warp(frame);
     {
       auto clear = frame.clock.stage("clear");
       const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -156,9 +149,9 @@ class MomentOit final : public Technique {
   // logarithmically under perspective (the paper's warp: relative depth
   // differences matter equally near and far), linearly for an orthographic
   // projection, whose near plane may sit at or behind the eye.
-  void set_depth_warp(const glm::mat4& projection) const {
-    const bool perspective = projection[2][3] != 0.0f;
-    glm::vec2 near_far = near_far_of(projection);
+  void set_depth_warp(const Frame& frame) const {
+    const bool perspective = frame.projection[2][3] != 0.0f;
+    glm::vec2 near_far = frame.near_far();
     if (perspective) near_far = glm::log(near_far);
     for (GLuint program : {fill_.id(), store_.id()}) {
       set_uniform(program, MOMENT_OIT_DEPTH_WARP_LOCATION, glm::vec2(near_far.x, 1.0f / (near_far.y - near_far.x)));
@@ -184,29 +177,29 @@ class MomentOit final : public Technique {
 }  // namespace
 
 void register_technique_moment_oit(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "moment_oit";
-  d.display_name = "Moment-based OIT";
-  d.paper = "Münstermann, Krumpen, Klein & Peters 2018, Moment-Based Order-Independent Transparency, PACMCGIT 1(1)";
-  d.params = {
-      kMomentConfigs.spec("moments", {false, 6},
-                          "power moments (4, 6 or 8 of depth) or trigonometric moments (2, 3 or 4 of an angle)"),
-      kPrecisions.spec("precision", Precision::single,
-                       "moment and accumulation targets: 32-bit floats, or the paper's 16-bit (half) storage"),
-      ParamSpec::real("moment_bias_scale", 1.0, 0.0, 1e4,
-                      "multiplies the paper's moment bias of the configuration (e.g. 5e-6 for power6 at 32 bits); "
-                      "0 = no bias"),
-      ParamSpec::real("overestimation", 0.25, 0.0, 1.0,
-                      "the paper's beta: 0 = lower bound of the absorbance in front, 1 = upper bound"),
-      ParamSpec::real("wrapping_zone_degrees", 18.0, 1.0, 180.0,
-                      "trigonometric moments: the angle between the far and the near end of the depth range "
-                      "(the paper's 0.1 pi)")};
-  d.stages = {"clear", "fill", "store", "compose"};
-  d.exactness = Exactness::approximate;
-  d.quality_sweep = {{"moments", {"power4", "trig2", "power6", "trig3", "power8", "trig4"}},
-                     {"precision", {"half", "float"}}};
-  d.create = [](const ParamSet& params) { return std::make_unique<MomentOit>(params); };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "moment_oit",
+      .display_name = "Moment-based OIT",
+      .paper = "Münstermann, Krumpen, Klein & Peters 2018, Moment-Based Order-Independent Transparency, PACMCGIT 1(1)",
+      .params = {kMomentConfigs.spec("moments", {false, 6},
+                                     "power moments (4, 6 or 8 of depth) or trigonometric moments (2, 3 or 4 of "
+                                     "an angle)"),
+                 kPrecisions.spec("precision", Precision::single,
+                                  "moment and accumulation targets: 32-bit floats, or the paper's 16-bit (half) "
+                                  "storage"),
+                 ParamSpec::real("moment_bias_scale", 1.0, 0.0, 1e4,
+                                 "multiplies the paper's moment bias of the configuration (e.g. 5e-6 for power6 "
+                                 "at 32 bits); 0 = no bias"),
+                 ParamSpec::real("overestimation", 0.25, 0.0, 1.0,
+                                 "the paper's beta: 0 = lower bound of the absorbance in front, 1 = upper bound"),
+                 ParamSpec::real("wrapping_zone_degrees", 18.0, 1.0, 180.0,
+                                 "trigonometric moments: the angle between the far and the near end of the depth "
+                                 "range (the paper's 0.1 pi)")},
+      .stages = {"clear", "fill", "store", "compose"},
+      .quality_sweep = {{"moments", {"power4", "trig2", "power6", "trig3", "power8", "trig4"}},
+                        {"precision", {"half", "float"}}},
+      .create = make_technique<MomentOit>,
+  });
 }
 
 }  // namespace oit

@@ -3,6 +3,7 @@
 // depth of its nearest fragment; pixel-major (layer i of pixel p at
 // p * u_k + i). How many layers a pixel holds is its count word.
 #include "shaders/bindings.h"
+#include "shaders/pixel_storage.glsl"
 #include "algorithms/multi_layer_alpha_blending/bindings.h"
 
 // (premultiplied rgb, transmittance) of each layer.
@@ -18,4 +19,4 @@ layout(std430, binding = MULTI_LAYER_ALPHA_BLENDING_COUNTS_BINDING) coherent buf
 layout(location = MULTI_LAYER_ALPHA_BLENDING_WIDTH_LOCATION) uniform int u_width;
 layout(location = MULTI_LAYER_ALPHA_BLENDING_LAYERS_LOCATION) uniform int u_k;
 
-uint mlab_pixel() { return uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x); }
+uint mlab_pixel() { return oit_pixel_index(u_width); }

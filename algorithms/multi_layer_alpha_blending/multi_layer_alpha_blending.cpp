@@ -97,21 +97,21 @@ class MultiLayerAlphaBlending final : public Technique {
 }  // namespace
 
 void register_technique_multi_layer_alpha_blending(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "multi_layer_alpha_blending";
-  d.display_name = "Multi-layer alpha blending";
-  d.paper = "Salvi & Vaidyanathan 2014, Multi-layer Alpha Blending, I3D 2014";
-  d.params = {ParamSpec::integer("k", 4, 1, 32,
-                                 "layers per pixel; a fragment that makes k + 1 merges the two farthest")};
-  d.stages = {"clear", "fill", "compose"};
-  d.exactness = Exactness::approximate;
-  d.quality_sweep = {{"k", {"1", "2", "4", "8", "16"}}};
-  d.create = [](const ParamSet& params) { return std::make_unique<MultiLayerAlphaBlending>(params); };
-  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
-    const uint64_t layers = content.pixels() * uint64_t(params.integer("k"));
-    return StorageNeed{layers * 16, layers * kLayerBytes + content.pixels() * kCountBytes};  // largest: the RGBA32F colours
-  };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "multi_layer_alpha_blending",
+      .display_name = "Multi-layer alpha blending",
+      .paper = "Salvi & Vaidyanathan 2014, Multi-layer Alpha Blending, I3D 2014",
+      .params = {ParamSpec::integer("k", 4, 1, 32,
+                                    "layers per pixel; a fragment that makes k + 1 merges the two farthest")},
+      .stages = {"clear", "fill", "compose"},
+      .quality_sweep = {{"k", {"1", "2", "4", "8", "16"}}},
+      .create = make_technique<MultiLayerAlphaBlending>,
+      .storage_need = [](const ParamSet& params, const FrameContent& content) {
+        const uint64_t layers = content.pixels() * uint64_t(params.integer("k"));
+        // The largest buffer: the RGBA32F colours.
+        return StorageNeed{layers * 16, layers * kLayerBytes + content.pixels() * kCountBytes};
+      },
+  });
 }
 
 }  // namespace oit

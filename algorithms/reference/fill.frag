@@ -4,7 +4,7 @@
 #include "algorithms/reference/reference_nodes.glsl"
 
 void main() {
-  uint pixel = uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);
+  uint pixel = oit_pixel_index(u_width);
   OIT_ATOMIC_RAISE(max_length, atomicAdd(lengths[pixel], 1u) + 1u);
   uint index;
   OIT_ATOMIC_APPEND(node_count, index);

@@ -47,40 +47,30 @@ class Reference final : public Technique {
   }
 
   void render(const Frame& frame) override {
-    passes_ = 0;
-    for (;;) {
-      {
-        auto clear = frame.clock.stage("clear");
-        pool_.before_fill(frame);
-        const GLuint nil = 0xffffffffu;
-        fill_buffer_u32(heads_, nil);
-        fill_buffer_u32(lengths_, 0);
-        fill_buffer_u32(counter_, 0);
-      }
-      {
-        auto fill = frame.clock.stage("fill");
-        bind_storage();
-        draw_scene_pass(frame, fill_, no_attachments_);
-        ++passes_;
-      }
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-      GLuint counts[2] = {0, 0};  // node_count, max_length
-      glGetNamedBufferSubData(counter_.id(), 0, sizeof(counts), counts);
-      max_length_ = counts[1];
-      stored_ = counts[0];
-      if (pool_.fits(frame, counts[0])) break;
-    }
+    passes_ = pool_.fill_until_fits(
+        frame,
+        [&] {
+          fill_buffer_u32(heads_, 0xffffffffu);  // REFERENCE_NIL (reference_nodes.glsl)
+          fill_buffer_u32(lengths_, 0);
+          fill_buffer_u32(counter_, 0);
+        },
+        [&] {
+          bind_storage();
+          draw_scene_pass(frame, fill_, no_attachments_);
+          glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+          GLuint counts[2] = {0, 0};  // node_count, max_length
+          glGetNamedBufferSubData(counter_.id(), 0, sizeof(counts), counts);
+          max_length_ = counts[1];
+          stored_ = counts[0];
+          return uint64_t(counts[0]);
+        });
     auto compose = frame.clock.stage("compose");
     if (max_length_ > kMaxGpuListLength) {
       resolve_on_cpu(frame);
       return;
     }
-    const GLuint resolve = resolve_program(max_length_);
-    frame.bind_target();
-    glUseProgram(resolve);
-    frame.set_shared_uniforms(resolve);
     bind_storage();
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    draw_fullscreen_pass(frame, resolve_program(max_length_));
   }
 
   TechniqueCounters counters() const override {
@@ -139,7 +129,7 @@ class Reference final : public Technique {
   }
 
   // Resolve programs by local array size (powers of two from 16).
-  GLuint resolve_program(uint32_t max_length) {
+  const Program& resolve_program(uint32_t max_length) {
     const uint32_t size = std::max<uint32_t>(16, std::bit_ceil(std::max<uint32_t>(max_length, 1)));
     auto it = resolve_.find(size);
     if (it == resolve_.end()) {
@@ -148,7 +138,7 @@ class Reference final : public Technique {
                .first;
       set_uniform(it->second.id(), REFERENCE_WIDTH_LOCATION, width_);
     }
-    return it->second.id();
+    return it->second;
   }
 
   void allocate_pool(uint64_t capacity) {
@@ -182,23 +172,22 @@ class Reference final : public Technique {
 }  // namespace
 
 void register_technique_reference(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "reference";
-  d.display_name = "Exact reference (all fragments, double-precision blend)";
-  d.paper = "A-buffer (Carpenter 1984) as linked lists (Yang et al. 2010)";
-  d.params = {ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,
-                                 "initial pool size per pixel; the pool grows on overflow")};
-  d.stages = {"clear", "fill", "compose"};
-  d.needs.fp64 = true;
-  d.needs.int64 = true;
-  d.exactness = Exactness::exact;
-  d.is_reference = true;
-  d.create = [](const ParamSet& params) { return std::make_unique<Reference>(params); };
-  d.storage_need = [](const ParamSet& params, const FrameContent& content) {
-    const uint64_t nodes = fragment_pool::nodes_for(content, uint64_t(params.integer("initial_nodes_per_pixel")));
-    return StorageNeed{nodes * kNodeBytes, content.pixels() * 8 + nodes * kNodeBytes};
-  };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "reference",
+      .display_name = "Exact reference (all fragments, double-precision blend)",
+      .paper = "A-buffer (Carpenter 1984) as linked lists (Yang et al. 2010)",
+      .params = {ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,
+                                    "initial pool size per pixel; the pool grows on overflow")},
+      .stages = {"clear", "fill", "compose"},
+      .needs = {.fp64 = true, .int64 = true},
+      .exactness = Exactness::exact,
+      .is_reference = true,
+      .create = make_technique<Reference>,
+      .storage_need = [](const ParamSet& params, const FrameContent& content) {
+        const uint64_t nodes = fragment_pool::nodes_for(content, uint64_t(params.integer("initial_nodes_per_pixel")));
+        return StorageNeed{nodes * kNodeBytes, content.pixels() * 8 + nodes * kNodeBytes};
+      },
+  });
 }
 
 }  // namespace oit

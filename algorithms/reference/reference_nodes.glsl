@@ -1,4 +1,5 @@
 // Storage of the reference: every fragment in a per-pixel linked list.
+#include "shaders/pixel_storage.glsl"
 #include "algorithms/reference/bindings.h"
 
 #define REFERENCE_NIL 0xffffffffu

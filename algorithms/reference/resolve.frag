@@ -13,10 +13,7 @@
 layout(location = 0) out vec4 out_color;
 
 uint64_t sort_key(uvec4 link) {
-  uint bits = link.x;
-  // IEEE floats compare like sign-magnitude integers; map them to unsigned order.
-  bits = (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
-  return (uint64_t(bits) << 32) | uint64_t(link.y);
+  return (uint64_t(oit_depth_order(link.x)) << 32) | uint64_t(link.y);
 }
 
 uint64_t keys[MAX_FRAGMENTS];
@@ -24,7 +21,7 @@ uint indices[MAX_FRAGMENTS];
 
 void main() {
   uint count = 0u;
-  uint cursor = heads[uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x)];
+  uint cursor = heads[oit_pixel_index(u_width)];
   while (cursor != REFERENCE_NIL && count < uint(MAX_FRAGMENTS)) {
     uvec4 link = nodes[cursor].link;
     keys[count] = sort_key(link);

@@ -158,25 +158,24 @@ class StochasticTransparency final : public Technique {
 }  // namespace
 
 void register_technique_stochastic_transparency(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "stochastic_transparency";
-  d.display_name = "Stochastic transparency";
-  d.paper = "Enderton, Sintorn, Shirley & Luebke 2010, Stochastic Transparency, I3D 2010";
-  d.params = {kSampleCounts.spec("samples", 4,
-                                 "MSAA samples per pixel of the stochastic depth pass (a count the device lacks is "
-                                 "a skipped run)"),
-              ParamSpec::integer("passes", 1, 1, 64,
-                                 "depth + accumulation pass pairs with different seeds, averaged: samples x passes "
-                                 "effective samples"),
-              ParamSpec::integer("seed", 1, 0, 0xffffffffLL, "seed of the per-fragment coverage masks")};
-  d.stages = {"clear", "fill", "store", "compose"};
-  d.exactness = Exactness::approximate;
-  d.quality_sweep = {{"samples", kSampleCounts.names()}, {"passes", {"1", "2", "4", "8"}}};
-  d.extra_support_check = [](const ParamSet& params, const SceneFacts&) {
-    return sample_count_support(params.choice("samples", kSampleCounts));
-  };
-  d.create = [](const ParamSet& params) { return std::make_unique<StochasticTransparency>(params); };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "stochastic_transparency",
+      .display_name = "Stochastic transparency",
+      .paper = "Enderton, Sintorn, Shirley & Luebke 2010, Stochastic Transparency, I3D 2010",
+      .params = {kSampleCounts.spec("samples", 4,
+                                    "MSAA samples per pixel of the stochastic depth pass (a count the device lacks "
+                                    "is a skipped run)"),
+                 ParamSpec::integer("passes", 1, 1, 64,
+                                    "depth + accumulation pass pairs with different seeds, averaged: samples x "
+                                    "passes effective samples"),
+                 ParamSpec::integer("seed", 1, 0, 0xffffffffLL, "seed of the per-fragment coverage masks")},
+      .stages = {"clear", "fill", "store", "compose"},
+      .quality_sweep = {{"samples", kSampleCounts.names()}, {"passes", {"1", "2", "4", "8"}}},
+      .extra_support_check = [](const ParamSet& params, const SceneFacts&) {
+        return sample_count_support(params.choice("samples", kSampleCounts));
+      },
+      .create = make_technique<StochasticTransparency>,
+  });
 }
 
 }  // namespace oit

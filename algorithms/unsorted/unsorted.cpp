@@ -37,14 +37,13 @@ class Unsorted final : public Technique {
 }  // namespace
 
 void register_technique_unsorted(TechniqueRegistry& registry) {
-  TechniqueDescriptor d;
-  d.id = "unsorted";
-  d.display_name = "Unsorted alpha blending";
-  d.paper = "(baseline)";
-  d.stages = {"fill"};
-  d.exactness = Exactness::approximate;
-  d.create = [](const ParamSet&) { return std::make_unique<Unsorted>(); };
-  registry.add(std::move(d));
+  registry.add({
+      .id = "unsorted",
+      .display_name = "Unsorted alpha blending",
+      .paper = "(baseline)",
+      .stages = {"fill"},
+      .create = make_technique<Unsorted>,
+  });
 }
 
 }  // namespace oit

@@ -50,6 +50,23 @@ bool FragmentPool::fits(const Frame& frame, uint64_t produced) {
   return false;
 }
 
+uint64_t FragmentPool::fill_until_fits(const Frame& frame, const std::function<void()>& clear,
+                                       const std::function<uint64_t()>& fill) {
+  for (uint64_t fills = 1;; ++fills) {
+    {
+      auto stage = frame.clock.stage("clear");
+      before_fill(frame);
+      clear();
+    }
+    uint64_t produced = 0;
+    {
+      auto stage = frame.clock.stage("fill");
+      produced = fill();
+    }
+    if (fits(frame, produced)) return fills;
+  }
+}
+
 void FragmentPool::allocate(uint64_t capacity) {
   capacity = std::max(capacity, smallest_);
   GLint64 max_block = 0, max_texels = 0;

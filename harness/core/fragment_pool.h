@@ -76,6 +76,12 @@ class FragmentPool {
   // pool has grown to hold them (a retry is counted) and the caller renders
   // the fill again.
   bool fits(const Frame& frame, uint64_t produced);
+  // The fill loop of the list techniques, written once: stage "clear" runs
+  // before_fill() and `clear`, stage "fill" runs `fill`, which draws the
+  // scene and returns the fragments it produced; when they did not fit,
+  // the pool has grown and both run again. Returns the fills run.
+  uint64_t fill_until_fits(const Frame& frame, const std::function<void()>& clear,
+                           const std::function<uint64_t()>& fill);
 
   uint64_t capacity() const { return capacity_; }
   uint64_t overflow_retries() const { return overflow_retries_; }

@@ -1,6 +1,7 @@
 #include "harness/core/list_length_pass.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
@@ -55,6 +56,17 @@ uint32_t ListLengthPass::longest_list(const Frame& frame) {
 
 uint64_t ListLengthPass::bytes_allocated() const { return uint64_t(width_) * uint64_t(height_) * 4u; }
 
+void check_slots_fit(const std::string& technique, int k, int width, int height, uint64_t largest_buffer_bytes,
+                     const std::string& buffer) {
+  GLint64 max_block = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+  if (max_block <= 0 || largest_buffer_bytes <= uint64_t(max_block)) return;
+  throw std::runtime_error(technique + ": k=" + std::to_string(k) + " at " + std::to_string(width) + "x" +
+                           std::to_string(height) + " needs " + std::to_string(largest_buffer_bytes >> 20) +
+                           " MiB for " + buffer + ", more than the device's largest storage block (" +
+                           std::to_string(max_block >> 20) + " MiB); lower k or the size");
+}
+
 int slots_per_pixel_cap(int width, int height, uint64_t memory_cap_bytes, uint64_t bytes_per_slot,
                         uint64_t largest_array_bytes_per_slot, int max_slots) {
   const uint64_t pixels = std::max<uint64_t>(uint64_t(width) * uint64_t(height), 1);
@@ -63,6 +75,35 @@ int slots_per_pixel_cap(int width, int height, uint64_t memory_cap_bytes, uint64
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
   if (max_block > 0) cap = std::min(cap, uint64_t(max_block) / (pixels * largest_array_bytes_per_slot));
   return int(std::clamp<uint64_t>(cap, 1, uint64_t(max_slots)));
+}
+
+SlotsPerPixel::SlotsPerPixel(const ParamSet& params, int max_k)
+    : max_k_(max_k),
+      fixed_(params.is_auto("k") ? 0 : int(params.integer("k"))),
+      memory_cap_bytes_(uint64_t(params.integer("auto_k_memory_mb")) << 20),
+      cap_(max_k) {
+  if (params.is_auto("k")) count_pass_.emplace();
+}
+
+void SlotsPerPixel::resize(int width, int height, uint64_t bytes_per_slot, uint64_t largest_array_bytes_per_slot) {
+  if (!automatic()) return;
+  count_pass_->resize(width, height);
+  cap_ = slots_per_pixel_cap(width, height, memory_cap_bytes_, bytes_per_slot, largest_array_bytes_per_slot, max_k_);
+}
+
+int SlotsPerPixel::for_frame(const Frame& frame) {
+  if (!automatic()) return fixed_;
+  auto count = frame.clock.stage("count");
+  longest_list_ = count_pass_->longest_list(frame);
+  return std::clamp(int(std::min<uint32_t>(longest_list_, uint32_t(max_k_))), 1, cap_);
+}
+
+void SlotsPerPixel::add_figures(std::vector<Figure>& extra, int k_used) const {
+  extra.push_back({"k_used", double(k_used), Combine::max});
+  if (!automatic()) return;
+  extra.push_back({"longest_list", double(longest_list_), Combine::max});
+  extra.push_back({"k_cap", double(cap_), Combine::max});
+  extra.push_back({"k_capped", longest_list_ > uint32_t(cap_) ? 1.0 : 0.0, Combine::max});
 }
 
 }  // namespace oit

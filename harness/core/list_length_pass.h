@@ -4,6 +4,8 @@
 // test counts every pixel's fragments; the longest list of the frame sizes
 // the storage. Technique-independent; the technique times it (stage `count`).
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "harness/core/technique.h"
@@ -38,6 +40,14 @@ class ListLengthPass {
   uint64_t total_ = 0;
 };
 
+// Throws std::runtime_error when a technique's largest buffer of per-pixel
+// slots, `largest_buffer_bytes` for k slots per pixel at width x height,
+// exceeds the device's largest storage block: "<technique>: k=<k> at
+// <width>x<height> needs <N> MiB for <buffer>, more than the device's
+// largest storage block (<M> MiB); lower k or the size".
+void check_slots_fit(const std::string& technique, int k, int width, int height, uint64_t largest_buffer_bytes,
+                     const std::string& buffer);
+
 // The most slots per pixel (at least 1, at most max_slots) that a technique
 // sizing itself from ListLengthPass may allocate at width x height: all its
 // per-slot arrays (bytes_per_slot in all) within memory_cap_bytes, and its
@@ -45,5 +55,35 @@ class ListLengthPass {
 // largest storage block.
 int slots_per_pixel_cap(int width, int height, uint64_t memory_cap_bytes, uint64_t bytes_per_slot,
                         uint64_t largest_array_bytes_per_slot, int max_slots);
+
+// The slots per pixel of a k-buffer (kbuffer, bucketed_kbuffer), from its
+// parameters `k` (an integer or auto) and `auto_k_memory_mb`: the fixed k,
+// or with k=auto the view's depth complexity, counted every frame by a
+// ListLengthPass (stage "count") and capped by slots_per_pixel_cap.
+class SlotsPerPixel {
+ public:
+  SlotsPerPixel(const ParamSet& params, int max_k);
+  bool automatic() const { return count_pass_.has_value(); }
+  int fixed() const { return fixed_; }  // 0 with k=auto
+  // k=auto: the counting target and the cap for width x height, from the
+  // bytes of all per-slot arrays and of the largest one (slots_per_pixel_cap).
+  void resize(int width, int height, uint64_t bytes_per_slot, uint64_t largest_array_bytes_per_slot);
+  // This frame's k: the fixed one, or counted (a stage of its own) and capped.
+  int for_frame(const Frame& frame);
+  // The counting target's bytes and geometry passes (none with a fixed k).
+  uint64_t bytes_allocated() const { return automatic() ? count_pass_->bytes_allocated() : 0; }
+  uint64_t passes() const { return automatic() ? 1 : 0; }
+  // Appends k_used and, with k=auto, longest_list, k_cap and k_capped (1:
+  // the view needed more slots than the cap allows, so the fragments beyond
+  // k_used were handled as with a fixed k).
+  void add_figures(std::vector<Figure>& extra, int k_used) const;
+
+ private:
+  int max_k_, fixed_;
+  uint64_t memory_cap_bytes_;
+  std::optional<ListLengthPass> count_pass_;
+  int cap_;
+  uint32_t longest_list_ = 0;
+};
 
 }  // namespace oit

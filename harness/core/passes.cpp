@@ -21,6 +21,15 @@ void draw_additive_scene_pass(const Frame& frame, const Program& program, const 
   glDisable(GL_BLEND);
 }
 
+void draw_weighted_blended_scene_pass(const Frame& frame, const Program& program, const Framebuffer& framebuffer) {
+  glEnablei(GL_BLEND, 0);
+  glEnablei(GL_BLEND, 1);
+  glBlendFunci(0, GL_ONE, GL_ONE);
+  glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
+  draw_scene_pass(frame, program, framebuffer);
+  glDisable(GL_BLEND);
+}
+
 void draw_fullscreen_pass(const Frame& frame, const Program& program) {
   frame.bind_target();
   glUseProgram(program.id());

@@ -17,6 +17,11 @@ void draw_scene_pass(const Frame& frame, const Program& program, const Framebuff
 // draw_scene_pass with additive blending (ONE, ONE) on every draw buffer,
 // off again afterwards: the accumulation passes of the approximate techniques.
 void draw_additive_scene_pass(const Frame& frame, const Program& program, const Framebuffer& framebuffer);
+// draw_scene_pass into the two targets of weighted blended OIT (McGuire &
+// Bavoil 2013): draw buffer 0 sums (ONE, ONE), draw buffer 1 is multiplied
+// by one minus the source (ZERO, ONE_MINUS_SRC_COLOR: the product of
+// 1 - alpha, the revealage); blending off again afterwards.
+void draw_weighted_blended_scene_pass(const Frame& frame, const Program& program, const Framebuffer& framebuffer);
 
 // Binds the frame's target and draws `program` over it as one full-screen
 // triangle (shaders/fullscreen.vert), with the frame's shared uniforms.

@@ -23,8 +23,8 @@ const Choices<TieBreak> kTieBreaks{{TieBreak::triangle_id, "triangle_id"}, {TieB
 
 }  // namespace
 
-void describe_peeler(TechniqueDescriptor& d, const PeelingText& text, uint64_t bytes_per_pixel,
-                     PeelerFactory by_triangle_id, PeelerFactory by_submission) {
+TechniqueDescriptor describe_peeler(TechniqueDescriptor d, const PeelingText& text, uint64_t bytes_per_pixel,
+                                    PeelerFactory by_triangle_id, PeelerFactory by_submission) {
   d.params = {
       ParamSpec::integer("max_passes", 64, 1, 4096, text.max_passes),
       ParamSpec::boolean("early_exit", true, text.early_exit),
@@ -42,6 +42,7 @@ void describe_peeler(TechniqueDescriptor& d, const PeelingText& text, uint64_t b
     if (params.choice("tie_break", kTieBreaks) == TieBreak::submission) return by_submission(max_passes, early_exit);
     return by_triangle_id(max_passes, early_exit);
   };
+  return d;
 }
 
 TechniqueCounters peeling_counters(uint64_t bytes_allocated, uint64_t passes, int max_passes, bool early_exit) {
@@ -95,6 +96,18 @@ bool TriangleIdPeeler::continue_after(int pass, const std::function<bool()>& res
   ++passes_;
   if (pass == max_passes_) return false;
   return resolve() || !early_exit_;
+}
+
+void TriangleIdPeeler::draw_counting_init_pass(const Frame& frame, const Program& init, const Framebuffer& target,
+                                               GLenum reduction) const {
+  glEnable(GL_BLEND);
+  glBindFramebuffer(GL_FRAMEBUFFER, target.id());
+  glBlendEquation(reduction);
+  glUseProgram(init.id());
+  glBeginQuery(GL_SAMPLES_PASSED, fragments_query_.id());
+  frame.scene.draw();
+  glEndQuery(GL_SAMPLES_PASSED);
+  glDisable(GL_BLEND);
 }
 
 void TriangleIdPeeler::compose(const Frame& frame, const Program& program,

@@ -24,14 +24,20 @@ struct PeelingText {
   std::string max_passes, early_exit, tie_break, early_exit_saves;
 };
 using PeelerFactory = std::unique_ptr<Technique> (*)(int max_passes, bool early_exit);
+// The PeelerFactory of a peeler class constructed from (max_passes, early_exit).
+template <class T>
+std::unique_ptr<Technique> make_peeler(int max_passes, bool early_exit) {
+  return std::make_unique<T>(max_passes, early_exit);
+}
 
-// Fills d.params, d.stages (clear, peel, compose), d.exactness (exact),
-// d.adaptive_switches (early_exit on and off), d.storage_need (per-pixel
-// textures only, `bytes_per_pixel` of the larger variant: tiled only under
-// a small --memory-budget) and d.create, which picks `by_triangle_id` or
-// `by_submission` by tie_break.
-void describe_peeler(TechniqueDescriptor& d, const PeelingText& text, uint64_t bytes_per_pixel,
-                     PeelerFactory by_triangle_id, PeelerFactory by_submission);
+// `d` (the peeler's id, names, paper and quality_sweep) with what both
+// peelers share filled in: params, stages (clear, peel, compose), exactness
+// (exact), adaptive_switches (early_exit on and off), storage_need
+// (per-pixel textures only, `bytes_per_pixel` of the larger variant: tiled
+// only under a small --memory-budget) and create, which picks
+// `by_triangle_id` or `by_submission` by tie_break.
+TechniqueDescriptor describe_peeler(TechniqueDescriptor d, const PeelingText& text, uint64_t bytes_per_pixel,
+                                    PeelerFactory by_triangle_id, PeelerFactory by_submission);
 
 // bytes_allocated, passes and work_saved passes_avoided (geometry passes
 // early exit did not run; zero without it, where all max_passes run).
@@ -94,6 +100,11 @@ class TriangleIdPeeler : public Technique {
   // needed), else after `resolve` (which writes the next state) unless it
   // selected nothing and early exit is on.
   bool continue_after(int pass, const std::function<bool()>& resolve);
+  // Pass 1: `init` into `target`, blended by `reduction` (GL_MIN or GL_MAX
+  // of the depths it writes), with nothing discarded and no depth test, so
+  // that fragments_query_ counts every fragment; blending off afterwards.
+  void draw_counting_init_pass(const Frame& frame, const Program& init, const Framebuffer& target,
+                               GLenum reduction) const;
   // Whether pass `pass`'s resolve selected a fragment anywhere; waits for the
   // pass only when early exit needs to know.
   bool selected_anything(int pass) const { return !early_exit_ || selected_queries_.result(size_t(pass)) != 0; }

@@ -34,6 +34,13 @@ void Frame::bind_target() const {
   glViewport(0, 0, width, height);
 }
 
+glm::vec2 Frame::near_far() const {
+  // glm: m[column][row]; perspective when m[2][3] == -1, else orthographic.
+  const glm::mat4& p = projection;
+  if (p[2][3] != 0.0f) return {p[3][2] / (p[2][2] - 1.0f), p[3][2] / (p[2][2] + 1.0f)};
+  return {(p[3][2] + 1.0f) / p[2][2], (p[3][2] - 1.0f) / p[2][2]};
+}
+
 std::optional<double> find_figure(const std::vector<Figure>& figures, const std::string& name) {
   for (const Figure& figure : figures)
     if (figure.name == name) return figure.value;

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -116,6 +117,9 @@ struct Frame {
   void set_shared_uniforms(GLuint program) const;
   // Binds the target framebuffer with a full viewport.
   void bind_target() const;
+  // View depths of the projection's near and far planes (perspective or
+  // orthographic).
+  glm::vec2 near_far() const;
 };
 
 class Technique {
@@ -148,6 +152,11 @@ struct StorageNeed {
   uint64_t total = 0;
 };
 
+// What a technique is, for the registry. A technique registers one, written
+// as a single designated initializer in its register_technique_<id> (fields
+// in this order; leave out what keeps its default):
+//   registry.add({.id = "my_oit", .display_name = "...", .paper = "...",
+//                 .params = {...}, .stages = {...}, .create = make_technique<MyOit>});
 struct TechniqueDescriptor {
   std::string id;            // snake_case, the CSV key
   std::string display_name;
@@ -180,6 +189,14 @@ struct TechniqueDescriptor {
   // depends on (neighbour searches, diffusion); 0 for per-pixel techniques.
   std::function<int(const ParamSet&)> tile_halo;
 };
+
+// The factory of a technique built from its validated parameters (or from
+// nothing, for a technique without parameters): `.create = make_technique<T>`.
+template <class T>
+std::unique_ptr<Technique> make_technique(const ParamSet& params) {
+  if constexpr (std::is_constructible_v<T, const ParamSet&>) return std::make_unique<T>(params);
+  else return std::make_unique<T>();
+}
 
 // "" when a run can happen, otherwise the reason it cannot (device features,
 // scene facts, or the technique's own check).
