@@ -129,26 +129,20 @@ class IllustrationBuffer final : public Technique {
   }
 
   void render(const Frame& frame) override {
-    passes_ = 0;
     GLuint counts[5] = {};  // produced, longest, dropped, truncated, allocated
-    for (;;) {
-      {
-        auto stage = frame.clock.stage("clear");
-        pool_.before_fill(frame);
-        fill_buffer_u32(head_, IB_NIL);
-        fill_buffer_u32(count_, 0);
-        fill_buffer_u32(counters_, 0);
-      }
-      {
-        auto stage = frame.clock.stage("fill");
-        bind_storage();
-        draw_scene_pass(frame, fill_, no_attachments_);
-        ++passes_;
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-        glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
-      }
-      if (pool_.fits(frame, counts[0])) break;
-    }
+    const auto clear = [&] {
+      fill_buffer_u32(head_, IB_NIL);
+      fill_buffer_u32(count_, 0);
+      fill_buffer_u32(counters_, 0);
+    };
+    const auto fill = [&]() -> uint64_t {
+      bind_storage();
+      draw_scene_pass(frame, fill_, no_attachments_);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+      glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
+      return counts[0];
+    };
+    passes_ = pool_.fill_until_fits(frame, clear, fill);
     produced_ = counts[0];
     dropped_ = counts[2];
     truncated_lists_ = counts[3];
