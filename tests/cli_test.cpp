@@ -198,7 +198,9 @@ TEST(Cli, BenchRunWithoutAReferenceKeepsItsTimingsAndSaysWhy) {
     EXPECT_EQ(row[table.column("status")], "ok");
     EXPECT_EQ(row[table.column("error_max")], "");
     EXPECT_NE(row[table.column("message")].find("no reference image"), std::string::npos);
-    if (row[table.column("stage")] == "total") EXPECT_NE(row[table.column("median_ms")], "");
+    if (row[table.column("stage")] == "total") {
+      EXPECT_NE(row[table.column("median_ms")], "");
+    }
   }
 }
 
@@ -508,9 +510,10 @@ TEST(Cli, BenchJsonAndSamplesHoldEveryFrameOfTheCsvRuns) {
       EXPECT_EQ(stage["frames"], 3);
       // The CSV's row of this run and stage holds the same median (to its 6 digits).
       for (const auto& row : table.rows)
-        if (row[table.column("run_id")] == run["run_id"] && row[table.column("stage")] == stage["stage"])
+        if (row[table.column("run_id")] == run["run_id"] && row[table.column("stage")] == stage["stage"]) {
           EXPECT_NEAR(std::stod(row[table.column("median_ms")]), stage["median_ms"].get<double>(),
                       1e-5 * stage["median_ms"].get<double>());
+        }
       size_t frame = 0;
       for (const auto& row : frames.rows)
         if (row[frames.column("run_id")] == run["run_id"] && row[frames.column("stage")] == stage["stage"]) {

@@ -174,9 +174,9 @@ TEST(ImageOutput, BenchImagesOfATwelveRunSweepAreTwelveFilesAndARepeatAddsTwelve
     (name.find("_error") != std::string::npos ? errors : images).insert(name);
   }
   ASSERT_EQ(images.size(), 12u);
-  for (const std::string& scene : {"quads", "spheres"})
-    for (const std::string& alpha : {"0.3", "0.6"})
-      for (const std::string& technique : {"unsorted", "weighted_blended", "reference"})
+  for (const std::string scene : {"quads", "spheres"})
+    for (const std::string alpha : {"0.3", "0.6"})
+      for (const std::string technique : {"unsorted", "weighted_blended", "reference"})
         EXPECT_EQ(images.count(technique + "_" + scene + "_alpha-" + alpha + "_24x16.png"), 1u)
             << technique << " " << scene << " " << alpha;
   // weighted_blended is approximate everywhere: one error map per run of it.

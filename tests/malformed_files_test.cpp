@@ -33,7 +33,9 @@ bool loads_or_rejects_cleanly(const std::string& path, const std::string& proble
   } catch (const std::invalid_argument& e) {
     const std::string message = e.what();
     EXPECT_NE(message.find(file), std::string::npos) << "the message does not name the file: " << message;
-    if (!problem.empty()) EXPECT_NE(message.find(problem), std::string::npos) << message;
+    if (!problem.empty()) {
+      EXPECT_NE(message.find(problem), std::string::npos) << message;
+    }
   } catch (const std::exception& e) {
     ADD_FAILURE() << path << ": " << typeid(e).name() << " instead of std::invalid_argument: " << e.what();
   }

@@ -196,10 +196,13 @@ TEST_P(TiledTechnique, RendersTheUntiledImageInForcedTiles) {
     const ImageError difference = compare_images(tiled.image, untiled.image);
     EXPECT_LE(difference.max_abs, tolerance) << what << " with " << tiled.tiles << " tiles";
     ASSERT_TRUE(tiled.error.has_value()) << what;
-    if (descriptor.exactness == Exactness::exact && id != "bucketed_kbuffer")
+    if (descriptor.exactness == Exactness::exact && id != "bucketed_kbuffer") {
       EXPECT_LE(tiled.error->max_abs, descriptor.exact_tolerance) << what;
+    }
     // Per-pixel techniques store each fragment once, tiled or not.
-    if (!descriptor.tile_halo) EXPECT_EQ(tiled.counters.fragments_stored, untiled.counters.fragments_stored) << what;
+    if (!descriptor.tile_halo) {
+      EXPECT_EQ(tiled.counters.fragments_stored, untiled.counters.fragments_stored) << what;
+    }
   }
 }
 
@@ -225,7 +228,9 @@ TEST_P(PaperSize, EveryTechniqueRuns512x512With32Layers) {
     EXPECT_LE(r.error->max_abs, descriptor.exact_tolerance);
     EXPECT_EQ(r.counters.fragments_dropped, 0u);
   }
-  if (id == "reference" || id == "linked_list") EXPECT_GT(r.tiles, 1);
+  if (id == "reference" || id == "linked_list") {
+    EXPECT_GT(r.tiles, 1);
+  }
 }
 
 std::vector<std::string> all_techniques() {
