@@ -18,9 +18,9 @@ from analysis import common, figure_notes  # noqa: E402
 
 TECHNIQUE = "illustration_buffer"
 # Our stage -> the paper's pass (carnecky2013 section 7). stylize may come
-# split into init (the fields' first values) and diffuse (the iterations).
+# split into stylize_init (the fields' first values) and diffuse (the iterations).
 PAPER_PASSES = [("clear", ["clear"]), ("fill", ["fill"]), ("sort", ["sort"]), ("connect (neighbors)", ["neighbors"]),
-                ("solve (stylize, 1 iteration)", ["stylize", "init", "diffuse"]), ("compose", ["compose"])]
+                ("solve (stylize, 1 iteration)", ["stylize", "init", "stylize_init", "diffuse"]), ("compose", ["compose"])]
 PAPER_FIG14 = ["carnecky2013 (GeForce 470, 1000 random views):",
                "every pass linear in the fragments; solve = one",
                "diffusion iteration (10-50 in practice)"]
