@@ -5,6 +5,7 @@ written whole or not at all.
 Kept free of pandas and matplotlib imports so that reproduce.py can use it
 before it draws anything."""
 import csv
+import gzip
 import io
 import os
 import sys
@@ -43,18 +44,30 @@ def read_results(path, **read_csv_arguments):
     whole_runs)."""
     import pandas as pd
 
-    with open(path, newline="") as f:
-        text = whole_text(f.read(), path)
+    text = whole_text(read_text(path), path)
     return whole_runs(pd.read_csv(io.StringIO(text), **read_csv_arguments), path)
 
 
+def stored_path(path):
+    """`path`, or `path`.gz where only the compressed file exists: committed
+    CSVs over 1 MiB (results/reference/) are stored gzip-compressed."""
+    return path if os.path.exists(path) or not os.path.exists(path + ".gz") else path + ".gz"
+
+
+def read_text(path):
+    """The text of a results CSV, from `path` or its `.gz` (stored_path)."""
+    stored = stored_path(path)
+    with (gzip.open(stored, "rt", newline="") if stored.endswith(".gz") else open(stored, newline="")) as f:
+        return f.read()
+
+
 def read_rows(path):
-    """csv.DictReader rows of a results CSV's whole runs; none for a missing
-    or empty file."""
-    if not os.path.exists(path) or os.path.getsize(path) == 0:
+    """csv.DictReader rows of a results CSV's whole runs (or of its .gz);
+    none for a missing or empty file."""
+    stored = stored_path(path)
+    if not os.path.exists(stored) or os.path.getsize(stored) == 0:
         return []
-    with open(path, newline="") as f:
-        return whole_run_rows(list(csv.DictReader(io.StringIO(whole_text(f.read(), path)))))
+    return whole_run_rows(list(csv.DictReader(io.StringIO(whole_text(read_text(path), path)))))
 
 
 def whole_run_rows(rows):

@@ -19,15 +19,15 @@ from unittest import mock
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
-from analysis import reproduce  # noqa: E402
+from analysis import reproduce, results_io  # noqa: E402
 
 FAKE = os.path.join(HERE, "fake_oitbench.py")
 KEY = ("technique", "params", "scene", "scene_params", "camera", "width", "height", "stage")
 
 
 def rows_of(out, sweep):
-    with open(os.path.join(out, f"{sweep}.csv"), newline="") as f:
-        return list(csv.DictReader(f))
+    """Every row of the sweep's CSV, or (committed, over 1 MiB) of its .csv.gz."""
+    return list(csv.DictReader(io.StringIO(results_io.read_text(os.path.join(out, f"{sweep}.csv")))))
 
 
 class ReproduceTest(unittest.TestCase):
