@@ -10,6 +10,7 @@
 
 #include "algorithms/linearized_fragment_buffer/prefix_sum.h"
 #include "harness/gl/check.h"
+#include "harness/gl/context.h"
 #include "tests/gl_fixture.h"
 
 namespace oit {
@@ -18,11 +19,12 @@ namespace {
 // Float blending of up to 136 layers against the reference's double blend.
 constexpr double kFloatTolerance = 1e-5;
 
-// sort x block size x backwards allocation x node layout: the network with
-// and without length classes, register blocks of 8 and 16 (two and four
-// blocks on 32 layers), and blocks without classes; on unlit scenes (quads,
-// random quads) flat-colour 8-byte nodes by default, 24-byte nodes with
-// flat_color_nodes=false.
+// sort x block size x backwards allocation x node layout x fill x scan: the
+// network with and without length classes, register blocks of 8 and 16 (two
+// and four blocks on 32 layers), and blocks without classes; on unlit scenes
+// (quads, random quads) flat-colour 8-byte nodes by default, 24-byte nodes
+// with flat_color_nodes=false; slots by framebuffer fetch and by atomics,
+// offsets summed on the host and by the compute scan.
 const std::vector<RawParams> kOptions = {
     {{"sort", "network"}},
     {{"sort", "network"}, {"backwards_allocation", "false"}},
@@ -30,7 +32,13 @@ const std::vector<RawParams> kOptions = {
     {{"sort", "register_block"}, {"block_size", "16"}},
     {{"sort", "register_block"}, {"block_size", "8"}, {"backwards_allocation", "false"}},
     {{"sort", "network"}, {"flat_color_nodes", "false"}},
-    {{"sort", "register_block"}, {"block_size", "8"}, {"flat_color_nodes", "false"}}};
+    {{"sort", "register_block"}, {"block_size", "8"}, {"flat_color_nodes", "false"}},
+    // The slot by image atomic and the offsets by compute scan (the GPU
+    // paths; fill=auto and scan=auto take the others on llvmpipe).
+    {{"sort", "network"}, {"fill", "atomic"}, {"scan", "compute"}},
+    {{"sort", "register_block"}, {"block_size", "8"}, {"fill", "atomic"}, {"flat_color_nodes", "false"}},
+    {{"sort", "network"}, {"scan", "compute"}, {"flat_color_nodes", "false"}},
+    {{"sort", "network"}, {"fill", "framebuffer_fetch"}, {"scan", "host"}}};
 
 bool flat_nodes(const RawParams& params) {
   const auto it = params.find("flat_color_nodes");
@@ -83,10 +91,13 @@ TEST(LinearizedFragmentBuffer, EveryOptionMatchesTheReferenceOnThirtyTwoQuadsWit
     // 24 B per fragment (8 B and the 64 triangles' flat colours, 16 B
     // each, with flat-colour nodes), 12 B per pixel, the overflow word and
     // the total, the prefix sum's block totals (2305 values: 3 blocks, then
-    // 1) and one length class (every list is 32 long: one full-screen draw).
+    // 1) and one length class (every list is 32 long: one full-screen draw);
+    // with the framebuffer-fetch fill 4 B per pixel more (the R32UI cursor
+    // target).
     const uint64_t tiles = (w / 4) * (h / 4);
     const uint64_t nodes = flat_nodes(params) ? 8 * fragments + 64 * 16 : 24 * fragments;
-    EXPECT_EQ(r.counters.bytes_allocated, nodes + 12 * pixels + 8 + (3 + 1) * 4 + (16 + 4 * tiles)) << what;
+    const uint64_t per_pixel = find_figure(r.counters.extra, "framebuffer_fetch_fill") == 1.0 ? 16 : 12;
+    EXPECT_EQ(r.counters.bytes_allocated, nodes + per_pixel * pixels + 8 + (3 + 1) * 4 + (16 + 4 * tiles)) << what;
     EXPECT_EQ(find_figure(r.counters.extra, "node_bytes"), flat_nodes(params) ? 8.0 : 24.0) << what;
   }
 }
@@ -114,6 +125,19 @@ TEST(LinearizedFragmentBuffer, EveryOptionIsOrderIndependent) {
     ASSERT_EQ(r.status, RunStatus::ok) << r.message;
     EXPECT_LT(r.error->max_abs, kFloatTolerance) << describe(params);
   }
+}
+
+TEST(LinearizedFragmentBuffer, AutoFillAndScanPickTheDevicesPaths) {
+  test::gl_context();
+  const bool fetch = epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch");
+  const bool software = current_device_is_software();
+  const RunResult r = test::render_once("linearized_fragment_buffer", {}, "quads", {{"layers", "4"}}, 16, 16);
+  EXPECT_EQ(find_figure(r.counters.extra, "framebuffer_fetch_fill"), fetch ? 1.0 : 0.0);
+  EXPECT_EQ(find_figure(r.counters.extra, "host_scan"), software ? 1.0 : 0.0);
+  const RunResult atomic = test::render_once("linearized_fragment_buffer", {{"fill", "atomic"}, {"scan", "compute"}},
+                                             "quads", {{"layers", "4"}}, 16, 16);
+  EXPECT_EQ(find_figure(atomic.counters.extra, "framebuffer_fetch_fill"), 0.0);
+  EXPECT_EQ(find_figure(atomic.counters.extra, "host_scan"), 0.0);
 }
 
 TEST(LinearizedFragmentBuffer, ListsBeyondTheLargestNetworkAreSortedInRegisterBlocks) {

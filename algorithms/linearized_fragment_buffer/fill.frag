@@ -1,4 +1,7 @@
 #version 450 core
+#if defined(LFB_FETCH_CURSOR)
+#extension GL_EXT_shader_framebuffer_fetch : require
+#endif
 // Fill pass of the linearized fragment buffer: every fragment takes the next
 // free slot of its pixel's range (an atomic increment of the pixel's own
 // cursor, which starts at the pixel's offset) and writes its node there. No global
@@ -11,14 +14,26 @@
 
 // Pixel p owns slots [offset[p], offset[p+1]); its cursor starts at
 // offset[p] (a copy of the prefix sum), so the atomic returns the slot.
+// LFB_FETCH_CURSOR (fill=framebuffer_fetch): the cursor is the pixel's
+// R32UI colour instead; framebuffer fetch is coherent, so the fragments of a
+// pixel read and increment it one after the other in primitive order, as
+// blending would, with no atomic (README: fill).
+#if defined(LFB_FETCH_CURSOR)
+layout(location = 0) inout uint cursor;
+#else
 layout(binding = LFB_CURSORS_IMAGE_UNIT, r32ui) uniform uimageBuffer u_cursors;
+#endif
 layout(binding = LFB_NODES_IMAGE_UNIT, rg32ui) writeonly uniform uimageBuffer u_nodes;
 layout(location = LFB_WIDTH_LOCATION) uniform int u_width;
 
 void main() {
-  const int pixel = int(oit_pixel_index(u_width));
   // No bounds check here: lengths.comp checks every pixel's range once.
-  const uint slot = imageAtomicAdd(u_cursors, pixel, 1u);
+#if defined(LFB_FETCH_CURSOR)
+  const uint slot = cursor;
+  cursor = slot + 1u;
+#else
+  const uint slot = imageAtomicAdd(u_cursors, int(oit_pixel_index(u_width)), 1u);
+#endif
   imageStore(u_nodes, lfb_key_texel(slot), uvec4(oit_depth_order(floatBitsToUint(oit_view_depth())), oit_triangle_id(), 0u, 0u));
 #if !defined(LFB_FLAT_COLOR)
   const uvec4 color = floatBitsToUint(oit_shade());

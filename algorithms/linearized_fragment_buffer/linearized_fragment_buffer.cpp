@@ -23,6 +23,7 @@
 #include "harness/core/passes.h"
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
+#include "harness/gl/context.h"
 #include "harness/gl/shader_program.h"
 #include "harness/gl/uniforms.h"
 #include "algorithms/linearized_fragment_buffer/bindings.h"
@@ -48,6 +49,37 @@ constexpr uint32_t kLargestNetwork = 128;
 enum class Sort { network, register_block };
 const Choices<Sort> kSorts{{Sort::network, "network"}, {Sort::register_block, "register_block"}};
 const Choices<uint32_t> kBlockSizes{{8, "8"}, {16, "16"}, {32, "32"}};
+// How a fragment finds its slot (README: fill): an atomic increment of the
+// pixel's cursor in an image, or the cursor as the pixel's R32UI colour,
+// read and written in primitive order through framebuffer fetch.
+enum class Fill { automatic, atomic, framebuffer_fetch };
+const Choices<Fill> kFills{{Fill::automatic, "auto"}, {Fill::atomic, "atomic"}, {Fill::framebuffer_fetch, "framebuffer_fetch"}};
+// Where the counts become offsets (README: scan).
+enum class Scan { automatic, compute, host };
+const Choices<Scan> kScans{{Scan::automatic, "auto"}, {Scan::compute, "compute"}, {Scan::host, "host"}};
+
+constexpr const char* kFillShader = "algorithms/linearized_fragment_buffer/fill.frag";
+
+bool device_has_framebuffer_fetch() { return epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch"); }
+
+// fill=auto: framebuffer fetch where the device has it. An explicit
+// framebuffer_fetch on a device without it never gets here
+// (extra_support_check), but the viewer builds techniques directly.
+bool fetches_cursors(const ParamSet& params) {
+  const Fill fill = params.choice("fill", kFills);
+  if (fill == Fill::framebuffer_fetch && !device_has_framebuffer_fetch())
+    throw std::runtime_error("linearized_fragment_buffer: fill=framebuffer_fetch needs GL_EXT_shader_framebuffer_fetch, "
+                             "which this device lacks; use fill=atomic or auto");
+  return fill == Fill::framebuffer_fetch || (fill == Fill::automatic && device_has_framebuffer_fetch());
+}
+
+// scan=auto: on the host where the "GPU" is the CPU: the counts are read
+// back for the pool size anyway, and a running sum there costs less than
+// the compute dispatches (README: scan).
+bool scans_on_host(const ParamSet& params) {
+  const Scan scan = params.choice("scan", kScans);
+  return scan == Scan::host || (scan == Scan::automatic && current_device_is_software());
+}
 
 // The resolve's #defines for an array of `size` fragments: one network of
 // `size`, or blocks of `block` sorted by its network and merged.
@@ -75,7 +107,9 @@ class LinearizedFragmentBuffer final : public Technique {
         block_(params.choice("block_size", kBlockSizes)),
         backwards_allocation_(params.boolean("backwards_allocation")),
         flat_color_nodes_(params.boolean("flat_color_nodes")),
-        fill_(build_geometry_program("algorithms/linearized_fragment_buffer/fill.frag")),
+        fetch_cursors_(fetches_cursors(params)),
+        host_scan_(scans_on_host(params)),
+        fill_(build_geometry_program(kFillShader, fill_defines(false))),
         lengths_(build_compute_program("algorithms/linearized_fragment_buffer/lengths.comp")),
         mismatched_(make_buffer(4)),
         pool_("linearized_fragment_buffer", FragmentPool::Sizing::exact, kNodeBytes,
@@ -93,7 +127,12 @@ class LinearizedFragmentBuffer final : public Technique {
     cursors_view_ = make_buffer_texture(cursors_, GL_R32UI);
     class_capacity_ = 0;
     pool_.reset(1);  // the prefix sum sizes it before every fill
-    framebuffer_ = make_attachmentless_framebuffer(width, height);
+    if (fetch_cursors_) {
+      cursor_target_ = make_texture_2d(GL_R32UI, width, height);
+      framebuffer_ = make_target_framebuffer({&cursor_target_}, "linearized_fragment_buffer: cursor target (R32UI)");
+    } else {
+      framebuffer_ = make_attachmentless_framebuffer(width, height);
+    }
     for (const Program* fill : {&fill_, &fill_flat_})
       if (fill->id() != 0) set_uniform(fill->id(), LFB_WIDTH_LOCATION, width);
     for (auto& [size, program] : programs_) set_uniform(program.id(), LFB_WIDTH_LOCATION, width);
@@ -107,14 +146,15 @@ class LinearizedFragmentBuffer final : public Technique {
       flat_ = flat_color_nodes_ && frame.scene.flat_colors_view() != 0;
       pool_.set_record_bytes(node_bytes());
       longest_ = list_lengths_.longest_list(frame);
-      prefix_sum_.scan_counts(list_lengths_.counts(), width_, offsets_);
+      if (host_scan_) prefix_sum_.scan_host_counts(list_lengths_.host_counts(), offsets_);
+      else prefix_sum_.scan_counts(list_lengths_.counts(), width_, offsets_);
       // The total comes from the counts already read back, so the scan is
       // not waited for here (the fill is queued behind it).
       fragments_ = list_lengths_.total_fragments();
-      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the copy below reads the scan's writes
+      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);  // the copy below reads the scan's writes
       pool_.before_fill(frame);
       pool_.set_exact(fragments_);
-      glCopyNamedBufferSubData(offsets_.id(), cursors_.id(), 0, 0, GLsizeiptr(uint64_t(width_) * uint64_t(height_) * 4));
+      start_cursors();
       fill_buffer_u32(mismatched_, 0);
     }
     fill(frame);
@@ -139,9 +179,13 @@ class LinearizedFragmentBuffer final : public Technique {
   TechniqueCounters counters() const override {
     TechniqueCounters c;
     const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
-    c.bytes_allocated = pixels * kPixelBytes + 4 + prefix_sum_.bytes_allocated() + pool_.capacity() * node_bytes() +
+    c.bytes_allocated = pixels * (kPixelBytes + (fetch_cursors_ ? 4 : 0)) + 4 + prefix_sum_.bytes_allocated() +
+                        pool_.capacity() * node_bytes() +
                         4 + (class_capacity_ > 0 ? classes_.bytes_allocated() : 0) + flat_table_bytes_;
     c.extra.push_back({"node_bytes", double(node_bytes())});
+    // Which paths fill=auto and scan=auto took on this device.
+    c.extra.push_back({"framebuffer_fetch_fill", fetch_cursors_ ? 1.0 : 0.0});
+    c.extra.push_back({"host_scan", host_scan_ ? 1.0 : 0.0});
     c.fragments_stored = fragments_;
     c.passes = 2;
     c.overflow_retries = pool_.overflow_retries();
@@ -149,17 +193,45 @@ class LinearizedFragmentBuffer final : public Technique {
   }
 
  private:
+  ShaderDefines fill_defines(bool flat) const {
+    ShaderDefines defines;
+    if (flat) defines.push_back({"LFB_FLAT_COLOR", "1"});
+    if (fetch_cursors_) defines.push_back({"LFB_FETCH_CURSOR", "1"});
+    return defines;
+  }
+
+  // Every pixel's cursor starts at its offset: a copy into the cursor
+  // buffer (fill=atomic) or, through the pixel unpack buffer, into the
+  // R32UI target the fill reads and writes (fill=framebuffer_fetch).
+  void start_cursors() {
+    if (!fetch_cursors_) {
+      glCopyNamedBufferSubData(offsets_.id(), cursors_.id(), 0, 0, GLsizeiptr(uint64_t(width_) * uint64_t(height_) * 4));
+      return;
+    }
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, offsets_.id());
+    glTextureSubImage2D(cursor_target_.id(), 0, 0, 0, width_, height_, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  }
+
   void fill(const Frame& frame) {
     auto fill = frame.clock.stage("fill");
     glBindImageTexture(LFB_NODES_IMAGE_UNIT, nodes_view_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32UI);
-    glBindImageTexture(LFB_CURSORS_IMAGE_UNIT, cursors_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    if (!fetch_cursors_)
+      glBindImageTexture(LFB_CURSORS_IMAGE_UNIT, cursors_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     if (flat_ && fill_flat_.id() == 0) {
-      fill_flat_ = build_geometry_program("algorithms/linearized_fragment_buffer/fill.frag", {{"LFB_FLAT_COLOR", "1"}});
+      fill_flat_ = build_geometry_program(kFillShader, fill_defines(true));
       set_uniform(fill_flat_.id(), LFB_WIDTH_LOCATION, width_);
     }
     flat_table_bytes_ = flat_ ? frame.scene.flat_colors_bytes() : 0;
     draw_scene_pass(frame, flat_ ? fill_flat_ : fill_, framebuffer_);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    if (fetch_cursors_) {
+      // The final cursors into the cursor buffer, where lengths.comp reads them.
+      glBindBuffer(GL_PIXEL_PACK_BUFFER, cursors_.id());
+      glGetTextureImage(cursor_target_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                        GLsizei(uint64_t(width_) * uint64_t(height_) * 4), nullptr);
+      glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    }
     cursors_to_lengths();
   }
 
@@ -222,7 +294,7 @@ class LinearizedFragmentBuffer final : public Technique {
 
   bool register_blocks_;
   uint32_t block_;
-  bool backwards_allocation_, flat_color_nodes_;
+  bool backwards_allocation_, flat_color_nodes_, fetch_cursors_, host_scan_;
   bool flat_ = false;  // this frame stores flat-colour nodes
   uint64_t flat_table_bytes_ = 0;
   Program fill_, fill_flat_, lengths_;
@@ -232,7 +304,7 @@ class LinearizedFragmentBuffer final : public Technique {
   size_t class_capacity_ = 0;
   std::map<std::pair<uint32_t, bool>, Program> programs_;  // resolves by (array size, flat colours)
   Buffer offsets_, cursors_, mismatched_, nodes_;
-  Texture offsets_view_, cursors_view_, nodes_view_;
+  Texture offsets_view_, cursors_view_, nodes_view_, cursor_target_;
   Framebuffer framebuffer_;
   int width_ = 0, height_ = 0;
   uint32_t longest_ = 0;
@@ -259,6 +331,15 @@ void register_technique_linearized_fragment_buffer(TechniqueRegistry& registry) 
                              "resolve each 4x4 tile with the smallest array that holds its longest list (backwards "
                              "memory allocation, Knowles et al. 2013; 0/1-fragment tiles unsorted); false: one "
                              "full-screen resolve sized for the frame's longest list"),
+          kFills.spec("fill", Fill::automatic,
+                      "how a fragment takes its slot: atomic: an atomic increment of its pixel's cursor; "
+                      "framebuffer_fetch: the cursor is the pixel's R32UI colour, read and incremented in primitive "
+                      "order through GL_EXT_shader_framebuffer_fetch, no atomic; auto: framebuffer_fetch where the "
+                      "device has it, else atomic"),
+          kScans.spec("scan", Scan::automatic,
+                      "where the per-pixel counts become offsets: compute: a work-efficient prefix sum in compute "
+                      "shaders; host: summed on the host from the counts read back for the pool size, then "
+                      "uploaded; auto: host on a software rasterizer, compute on a GPU"),
           ParamSpec::boolean("flat_color_nodes", true,
                              "unlit scenes (every fragment has its triangle's flat colour): 8-byte nodes holding the "
                              "sort key alone, the exact colour fetched by triangle id in the resolve; false, or lit "
@@ -274,6 +355,11 @@ void register_technique_linearized_fragment_buffer(TechniqueRegistry& registry) 
            "stores 8-byte keys on unlit scenes and fetches each fragment's flat colour by triangle id instead of "
            "storing 24-byte nodes with the colour",
            {{"flat_color_nodes", "true"}}, {{"flat_color_nodes", "false"}}}},
+      .extra_support_check = [](const ParamSet& params, const SceneFacts&) -> std::string {
+        if (params.choice("fill", kFills) == Fill::framebuffer_fetch && !device_has_framebuffer_fetch())
+          return "fill=framebuffer_fetch: the device has no GL_EXT_shader_framebuffer_fetch";
+        return "";
+      },
       .create = make_technique<LinearizedFragmentBuffer>,
       .storage_need = [](const ParamSet&, const FrameContent& content) {
         const uint64_t fragments = std::max<uint64_t>(content.fragments, 1);

@@ -1,5 +1,8 @@
 #include "algorithms/linearized_fragment_buffer/prefix_sum.h"
 
+#include <stdexcept>
+#include <string>
+
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
 #include "harness/gl/uniforms.h"
@@ -62,6 +65,20 @@ void PrefixSum::scan_counts(const Texture& counts, int width, const Buffer& offs
     dispatch(add_.id(), k == 0 ? offsets : sums_[k - 1], levels_[k], sums_[k], (levels_[k] + kAddGroup - 1) / kAddGroup);
   }
   gl_check("prefix sum of the per-pixel fragment counts");
+}
+
+void PrefixSum::scan_host_counts(const std::vector<float>& counts, const Buffer& offsets) {
+  if (counts.size() != pixels_) throw std::logic_error("prefix sum: the host counts are not one per pixel");
+  host_offsets_.resize(pixels_ + 1);
+  uint64_t sum = 0;
+  for (uint64_t i = 0; i < pixels_; ++i) {
+    host_offsets_[i] = uint32_t(sum);
+    sum += uint64_t(counts[i]);  // whole numbers below 2^24: exact in float
+  }
+  if (sum > UINT32_MAX) throw std::runtime_error("prefix sum: " + std::to_string(sum) + " fragments overflow 32-bit offsets");
+  host_offsets_[pixels_] = uint32_t(sum);
+  glNamedBufferSubData(offsets.id(), 0, GLsizeiptr(host_offsets_.size() * 4), host_offsets_.data());
+  gl_check("uploading the per-pixel offsets summed on the host");
 }
 
 }  // namespace oit::lfb

@@ -1,10 +1,11 @@
 #pragma once
 // The prefix sum of the linearized fragment buffer: per-pixel fragment
-// counts (the R32F target of core/list_length_pass.h) into per-pixel offsets,
-// on the GPU. A work-efficient scan (prefix_sum.comp) of 1024 values per
+// counts (the R32F target of core/list_length_pass.h) into per-pixel offsets.
+// On the GPU: a work-efficient scan (prefix_sum.comp) of 1024 values per
 // workgroup, applied recursively to the workgroups' totals and added back,
 // so any number of pixels takes O(n) work in a few dispatches (two levels up
-// to 1M pixels, three up to 1G).
+// to 1M pixels, three up to 1G). On the host: a running sum over the counts
+// the counting pass has read back anyway, uploaded (README: scan).
 #include <cstdint>
 #include <vector>
 
@@ -23,6 +24,9 @@ class PrefixSum {
   // offsets[i] = the sum of counts[0..i) for i in [0, pixels], pixels in rows
   // of `width` from the bottom. `offsets` holds pixels + 1 uints.
   void scan_counts(const Texture& counts, int width, const Buffer& offsets);
+  // The same offsets summed on the host from `counts` (ListLengthPass::host_counts,
+  // `pixels` values) and uploaded into `offsets`.
+  void scan_host_counts(const std::vector<float>& counts, const Buffer& offsets);
   // The workgroup totals of every level.
   uint64_t bytes_allocated() const;
 
@@ -35,6 +39,7 @@ class PrefixSum {
   // which level k+1 scans in place. The last level is one block.
   std::vector<uint64_t> levels_;
   std::vector<Buffer> sums_;
+  std::vector<uint32_t> host_offsets_;
 };
 
 }  // namespace oit::lfb

@@ -26,6 +26,9 @@ class ListLengthPass {
   // The fragments that pass counted, summed from the same read-back (exact:
   // every count is a whole number below 2^24).
   uint64_t total_fragments() const { return total_; }
+  // The counts that pass read back, pixel i = x + y * width (rows from the
+  // bottom), whole numbers in float.
+  const std::vector<float>& host_counts() const { return readback_; }
   // The R32F count target (4 bytes per pixel).
   uint64_t bytes_allocated() const;
   // That target, holding the last pass's per-pixel counts (e.g. for a prefix sum).

@@ -20,6 +20,11 @@ std::string gl_string(GLenum name) {
 
 bool contains(const std::string& haystack, const char* needle) { return haystack.find(needle) != std::string::npos; }
 
+bool is_software_renderer(const std::string& renderer) {
+  return contains(renderer, "llvmpipe") || contains(renderer, "softpipe") || contains(renderer, "swrast") ||
+         contains(renderer, "SwiftShader");
+}
+
 class EglContext final : public GlContext {
  public:
   EglContext(EGLDisplay display, const std::string& platform, bool debug) : display_(display) {
@@ -158,14 +163,15 @@ std::vector<std::string> describe_egl_devices() {
   return lines;
 }
 
+bool current_device_is_software() { return is_software_renderer(gl_string(GL_RENDERER)); }
+
 DeviceInfo query_current_device(const std::string& platform) {
   DeviceInfo info;
   info.renderer = gl_string(GL_RENDERER);
   info.vendor = gl_string(GL_VENDOR);
   info.version = gl_string(GL_VERSION);
   info.platform = platform;
-  info.software = contains(info.renderer, "llvmpipe") || contains(info.renderer, "softpipe") ||
-                  contains(info.renderer, "swrast") || contains(info.renderer, "SwiftShader");
+  info.software = is_software_renderer(info.renderer);
   info.has_fp64 = epoxy_has_gl_extension("GL_ARB_gpu_shader_fp64") || epoxy_gl_version() >= 40;
   info.has_int64 = epoxy_has_gl_extension("GL_ARB_gpu_shader_int64");
   if (epoxy_gl_version() < 45) {

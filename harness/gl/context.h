@@ -48,4 +48,9 @@ std::unique_ptr<GlContext> create_headless_context(const DeviceChoice& choice = 
 
 DeviceInfo query_current_device(const std::string& platform);
 
+// Whether the current context renders in software (llvmpipe, softpipe,
+// swrast, SwiftShader): there the "GPU" is the CPU, so a technique may pick
+// the host for work a GPU would do in a shader (DeviceInfo::software).
+bool current_device_is_software();
+
 }  // namespace oit
