@@ -24,7 +24,8 @@ constexpr double kFloatTolerance = 1e-5;
 // and four blocks on 32 layers), and blocks without classes; on unlit scenes
 // (quads, random quads) flat-colour 8-byte nodes by default, 24-byte nodes
 // with flat_color_nodes=false; slots by framebuffer fetch and by atomics,
-// offsets summed on the host and by the compute scan.
+// offsets summed on the host and by the compute scan; flat keys as one
+// uint64 and as two 32-bit words.
 const std::vector<RawParams> kOptions = {
     {{"sort", "network"}},
     {{"sort", "network"}, {"backwards_allocation", "false"}},
@@ -38,7 +39,10 @@ const std::vector<RawParams> kOptions = {
     {{"sort", "network"}, {"fill", "atomic"}, {"scan", "compute"}},
     {{"sort", "register_block"}, {"block_size", "8"}, {"fill", "atomic"}, {"flat_color_nodes", "false"}},
     {{"sort", "network"}, {"scan", "compute"}, {"flat_color_nodes", "false"}},
-    {{"sort", "network"}, {"fill", "framebuffer_fetch"}, {"scan", "host"}}};
+    {{"sort", "network"}, {"fill", "framebuffer_fetch"}, {"scan", "host"}},
+    // Flat keys as two 32-bit words (key_format=auto takes uint64 on llvmpipe).
+    {{"sort", "network"}, {"key_format", "uint32_pair"}},
+    {{"sort", "register_block"}, {"block_size", "8"}, {"key_format", "uint32_pair"}}};
 
 bool flat_nodes(const RawParams& params) {
   const auto it = params.find("flat_color_nodes");
@@ -127,17 +131,22 @@ TEST(LinearizedFragmentBuffer, EveryOptionIsOrderIndependent) {
   }
 }
 
-TEST(LinearizedFragmentBuffer, AutoFillAndScanPickTheDevicesPaths) {
+TEST(LinearizedFragmentBuffer, AutoFillScanAndKeyFormatPickTheDevicesPaths) {
   test::gl_context();
   const bool fetch = epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch");
   const bool software = current_device_is_software();
+  const bool int64 = epoxy_has_gl_extension("GL_ARB_gpu_shader_int64");
   const RunResult r = test::render_once("linearized_fragment_buffer", {}, "quads", {{"layers", "4"}}, 16, 16);
   EXPECT_EQ(find_figure(r.counters.extra, "framebuffer_fetch_fill"), fetch ? 1.0 : 0.0);
   EXPECT_EQ(find_figure(r.counters.extra, "host_scan"), software ? 1.0 : 0.0);
+  EXPECT_EQ(find_figure(r.counters.extra, "uint64_keys"), int64 ? 1.0 : 0.0);
   const RunResult atomic = test::render_once("linearized_fragment_buffer", {{"fill", "atomic"}, {"scan", "compute"}},
                                              "quads", {{"layers", "4"}}, 16, 16);
   EXPECT_EQ(find_figure(atomic.counters.extra, "framebuffer_fetch_fill"), 0.0);
   EXPECT_EQ(find_figure(atomic.counters.extra, "host_scan"), 0.0);
+  // Lit spheres keep 24-byte nodes: never 64-bit keys.
+  const RunResult lit = test::render_once("linearized_fragment_buffer", {{"key_format", "uint64"}}, "spheres", {}, 16, 16);
+  EXPECT_EQ(find_figure(lit.counters.extra, "uint64_keys"), 0.0);
 }
 
 TEST(LinearizedFragmentBuffer, ListsBeyondTheLargestNetworkAreSortedInRegisterBlocks) {

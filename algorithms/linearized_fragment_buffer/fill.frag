@@ -1,4 +1,10 @@
 #version 450 core
+#if defined(LFB_KEY64)
+#extension GL_ARB_gpu_shader_int64 : require
+#if !defined(LFB_FLAT_COLOR)
+#error "LFB_KEY64 needs LFB_FLAT_COLOR: a 24-byte node keeps its key beside the colour"
+#endif
+#endif
 #if defined(LFB_FETCH_CURSOR)
 #extension GL_EXT_shader_framebuffer_fetch : require
 #endif
@@ -23,7 +29,13 @@ layout(location = 0) inout uint cursor;
 #else
 layout(binding = LFB_CURSORS_IMAGE_UNIT, r32ui) uniform uimageBuffer u_cursors;
 #endif
+#if defined(LFB_KEY64)
+// One 64-bit store per fragment: on llvmpipe one scalar store per lane,
+// where the RG32UI imageStore costs two (README: key_format).
+layout(std430, binding = LFB_KEYS_BINDING) writeonly buffer LfbKeys { uint64_t lfb_keys[]; };
+#else
 layout(binding = LFB_NODES_IMAGE_UNIT, rg32ui) writeonly uniform uimageBuffer u_nodes;
+#endif
 layout(location = LFB_WIDTH_LOCATION) uniform int u_width;
 
 void main() {
@@ -34,7 +46,12 @@ void main() {
 #else
   const uint slot = imageAtomicAdd(u_cursors, int(oit_pixel_index(u_width)), 1u);
 #endif
-  imageStore(u_nodes, lfb_key_texel(slot), uvec4(oit_depth_order(floatBitsToUint(oit_view_depth())), oit_triangle_id(), 0u, 0u));
+  const uvec2 key = uvec2(oit_depth_order(floatBitsToUint(oit_view_depth())), oit_triangle_id());
+#if defined(LFB_KEY64)
+  lfb_keys[slot] = packUint2x32(key.yx);
+#else
+  imageStore(u_nodes, lfb_key_texel(slot), lfb_texel_from_key(key));
+#endif
 #if !defined(LFB_FLAT_COLOR)
   const uvec4 color = floatBitsToUint(oit_shade());
   imageStore(u_nodes, lfb_key_texel(slot) + 1, color.xyyy);

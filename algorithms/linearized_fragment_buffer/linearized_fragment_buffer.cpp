@@ -57,10 +57,15 @@ const Choices<Fill> kFills{{Fill::automatic, "auto"}, {Fill::atomic, "atomic"}, 
 // Where the counts become offsets (README: scan).
 enum class Scan { automatic, compute, host };
 const Choices<Scan> kScans{{Scan::automatic, "auto"}, {Scan::compute, "compute"}, {Scan::host, "host"}};
+// How a flat node's 8-byte key is written and compared (README: key_format).
+enum class KeyFormat { automatic, uint64, uint32_pair };
+const Choices<KeyFormat> kKeyFormats{
+    {KeyFormat::automatic, "auto"}, {KeyFormat::uint64, "uint64"}, {KeyFormat::uint32_pair, "uint32_pair"}};
 
 constexpr const char* kFillShader = "algorithms/linearized_fragment_buffer/fill.frag";
 
 bool device_has_framebuffer_fetch() { return epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch"); }
+bool device_has_int64() { return epoxy_has_gl_extension("GL_ARB_gpu_shader_int64"); }
 
 // fill=auto: framebuffer fetch where the device has it. An explicit
 // framebuffer_fetch on a device without it never gets here
@@ -73,6 +78,15 @@ bool fetches_cursors(const ParamSet& params) {
   return fill == Fill::framebuffer_fetch || (fill == Fill::automatic && device_has_framebuffer_fetch());
 }
 
+// key_format=auto: one uint64 where the device has 64-bit integers.
+bool uses_uint64_keys(const ParamSet& params) {
+  const KeyFormat format = params.choice("key_format", kKeyFormats);
+  if (format == KeyFormat::uint64 && !device_has_int64())
+    throw std::runtime_error("linearized_fragment_buffer: key_format=uint64 needs GL_ARB_gpu_shader_int64, which this "
+                             "device lacks; use key_format=uint32_pair or auto");
+  return format == KeyFormat::uint64 || (format == KeyFormat::automatic && device_has_int64());
+}
+
 // scan=auto: on the host where the "GPU" is the CPU: the counts are read
 // back for the pool size anyway, and a running sum there costs less than
 // the compute dispatches (README: scan).
@@ -83,9 +97,10 @@ bool scans_on_host(const ParamSet& params) {
 
 // The resolve's #defines for an array of `size` fragments: one network of
 // `size`, or blocks of `block` sorted by its network and merged.
-ShaderDefines resolve_defines(uint32_t size, bool blocks, uint32_t block, bool flat) {
+ShaderDefines resolve_defines(uint32_t size, bool blocks, uint32_t block, bool flat, bool key64) {
   ShaderDefines defines = linked_list::resolve_defines(linked_list::Sort::network, blocks ? block : size);
   if (flat) defines.push_back({"LFB_FLAT_COLOR", "1"});
+  if (flat && key64) defines.push_back({"LFB_KEY64", "1"});
   if (!blocks) {
     defines.push_back({"LFB_NETWORK", "1"});
     return defines;
@@ -109,6 +124,7 @@ class LinearizedFragmentBuffer final : public Technique {
         flat_color_nodes_(params.boolean("flat_color_nodes")),
         fetch_cursors_(fetches_cursors(params)),
         host_scan_(scans_on_host(params)),
+        key64_(uses_uint64_keys(params)),
         fill_(build_geometry_program(kFillShader, fill_defines(false))),
         lengths_(build_compute_program("algorithms/linearized_fragment_buffer/lengths.comp")),
         mismatched_(make_buffer(4)),
@@ -186,6 +202,7 @@ class LinearizedFragmentBuffer final : public Technique {
     // Which paths fill=auto and scan=auto took on this device.
     c.extra.push_back({"framebuffer_fetch_fill", fetch_cursors_ ? 1.0 : 0.0});
     c.extra.push_back({"host_scan", host_scan_ ? 1.0 : 0.0});
+    c.extra.push_back({"uint64_keys", flat_ && key64_ ? 1.0 : 0.0});
     c.fragments_stored = fragments_;
     c.passes = 2;
     c.overflow_retries = pool_.overflow_retries();
@@ -197,6 +214,7 @@ class LinearizedFragmentBuffer final : public Technique {
     ShaderDefines defines;
     if (flat) defines.push_back({"LFB_FLAT_COLOR", "1"});
     if (fetch_cursors_) defines.push_back({"LFB_FETCH_CURSOR", "1"});
+    if (flat && key64_) defines.push_back({"LFB_KEY64", "1"});
     return defines;
   }
 
@@ -216,6 +234,7 @@ class LinearizedFragmentBuffer final : public Technique {
   void fill(const Frame& frame) {
     auto fill = frame.clock.stage("fill");
     glBindImageTexture(LFB_NODES_IMAGE_UNIT, nodes_view_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32UI);
+    if (flat_ && key64_) bind_storage_buffers({{LFB_KEYS_BINDING, &nodes_}});
     if (!fetch_cursors_)
       glBindImageTexture(LFB_CURSORS_IMAGE_UNIT, cursors_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     if (flat_ && fill_flat_.id() == 0) {
@@ -278,7 +297,7 @@ class LinearizedFragmentBuffer final : public Technique {
       const bool blocks = size > block_ && (register_blocks_ || size > kLargestNetwork);
       Program built = build_program({{GL_VERTEX_SHADER, "algorithms/linked_list/tile.vert"},
                                      {GL_FRAGMENT_SHADER, "algorithms/linearized_fragment_buffer/resolve.frag"}},
-                                    linked_list::tile_defines(resolve_defines(size, blocks, block_, flat_)));
+                                    linked_list::tile_defines(resolve_defines(size, blocks, block_, flat_, key64_)));
       it = programs_.emplace(std::make_pair(size, flat_), std::move(built)).first;
       set_uniform(it->second.id(), LFB_WIDTH_LOCATION, width_);
     }
@@ -294,7 +313,7 @@ class LinearizedFragmentBuffer final : public Technique {
 
   bool register_blocks_;
   uint32_t block_;
-  bool backwards_allocation_, flat_color_nodes_, fetch_cursors_, host_scan_;
+  bool backwards_allocation_, flat_color_nodes_, fetch_cursors_, host_scan_, key64_;
   bool flat_ = false;  // this frame stores flat-colour nodes
   uint64_t flat_table_bytes_ = 0;
   Program fill_, fill_flat_, lengths_;
@@ -340,6 +359,11 @@ void register_technique_linearized_fragment_buffer(TechniqueRegistry& registry) 
                       "where the per-pixel counts become offsets: compute: a work-efficient prefix sum in compute "
                       "shaders; host: summed on the host from the counts read back for the pool size, then "
                       "uploaded; auto: host on a software rasterizer, compute on a GPU"),
+          kKeyFormats.spec("key_format", KeyFormat::automatic,
+                           "flat nodes: uint64: the fill writes the 8-byte key (view depth, triangle id) as one "
+                           "64-bit integer and the network sorts it by 64-bit min/max; uint32_pair: two 32-bit "
+                           "words, compared word by word; auto: uint64 where the device has "
+                           "GL_ARB_gpu_shader_int64"),
           ParamSpec::boolean("flat_color_nodes", true,
                              "unlit scenes (every fragment has its triangle's flat colour): 8-byte nodes holding the "
                              "sort key alone, the exact colour fetched by triangle id in the resolve; false, or lit "
@@ -358,6 +382,8 @@ void register_technique_linearized_fragment_buffer(TechniqueRegistry& registry) 
       .extra_support_check = [](const ParamSet& params, const SceneFacts&) -> std::string {
         if (params.choice("fill", kFills) == Fill::framebuffer_fetch && !device_has_framebuffer_fetch())
           return "fill=framebuffer_fetch: the device has no GL_EXT_shader_framebuffer_fetch";
+        if (params.choice("key_format", kKeyFormats) == KeyFormat::uint64 && !device_has_int64())
+          return "key_format=uint64: the device has no GL_ARB_gpu_shader_int64";
         return "";
       },
       .create = make_technique<LinearizedFragmentBuffer>,

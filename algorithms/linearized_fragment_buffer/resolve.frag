@@ -1,4 +1,7 @@
 #version 450 core
+#if defined(LFB_KEY64)
+#extension GL_ARB_gpu_shader_int64 : require
+#endif
 // Resolve of the linearized fragment buffer: each pixel's keys lie in one
 // contiguous range [offset, offset + length), read in order. Drawn per length
 // class (backwards memory allocation, linked_list/length_classes.h: tiles by
@@ -6,7 +9,9 @@
 //
 // LFB_NETWORK: the whole range goes into registers (constant indices only)
 // and is sorted by linked_list's generated odd-even merge network
-// (sorting_network.h: LL_LOAD_ALL, LL_NETWORK, LL_BLEND_ALL, LL_CE).
+// (sorting_network.h: LL_LOAD_ALL, LL_NETWORK, LL_BLEND_ALL, LL_CE). With
+// LFB_KEY64 (flat nodes, 64-bit keys) an element is the key as one uint64
+// and a compare-exchange is one 64-bit min and max.
 // LFB_BLOCKS (register-based block sort, Knowles et al. 2014): blocks of
 // LL_CAPACITY fragments are loaded into registers one after the other,
 // sorted there by the network of the block size and written back sorted into
@@ -21,7 +26,7 @@ layout(binding = LFB_NODES_IMAGE_UNIT, rg32ui) uniform uimageBuffer u_nodes;
 #else
 layout(binding = LFB_NODES_IMAGE_UNIT, rg32ui) readonly uniform uimageBuffer u_nodes;
 #endif
-uvec2 key_of(uint slot) { return imageLoad(u_nodes, lfb_key_texel(slot)).xy; }
+uvec2 key_of(uint slot) { return lfb_key_from_texel(imageLoad(u_nodes, lfb_key_texel(slot)).xy); }
 #if defined(LFB_FLAT_COLOR)
 // The scene's flat colour of each stable triangle id (storage.glsl).
 layout(binding = LFB_FLAT_COLORS_UNIT) uniform samplerBuffer u_flat_colors;
@@ -70,8 +75,24 @@ uvec3 e[LL_CAPACITY];
     const uint at_i = base + min(uint(i), max(available, 1u) - 1u); \
     e[i] = uint(i) < available ? uvec3(key_of(at_i), at_i) : LFB_PAD; }
 
-#if defined(LFB_NETWORK)
+#if defined(LFB_NETWORK) && defined(LFB_KEY64)
+// The key as (depth << 32 | triangle id): the same order as precedes().
+#undef LL_CE
+#undef LL_LOAD
+uint64_t e64[LL_CAPACITY];
+#define LL_CE(i, j) { \
+    const uint64_t first_ij = min(e64[i], e64[j]); \
+    e64[j] = max(e64[i], e64[j]); \
+    e64[i] = first_ij; }
+#define LL_LOAD(i) { \
+    const uint at_i = base + min(uint(i), max(available, 1u) - 1u); \
+    e64[i] = uint(i) < available ? packUint2x32(key_of(at_i).yx) : 0xffffffffffffffffUL; }
+#define LL_BLEND(i) if (uint(i) < available) blend(texelFetch(u_flat_colors, int(unpackUint2x32(e64[i]).x)));
+#elif defined(LFB_NETWORK)
 #define LL_BLEND(i) if (uint(i) < available) blend(color_of(e[i]));
+#endif
+
+#if defined(LFB_NETWORK)
 
 void main() {
   const int pixel = int(oit_pixel_index(u_width));
@@ -90,7 +111,7 @@ void main() {
 // colours live in the scene's table: only the keys move.
 #if defined(LFB_FLAT_COLOR)
 #define LFB_FETCH(i)
-#define LFB_STORE(i) if (uint(i) < available) imageStore(u_nodes, lfb_key_texel(base + uint(i)), e[i].xyyy);
+#define LFB_STORE(i) if (uint(i) < available) imageStore(u_nodes, lfb_key_texel(base + uint(i)), lfb_texel_from_key(e[i].xy));
 #else
 vec4 colors[LL_CAPACITY];
 #define LFB_FETCH(i) if (uint(i) < available) colors[i] = color_of(e[i]);

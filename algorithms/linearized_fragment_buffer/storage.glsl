@@ -20,3 +20,16 @@
 // then (unless flat) the colour bits (r, g), (b, a).
 int lfb_key_texel(uint slot) { return int(LFB_NODE_TEXELS * slot); }
 
+// The key's texel. LFB_KEY64 (flat nodes on a device with 64-bit integers,
+// key_format): the fill writes the key as one uint64, view depth in the high
+// word and triangle id in the low, so the sort compares it with one 64-bit
+// min/max; in memory (little-endian) the texel is then (id, depth). Else
+// the texel is (depth, id).
+#if defined(LFB_KEY64)
+uvec2 lfb_key_from_texel(uvec2 texel) { return texel.yx; }
+uvec4 lfb_texel_from_key(uvec2 key) { return key.yxxx; }
+#else
+uvec2 lfb_key_from_texel(uvec2 texel) { return texel; }
+uvec4 lfb_texel_from_key(uvec2 key) { return key.xyyy; }
+#endif
+
