@@ -6,9 +6,12 @@ object ids (hence buckets in use) changes. Stacked areas are the cumulative
 stage times of `bucketed_kbuffer`; the dotted line is the total of its
 brute-force variant (`buckets=off`), whose time should not depend on the
 number of objects; the dashed line is a plain `kbuffer` (constant
-transparency), the paper's "around 10 ms" reference. A second panel draws
-the total and each stage on its own (not cumulative), bucketed solid and
-brute force dotted, so the stage the buckets change can be read off.
+transparency), the paper's "around 10 ms" reference; the dash-dotted line,
+where the runs have it, is the total with the merge search
+(`neighbor_search=merge`, not in the paper). A second panel draws the total
+and each stage on its own (not cumulative), bucketed solid, brute force
+dotted and the merge search's neighbour stage dash-dotted, so the stage the
+buckets change can be read off.
 """
 import matplotlib
 
@@ -48,7 +51,8 @@ def stage_lines(ax, rows, linestyle, suffix):
 def draw(runs, args=None):
     quads = figure_notes.quiet_runs(common.select(runs, scene="quads"))
     brute = common.select(quads, TECHNIQUE, params={"buckets": "off"})
-    bucketed = quads[(quads["technique"] == TECHNIQUE) & ~quads.index.isin(brute.index)]
+    merge = common.select(quads, TECHNIQUE, params={"neighbor_search": "merge"})
+    bucketed = quads[(quads["technique"] == TECHNIQUE) & ~quads.index.isin(brute.index) & ~quads.index.isin(merge.index)]
     if bucketed.empty:
         raise common.NoData(f"no {TECHNIQUE} rows on the quads scene")
     table = common.stage_table(bucketed.assign(objects=objects_of(bucketed)), "objects").sort_index()
@@ -63,6 +67,10 @@ def draw(runs, args=None):
         line = totals_by_objects(brute)
         ax.plot(line.index, line.to_numpy(), linestyle=":", color="black", linewidth=2,
                 label="brute force (buckets=off), total", zorder=3)
+    if not merge.empty:
+        line = totals_by_objects(merge)
+        ax.plot(line.index, line.to_numpy(), linestyle="-.", color="black", linewidth=1.5,
+                label="merge search (neighbor_search=merge), total", zorder=3)
     kbuffer = common.select(quads, "kbuffer")
     if not kbuffer.empty:
         line = totals_by_objects(kbuffer)
@@ -78,10 +86,15 @@ def draw(runs, args=None):
     stage_lines(own, bucketed, "-", "")
     if not brute.empty:
         stage_lines(own, brute, ":", " (brute force)")
+    if not merge.empty:
+        neighbors = merge[merge["stage"] == "neighbors"]
+        line = neighbors.assign(objects=objects_of(neighbors)).groupby("objects")["median_ms"].mean().sort_index()
+        own.plot(line.index, line.to_numpy(), linestyle="-.", marker="o", markersize=2.5, color="black",
+                 label="neighbors (merge search)")
     own.set_yscale("log")
     own.set_ylabel("time per frame of each stage (ms, log)")
     own.legend(fontsize=6, loc="center left", bbox_to_anchor=(1.01, 0.5))
-    own.set_title("each stage on its own: bucketed solid, brute force dotted", fontsize=8)
+    own.set_title("each stage on its own: bucketed solid, brute force dotted, merge dash-dotted", fontsize=8)
     return figure_notes.finish(fig, ax, bucketed, "murray2016 Fig. 10: bucketed k-buffer vs number of objects",
                                noisy_rows=quads)
 

@@ -163,6 +163,12 @@ def murray_fig10(catalogue, quick, warmup, frames):
                     k + ([("buckets", "on")] if "buckets" in bkb else []))
     if "buckets" in bkb:
         points += cross(["bucketed_kbuffer"], "quads", scene_sets, ["default"], size, k + [("buckets", "off")])
+    if "neighbor_search" in bkb:
+        # The merge search (issue 18, the default since), a series of its
+        # own beside the paper's bucket query, with the same buckets.
+        merge = [(p, v) for p, v in k if p != "neighbor_search"] + [("neighbor_search", "merge")]
+        points += cross(["bucketed_kbuffer"], "quads", scene_sets, ["default"], size,
+                        merge + ([("buckets", "on")] if "buckets" in bkb else []))
     return Sweep("murray_fig10", points, [("murray_fig10", {})], warmup, frames)
 
 

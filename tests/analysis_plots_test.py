@@ -86,6 +86,23 @@ class MurrayFig10Test(PlotTest):
         self.assertEqual(ax.get_xscale(), "log")
         self.assert_title(ax, "64x64")
 
+    def test_the_merge_search_is_a_line_of_its_own_not_an_area(self):
+        rows = self.rows(False, False)
+        for objects in (1, 2, 4):
+            sp = f"layers=32 objects={objects} seed=1"
+            rows.append(fx.row("bucketed_kbuffer", "neighbors", 0.5, params="buckets=on k=8 neighbor_search=merge",
+                               scene_params=sp))
+            rows.append(fx.row("bucketed_kbuffer", "total", 4.0, params="buckets=on k=8 neighbor_search=merge",
+                               scene_params=sp))
+        figure = self.draw(murray_fig10, rows)
+        ax, own = figure.axes[0], figure.axes[1]
+        np.testing.assert_allclose(stack_tops(ax)[-1], [8.0, 6.5, 5.75])  # the areas: the bucket query alone
+        lines = {line.get_label(): line for line in ax.get_lines()}
+        self.assertEqual(lines["merge search (neighbor_search=merge), total"].get_linestyle(), "-.")
+        np.testing.assert_allclose(lines["merge search (neighbor_search=merge), total"].get_ydata(), [4, 4, 4])
+        own_lines = {line.get_label(): line for line in own.get_lines()}
+        np.testing.assert_allclose(own_lines["neighbors (merge search)"].get_ydata(), [0.5, 0.5, 0.5])
+
     def test_without_brute_force_or_kbuffer_only_the_areas(self):
         ax = self.draw(murray_fig10, self.rows(False, False)).axes[0]
         self.assertEqual(len(ax.collections), 5)

@@ -23,7 +23,7 @@ TECHNIQUES = {
     "kbuffer": ({"k": "8"}, ["clear", "fill", "compose"], "[approximate]"),
     "illustration_buffer": ({"neighbors": "heuristic", "modulation": "silhouette_halo", "iterations": "20"},
                             ["clear", "fill", "sort", "neighbors", "stylize", "compose"], "[exact]"),
-    "bucketed_kbuffer": ({"buckets": "on", "k": "8"},
+    "bucketed_kbuffer": ({"buckets": "on", "k": "8", "neighbor_search": "merge"},
                          ["clear", "fill", "bucket", "neighbors", "stylize", "compose"], "[approximate]"),
 }
 SCENE_DEFAULTS = {"quads": {"layers": "32", "objects": "32", "seed": "1"}, "torus": {"slices": "64", "stacks": "32"},
@@ -31,6 +31,7 @@ SCENE_DEFAULTS = {"quads": {"layers": "32", "objects": "32", "seed": "1"}, "toru
 MODELS = ["engine", "bunny", "wuson", "elephant", "bones"]
 # What `list` prints as a parameter's allowed values (default: a plain range).
 ALLOWED = {("linked_list", "sort"): "one of {insertion, selection, network}",
+           ("bucketed_kbuffer", "neighbor_search"): "one of {merge, bucket}",
            ("kbuffer", "k"): "integer in [1, 64] or auto",
            ("illustration_buffer", "modulation"): "one of {none, silhouette_halo}"}
 

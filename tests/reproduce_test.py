@@ -63,11 +63,14 @@ class ReproduceTest(unittest.TestCase):
         self.assertEqual(self.bench_calls(), [])
         self.assertIn("would run:", printed)
         benches = [c for c in started if c[1] == "bench"]
-        # Fig. 10: kbuffer, bucketed (buckets named at its default), brute force, each at 6 object counts.
+        # Fig. 10: kbuffer, bucketed (buckets named at its default), brute
+        # force and the merge search, each at 6 object counts.
         fig10 = [c for c in benches if c[c.index("--csv") + 1].endswith("murray_fig10.csv")]
-        self.assertEqual(len(fig10), 18)
+        self.assertEqual(len(fig10), 24)
         self.assertEqual(sum("bucketed_kbuffer.buckets=off" in c for c in fig10), 6)
-        self.assertEqual(sum("bucketed_kbuffer.buckets=on" in c for c in fig10), 6)
+        self.assertEqual(sum("bucketed_kbuffer.buckets=on" in c for c in fig10), 12)
+        self.assertEqual(sum("bucketed_kbuffer.neighbor_search=merge" in c for c in fig10), 6)
+        self.assertEqual(sum("bucketed_kbuffer.neighbor_search=bucket" in c for c in fig10), 12)
         # Fig. 14: 5 sizes x 3 views of random:3:1, one view per run.
         fig14 = [c for c in benches if c[c.index("--csv") + 1].endswith("carnecky_fig14.csv")]
         self.assertEqual(sorted(c[c.index("--camera") + 1] for c in fig14), ["random:3:1@0"] * 5 + ["random:3:1@1"] * 5 + ["random:3:1@2"] * 5)
@@ -383,7 +386,7 @@ class CatalogueTest(unittest.TestCase):
         import subprocess
         listing = subprocess.run([FAKE, "list"], capture_output=True, text=True, check=True).stdout
         catalogue = reproduce.Catalogue(listing)
-        self.assertEqual(catalogue.techniques["bucketed_kbuffer"], {"buckets": "on", "k": "8"})
+        self.assertEqual(catalogue.techniques["bucketed_kbuffer"], {"buckets": "on", "k": "8", "neighbor_search": "merge"})
         self.assertEqual(catalogue.reference, {"reference"})
         self.assertEqual(catalogue.models, ["engine", "bunny", "wuson", "elephant", "bones"])
         self.assertEqual(catalogue.timed()[:2], ["depth_peeling", "linked_list"])

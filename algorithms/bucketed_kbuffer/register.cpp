@@ -57,7 +57,7 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
                              "k=auto only: most MiB of slot storage (20 bytes per slot, 48 with measure_accuracy); "
                              "k is capped to fit")},
       .stages = {"count", "clear", "fill", "sort", "bucket", "store", "neighbors", "stylize", "compose"},
-      .quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32", "64"}}},
+      .quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32", "64"}}, {"neighbor_search", {"bucket", "merge"}}},
       .adaptive_switches = {{"buckets_auto",
                               "on a one-object scene skips the bucket pass (no hash tables) and searches each whole "
                               "list as the single bucket, without hash look-ups or shape tests",

@@ -109,6 +109,10 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
       // stylize_init sets the fields (carnecky2013 5.2-5.3); diffuse runs the
       // `iterations` steps of eq. 8-9 (iterations=1 times the paper's one solve step).
       .stages = {"clear", "fill", "sort", "neighbors", "stylize_init", "diffuse", "compose"},
+      // The convergence tolerance trades error for time; the neighbour
+      // searches change the links (heuristic and heuristic_merge find the same ones).
+      .quality_sweep = {{"diffusion_tolerance", {"0.01", "0.001", "0"}},
+                        {"neighbors", {"heuristic_merge", "heuristic", "triangle_index"}}},
       // Approximate (the default): exact (float blend) only with modulation=none.
       .adaptive_switches = {{"skip_converged",
                               "diffuses only the pixels around fragments that changed in the previous iteration",

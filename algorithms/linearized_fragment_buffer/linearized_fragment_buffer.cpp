@@ -370,6 +370,10 @@ void register_technique_linearized_fragment_buffer(TechniqueRegistry& registry) 
                              "scenes: 24-byte nodes with the float colour")},
       .stages = {"count", "fill", "compose"},
       .exactness = Exactness::exact,
+      // Speed options only (every value is exact): the GPU-style paths against llvmpipe's.
+      .quality_sweep = {{"fill", {"atomic", "framebuffer_fetch"}},
+                        {"scan", {"compute", "host"}},
+                        {"key_format", {"uint32_pair", "uint64"}}},
       .adaptive_switches = {
           {"backwards_allocation",
            "resolves each 4x4 tile with the smallest array that holds its longest list instead of the frame's "

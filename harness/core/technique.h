@@ -174,8 +174,10 @@ struct TechniqueDescriptor {
   // blends colours in [0, 1]; infinity for an approximation whose output is
   // legitimately unbounded (a weighted sum over many layers exceeds 1).
   double output_max = 1.0;
-  // Quality knobs for run-time-versus-error sweeps (`oitbench pareto`):
-  // parameter name and the values to try, cheapest first.
+  // Knobs for run-time-versus-error sweeps (`oitbench pareto`): parameter
+  // name and the values to try, cheapest first. Quality knobs trade time
+  // for error; an exact technique's speed options (its error is the same
+  // at every value) are swept too, so the plot shows which path is fastest.
   std::vector<std::pair<std::string, std::vector<std::string>>> quality_sweep;
   std::vector<AdaptiveSwitch> adaptive_switches;
   bool is_reference = false;  // the exact technique the harness compares against
