@@ -67,23 +67,36 @@ constexpr const char* kFillShader = "algorithms/linearized_fragment_buffer/fill.
 bool device_has_framebuffer_fetch() { return epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch"); }
 bool device_has_int64() { return epoxy_has_gl_extension("GL_ARB_gpu_shader_int64"); }
 
-// fill=auto: framebuffer fetch where the device has it. An explicit
-// framebuffer_fetch on a device without it never gets here
-// (extra_support_check), but the viewer builds techniques directly.
+// The explicit choice this device cannot run, or "": the harness skips
+// such a run (extra_support_check); the viewer, which builds techniques
+// directly, gets it as the constructor's error.
+std::string missing_device_feature(const ParamSet& params) {
+  if (params.choice("fill", kFills) == Fill::framebuffer_fetch && !device_has_framebuffer_fetch())
+    return "fill=framebuffer_fetch needs GL_EXT_shader_framebuffer_fetch, which this device lacks (use fill=atomic or "
+           "auto)";
+  if (params.choice("key_format", kKeyFormats) == KeyFormat::uint64 && !device_has_int64())
+    return "key_format=uint64 needs GL_ARB_gpu_shader_int64, which this device lacks (use key_format=uint32_pair or "
+           "auto)";
+  return "";
+}
+
+// The constructor checks this first, so no program is built for a path the
+// device lacks.
+const ParamSet& runnable(const ParamSet& params) {
+  if (const std::string missing = missing_device_feature(params); !missing.empty())
+    throw std::runtime_error("linearized_fragment_buffer: " + missing);
+  return params;
+}
+
+// fill=auto: framebuffer fetch where the device has it.
 bool fetches_cursors(const ParamSet& params) {
   const Fill fill = params.choice("fill", kFills);
-  if (fill == Fill::framebuffer_fetch && !device_has_framebuffer_fetch())
-    throw std::runtime_error("linearized_fragment_buffer: fill=framebuffer_fetch needs GL_EXT_shader_framebuffer_fetch, "
-                             "which this device lacks; use fill=atomic or auto");
   return fill == Fill::framebuffer_fetch || (fill == Fill::automatic && device_has_framebuffer_fetch());
 }
 
 // key_format=auto: one uint64 where the device has 64-bit integers.
 bool uses_uint64_keys(const ParamSet& params) {
   const KeyFormat format = params.choice("key_format", kKeyFormats);
-  if (format == KeyFormat::uint64 && !device_has_int64())
-    throw std::runtime_error("linearized_fragment_buffer: key_format=uint64 needs GL_ARB_gpu_shader_int64, which this "
-                             "device lacks; use key_format=uint32_pair or auto");
   return format == KeyFormat::uint64 || (format == KeyFormat::automatic && device_has_int64());
 }
 
@@ -118,7 +131,7 @@ ShaderDefines resolve_defines(uint32_t size, bool blocks, uint32_t block, bool f
 class LinearizedFragmentBuffer final : public Technique {
  public:
   explicit LinearizedFragmentBuffer(const ParamSet& params)
-      : register_blocks_(params.choice("sort", kSorts) == Sort::register_block),
+      : register_blocks_(runnable(params).choice("sort", kSorts) == Sort::register_block),
         block_(params.choice("block_size", kBlockSizes)),
         backwards_allocation_(params.boolean("backwards_allocation")),
         flat_color_nodes_(params.boolean("flat_color_nodes")),
@@ -383,13 +396,7 @@ void register_technique_linearized_fragment_buffer(TechniqueRegistry& registry) 
            "stores 8-byte keys on unlit scenes and fetches each fragment's flat colour by triangle id instead of "
            "storing 24-byte nodes with the colour",
            {{"flat_color_nodes", "true"}}, {{"flat_color_nodes", "false"}}}},
-      .extra_support_check = [](const ParamSet& params, const SceneFacts&) -> std::string {
-        if (params.choice("fill", kFills) == Fill::framebuffer_fetch && !device_has_framebuffer_fetch())
-          return "fill=framebuffer_fetch: the device has no GL_EXT_shader_framebuffer_fetch";
-        if (params.choice("key_format", kKeyFormats) == KeyFormat::uint64 && !device_has_int64())
-          return "key_format=uint64: the device has no GL_ARB_gpu_shader_int64";
-        return "";
-      },
+      .extra_support_check = [](const ParamSet& params, const SceneFacts&) { return missing_device_feature(params); },
       .create = make_technique<LinearizedFragmentBuffer>,
       .storage_need = [](const ParamSet&, const FrameContent& content) {
         const uint64_t fragments = std::max<uint64_t>(content.fragments, 1);
