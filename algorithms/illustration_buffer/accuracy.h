@@ -17,7 +17,8 @@ constexpr uint32_t kOffImage = IB_OFF_IMAGE;
 // IbSortedSearch (fragData2) and IbSortedShade (fragData3) of ib_storage.glsl, 32 B each.
 struct SortedSearchRecord {
   uint32_t key[4];       // depth bits, stable triangle id, object id, pixel
-  uint32_t geometry[4];  // packed normal, dz/dx bits, dz/dy bits, fill record index
+  uint32_t geometry[4];  // packed normal, dz/dx bits, dz/dy bits (triangle_index: the triangle's vertex
+                         // indices; neither with modulation=none), fill record index
 };
 static_assert(sizeof(SortedSearchRecord) == 32);
 struct SortedShadeRecord {
@@ -30,7 +31,7 @@ static_assert(sizeof(SortedShadeRecord) == 32);
 struct SortedRecord {
   float color[4];
   uint32_t key[4];       // depth bits, stable triangle id, object id, pixel
-  uint32_t geometry[4];  // packed normal, dz/dx bits, dz/dy bits, fill record index
+  uint32_t geometry[4];  // as SortedSearchRecord::geometry
   uint32_t links[4];     // left, right, down, up
 };
 

@@ -30,15 +30,14 @@
 // Texture units of the read-only buffer-texture views. The per-fragment
 // passes' (views.glsl) and the listed diffusion steps' (stylize_diffuse.comp):
 #define IB_SEARCH_UNIT 0
-#define IB_TRIANGLES_UNIT 1
-#define IB_FIELDS_UNIT 2
-#define IB_SHADE_UNIT 3
-#define IB_WORK_UNIT 4
-#define IB_HEAD_UNIT 5
-#define IB_COUNT_UNIT 6
-// The sort's (sort.comp), a program of its own: fill records and next pointers.
+#define IB_FIELDS_UNIT 1
+#define IB_SHADE_UNIT 2
+#define IB_WORK_UNIT 3
+#define IB_HEAD_UNIT 4
+#define IB_COUNT_UNIT 5
+// The sort's (sort.comp), a program of its own: fill records and the triangle table.
 #define IB_FRAGMENT_UNIT 0
-#define IB_NEXT_UNIT 1
+#define IB_SORT_TRIANGLES_UNIT 1  // neighbors=triangle_index
 
 // Uniform locations. u_width / u_height are declared by ib_storage.glsl for
 // every program, and each program uses a subset (the C++ asks uniform_active).

@@ -11,6 +11,9 @@
 // these modes leave in place (no field ranges).
 #include "shaders/compose.glsl"
 #include "algorithms/illustration_buffer/ib_storage.glsl"
+// The sorted ranges, colours and fields are read through the buffer-texture
+// views (gathers on llvmpipe, where SSBO loads run lane by lane).
+#include "algorithms/illustration_buffer/views.glsl"
 
 layout(location = 0) out vec4 out_color;
 
@@ -33,18 +36,17 @@ float profile(float u) {
 
 void main() {
   const uint pixel = uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);
-  const uint first = ib_head[pixel], end = first + ib_count[pixel];
+  const uint first = ib_pixel_first(pixel), end = first + ib_pixel_count(pixel);
   vec3 accumulated = vec3(0.0);
   float transmittance = 1.0;
   for (uint i = first; i < end; ++i) {
-    const vec4 c = ib_shade[i].color;
+    const vec4 c = ib_sorted_color(i);
 #ifdef IB_MODULATE
-    const vec4 field = ib_fields_in[i];
+    const vec4 field = texelFetch(ib_fields_view, int(i));
     const float alpha = clamp(field.x, 0.0, 1.0);
     const float opacity = (1.0 - profile(field.z)) * (alpha + (1.0 - alpha) * profile(field.y));
 #elif defined(IB_LOCAL_OPACITY)
-    const uvec4 geometry = ib_search[i].geometry;  // whole members (ib_storage.glsl)
-    const float opacity = ib_fragments[geometry.w].slopes.z;
+    const float opacity = uintBitsToFloat(ib_fragments[ib_sorted_geometry(i).w].surface.z);
 #else
     const float opacity = c.a;
 #endif

@@ -57,9 +57,16 @@ void main() {
   uint index;
   OIT_ATOMIC_APPEND(ib_produced, index);
   if (index >= u_capacity) return;  // pool overflow: the host grows the pool and re-renders
-  ib_next[index] = atomicExchange(ib_head[pixel], index);
-  const uvec4 key = uvec4(floatBitsToUint(depth), oit_triangle_id(), v_object_id, ib_pack_normal(oit_view_normal()));
-  ib_fragments[index] = IbFragment(oit_shade(), key, vec4(slopes, local_opacity, 0.0));
+  const uint next = atomicExchange(ib_head[pixel], index);
+  const uvec4 key = uvec4(floatBitsToUint(depth), oit_triangle_id(), v_object_id, next);
+#ifdef IB_SURFACE
+  const uvec4 surface = uvec4(floatBitsToUint(vec3(slopes, local_opacity)), ib_pack_normal(oit_view_normal()));
+  ib_fragments[index] = IbFragment(oit_shade(), key, surface);
+#else
+  // Nothing reads the normal, the slopes or a local opacity (Settings::records_surface).
+  ib_fragments[index].color = oit_shade();
+  ib_fragments[index].key = key;
+#endif
 #ifdef IB_MEASURE
   ib_truth[index] = uvec4(v_surface_id, floatBitsToUint(v_uv.x), floatBitsToUint(v_uv.y), packHalf2x16(footprint));
 #endif

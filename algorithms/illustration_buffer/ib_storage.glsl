@@ -9,10 +9,12 @@
 #define IB_INFINITY 3.0e38
 
 // fragData: one record per fragment in fill order (48 B).
+// The list link sits in the key, so the sort's walk reads one texel per node.
 struct IbFragment {
-  vec4 color;   // straight RGBA from oit_shade()
-  uvec4 key;    // x: view depth bits, y: stable triangle id, z: object id, w: view normal (octahedral snorm16x2)
-  vec4 slopes;  // x: d(depth)/dx, y: d(depth)/dy per pixel, z: angle / normal_variation opacity, w: unused
+  vec4 color;     // straight RGBA from oit_shade()
+  uvec4 key;      // x: view depth bits, y: stable triangle id, z: object id, w: next record of the pixel's list
+  uvec4 surface;  // bits of x: d(depth)/dx, y: d(depth)/dy per pixel, z: angle / normal_variation opacity;
+                  // w: view normal (octahedral snorm16x2). Only with Settings::records_surface (IB_SURFACE).
 };
 
 // The sorted lists, each pixel's fragments contiguous, nearest first, split
@@ -21,7 +23,8 @@ struct IbFragment {
 // fragData2: what the neighbour search compares.
 struct IbSortedSearch {
   uvec4 key;       // x: view depth bits, y: stable triangle id, z: object id, w: pixel index
-  uvec4 geometry;  // x: packed view normal, y: dz/dx bits, z: dz/dy bits, w: index of the fill record (fragData)
+  uvec4 geometry;  // x: packed view normal, y: dz/dx bits, z: dz/dy bits (neighbors=triangle_index: xyz the
+                   // triangle's vertex indices, sort.comp), w: index of the fill record (fragData)
 };
 // fragData3: what stylize and compose read, and the links the search writes.
 struct IbSortedShade {
@@ -31,6 +34,7 @@ struct IbSortedShade {
 
 layout(std430, binding = IB_HEAD_BINDING) coherent buffer IbPixelHead { uint ib_head[]; };
 layout(std430, binding = IB_COUNT_BINDING) coherent buffer IbPixelCount { uint ib_count[]; };
+// sort=dynamic's sorted lists (the fill's links are IbFragment::key.w).
 layout(std430, binding = IB_NEXT_BINDING) buffer IbFragNext { uint ib_next[]; };
 layout(std430, binding = IB_DATA_BINDING) buffer IbFragData { IbFragment ib_fragments[]; };
 layout(std430, binding = IB_DATA2_BINDING) buffer IbFragData2 { IbSortedSearch ib_search[]; };

@@ -121,7 +121,7 @@ uint best_candidate(Probe a, uint b_first, uint b_end, out float best_measure) {
 
 uint find_neighbor(uint s, uint own_pixel, int dx, int dy, uint other_pixel) {
   const Probe a = probe(s, dx, dy);
-  const uint b_first = ib_head[other_pixel], b_end = b_first + ib_count[other_pixel];
+  const uint b_first = ib_pixel_first(other_pixel), b_end = b_first + ib_pixel_count(other_pixel);
   float best_measure;
   const uint best = best_candidate(a, b_first, b_end, best_measure);
   if (best == IB_NONE) return IB_NONE;
@@ -130,7 +130,7 @@ uint find_neighbor(uint s, uint own_pixel, int dx, int dy, uint other_pixel) {
   // skipped on their key (their eps is infinite, never below best_measure).
   const uvec4 best_key = ib_sorted_key(best);
   const vec3 best_normal = ib_unpack_normal(ib_sorted_geometry(best).x);
-  const uint a_first = ib_head[own_pixel], a_end = a_first + ib_count[own_pixel];
+  const uint a_first = ib_pixel_first(own_pixel), a_end = a_first + ib_pixel_count(own_pixel);
   for (uint other = a_first; other < a_end; ++other) {
     if (other == s || ib_sorted_key(other).z != best_key.z) continue;
     if (continuity(probe(other, dx, dy), best_key, best_normal) < best_measure) return IB_NONE;
@@ -139,15 +139,35 @@ uint find_neighbor(uint s, uint own_pixel, int dx, int dy, uint other_pixel) {
 }
 
 #elif defined(IB_TRIANGLE_INDEX)
-// Vertex indices of every triangle by stable id: ib_triangle_view (xyz; w unused).
+// The sort stored the vertex indices of each fragment's triangle in its
+// geometry texel (xyz; w the fill record), so a candidate costs one read.
+bool shares_vertex(uvec3 mine, uvec3 theirs) {
+  // At least one shared vertex index: a neighbour (rules 2-4 of section 3.4).
+  return any(equal(mine, theirs.xxx)) || any(equal(mine, theirs.yyy)) || any(equal(mine, theirs.zzz));
+}
+
+// Whether candidate `first + k` shares a vertex, for k = 0..3.
+bvec4 four_share(uvec3 mine, uint first) {
+  return bvec4(shares_vertex(mine, ib_sorted_geometry(first).xyz), shares_vertex(mine, ib_sorted_geometry(first + 1u).xyz),
+               shares_vertex(mine, ib_sorted_geometry(first + 2u).xyz), shares_vertex(mine, ib_sorted_geometry(first + 3u).xyz));
+}
+
+uint first_of(bvec4 match) { return match.x ? 0u : match.y ? 1u : match.z ? 2u : 3u; }
+
+// Candidates are tested eight at a time (fewer loop iterations, independent
+// reads: neighbour stage 107 against 262 ms with a key read, a row read and
+// a loop iteration per candidate on 32 quads); the first match wins.
 uint find_neighbor(uint s, uint own_pixel, int dx, int dy, uint other_pixel) {
-  const uvec3 mine = texelFetch(ib_triangle_view, int(ib_sorted_key(s).y)).xyz;
-  const uint b_first = ib_head[other_pixel], b_end = b_first + ib_count[other_pixel];
-  for (uint b = b_first; b < b_end; ++b) {
-    const uvec3 theirs = texelFetch(ib_triangle_view, int(ib_sorted_key(b).y)).xyz;
-    // At least one shared vertex index: a neighbour (rules 2-4 of section 3.4).
-    if (any(equal(mine, theirs.xxx)) || any(equal(mine, theirs.yyy)) || any(equal(mine, theirs.zzz))) return b;
+  const uvec3 mine = ib_sorted_geometry(s).xyz;
+  const uint b_first = ib_pixel_first(other_pixel), b_end = b_first + ib_pixel_count(other_pixel);
+  uint b = b_first;
+  for (; b + 8u <= b_end; b += 8u) {
+    const bvec4 low = four_share(mine, b), high = four_share(mine, b + 4u);
+    if (any(low)) return b + first_of(low);
+    if (any(high)) return b + 4u + first_of(high);
   }
+  for (; b < b_end; ++b)
+    if (shares_vertex(mine, ib_sorted_geometry(b).xyz)) return b;
   return IB_NONE;
 }
 #else

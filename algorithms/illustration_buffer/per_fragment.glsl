@@ -7,5 +7,3 @@ uint ib_fragment_index() {
   return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationID.x;
 }
 
-// Position of sorted fragment `s` in its pixel's list (0 = nearest).
-uint ib_layer_of(uint s, uint pixel) { return s - ib_head[pixel]; }

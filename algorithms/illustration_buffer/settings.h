@@ -48,6 +48,12 @@ struct Settings {
   bool purely_local() const { return modulation == Modulation::angle || modulation == Modulation::normal_variation; }
   bool uses_beta() const { return modulation == Modulation::silhouette || modulation == Modulation::silhouette_halo; }
   bool uses_gamma() const { return modulation == Modulation::halo || modulation == Modulation::silhouette_halo; }
+  // Whether anything reads a fragment's normal, depth slopes and local
+  // opacity: the heuristic searches (eq. 1-2) and the purely local
+  // baselines. The triangle-index search and plain blending do not, so the
+  // fill leaves them out and the sort stores the triangle's vertices instead.
+  bool records_surface() const { return (diffused() && heuristic()) || purely_local(); }
+  bool stores_triangle_vertices() const { return diffused() && !heuristic(); }
 };
 
 Settings settings_from(const ParamSet& params);

@@ -22,11 +22,17 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 
-// fragData (3 RGBA32UI texels per IbFragment) and fragNext read as buffer
-// textures: gathers on llvmpipe, where SSBO loads at per-invocation
-// addresses run lane by lane (see views.glsl).
+// fragData (3 RGBA32UI texels per IbFragment) read as a buffer texture:
+// gathers on llvmpipe, where SSBO loads at per-invocation addresses run
+// lane by lane (see views.glsl). The fill's list links are in the key texel.
 layout(binding = IB_FRAGMENT_UNIT) uniform usamplerBuffer ib_fragment_view;
-layout(binding = IB_NEXT_UNIT) uniform usamplerBuffer ib_next_view;
+#ifdef IB_TRIANGLE_VERTICES
+// neighbors=triangle_index: the sorted record's geometry holds the vertex
+// indices of the fragment's triangle instead of the normal and the slopes
+// (which only the heuristic reads), so that the search reads one texel per
+// candidate instead of the key and then the triangle's row.
+layout(binding = IB_SORT_TRIANGLES_UNIT) uniform usamplerBuffer ib_triangle_rows;
+#endif
 
 bool precedes(uvec3 a, uvec3 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
 
@@ -34,15 +40,23 @@ bool precedes(uvec3 a, uvec3 b) { return a.x < b.x || (a.x == b.x && a.y < b.y);
 void copy_record(uint to, uint node, uint pixel) {
   const vec4 color = uintBitsToFloat(texelFetch(ib_fragment_view, int(node * 3u)));
   const uvec4 key = texelFetch(ib_fragment_view, int(node * 3u + 1u));
-  const uvec4 slopes = texelFetch(ib_fragment_view, int(node * 3u + 2u));
-  ib_search[to] = IbSortedSearch(uvec4(key.xyz, pixel), uvec4(key.w, slopes.x, slopes.y, node));
-  ib_shade[to] = IbSortedShade(color, uvec4(IB_NONE));
+#if defined(IB_TRIANGLE_VERTICES)
+  const uvec4 geometry = uvec4(texelFetch(ib_triangle_rows, int(key.y)).xyz, node);
+#elif defined(IB_SURFACE)
+  const uvec4 surface = texelFetch(ib_fragment_view, int(node * 3u + 2u));
+  const uvec4 geometry = uvec4(surface.w, surface.x, surface.y, node);
+#else
+  const uvec4 geometry = uvec4(0u, 0u, 0u, node);  // the fill recorded no surface (Settings::records_surface)
+#endif
+  ib_search[to] = IbSortedSearch(uvec4(key.xyz, pixel), geometry);
+  ib_shade[to].color = color;  // the links are the neighbour search's (modulated modes only)
 }
 
-// The sort key of fill record `node`: x depth order bits, y stable triangle id, z the node.
-uvec3 sort_key(uint node) {
+// The sort key of fill record `node`: x depth order bits, y stable triangle
+// id, z the node; and w the next node of the fill's list.
+uvec4 sort_key(uint node) {
   const uvec4 key = texelFetch(ib_fragment_view, int(node * 3u + 1u));
-  return uvec3(ib_depth_order(key.x), key.y, node);
+  return uvec4(ib_depth_order(key.x), key.y, node, key.w);
 }
 
 #ifdef IB_DYNAMIC
@@ -56,9 +70,10 @@ uint sort_list(uint head) {
   uvec3 pending = uvec3(IB_NIL);  // z: the node being inserted after `previous`, IB_NIL: none
   while (unsorted != IB_NIL || pending.z != IB_NIL) {
     if (pending.z == IB_NIL) {
-      pending = sort_key(unsorted);
-      unsorted = ib_next[unsorted];
-      if (sorted == IB_NIL || precedes(pending, sort_key(sorted))) {
+      const uvec4 taken = sort_key(unsorted);
+      pending = taken.xyz;
+      unsorted = taken.w;
+      if (sorted == IB_NIL || precedes(pending, sort_key(sorted).xyz)) {
         ib_next[pending.z] = sorted;
         sorted = pending.z;
         pending.z = IB_NIL;
@@ -67,7 +82,7 @@ uint sort_list(uint head) {
       }
     } else {
       const uint after = ib_next[previous];
-      if (after != IB_NIL && !precedes(pending, sort_key(after))) {
+      if (after != IB_NIL && !precedes(pending, sort_key(after).xyz)) {
         previous = after;
       } else {
         ib_next[pending.z] = after;
@@ -113,8 +128,9 @@ void main() {
     // a scatter per step): about 3x faster at 32 layers.
     uint node = ib_head[pixel];
     for (uint k = 0u; k < length; ++k) {
-      items[k] = sort_key(node);
-      node = texelFetch(ib_next_view, int(node)).x;
+      const uvec4 taken = sort_key(node);
+      items[k] = taken.xyz;
+      node = taken.w;
     }
     const uint first = atomicAdd(ib_allocated, length);
     ib_head[pixel] = first;
@@ -132,8 +148,9 @@ void main() {
   uvec3 pending = uvec3(0u);
   while (cursor != IB_NIL || hole >= 0) {
     if (hole < 0) {
-      pending = sort_key(cursor);
-      cursor = texelFetch(ib_next_view, int(cursor)).x;
+      const uvec4 taken = sort_key(cursor);
+      pending = taken.xyz;
+      cursor = taken.w;
       // Enters at the end while there is room, else replaces the farthest
       // kept fragment when nearer, else is left out (counted by the fill).
       if (kept < uint(IB_ARRAY)) {

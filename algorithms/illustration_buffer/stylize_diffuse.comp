@@ -66,11 +66,9 @@ void main() {
   if (update(s)) ib_enqueue_around(ib_sorted_key(s).w);
 }
 #elif defined(IB_WORKLIST)
-// The step's list (header: groups x, y, z, count; then pixels) and the
-// sorted ranges, read as buffer textures (gathers on llvmpipe, views.glsl).
+// The step's list (header: groups x, y, z, count; then pixels), read as a
+// buffer texture (a gather on llvmpipe, views.glsl).
 layout(binding = IB_WORK_UNIT) uniform usamplerBuffer ib_work_view;
-layout(binding = IB_HEAD_UNIT) uniform usamplerBuffer ib_head_view;
-layout(binding = IB_COUNT_UNIT) uniform usamplerBuffer ib_count_view;
 
 // The list of the step after next (read by the step before): emptied here,
 // so that no host upload sits between the dispatches.
@@ -81,7 +79,7 @@ void main() {
   const uint stride = gl_NumWorkGroups.x * 64u, count = texelFetch(ib_work_view, 3).x;
   for (uint e = gl_GlobalInvocationID.x; e < count; e += stride) {
     const uint pixel = texelFetch(ib_work_view, int(4u + e)).x;
-    const uint first = texelFetch(ib_head_view, int(pixel)).x, end = first + texelFetch(ib_count_view, int(pixel)).x;
+    const uint first = ib_pixel_first(pixel), end = first + ib_pixel_count(pixel);
     bool changed = false;
     for (uint s = first; s < end; ++s) changed = update(s) || changed;
     ib_pixel_updates[pixel] += end - first;

@@ -17,10 +17,11 @@ layout(location = IB_ADAPTIVE_LOCATION) uniform bool u_adaptive;
 layout(location = IB_USE_BETA_LOCATION) uniform bool u_use_beta;
 layout(location = IB_USE_GAMMA_LOCATION) uniform bool u_use_gamma;
 
-// -1: the neighbour is nearer in its list, +1: deeper, 0: same layer or no neighbour.
-int compare_layer(uint layer, uint link) {
+// -1: the neighbour is nearer in its list, +1: deeper, 0: same layer or no
+// neighbour. `adjacent` is the pixel of the link's direction (the link lies there).
+int compare_layer(uint layer, uint link, uint adjacent) {
   if (link >= IB_OFF_IMAGE) return 0;
-  const uint other = ib_layer_of(link, ib_sorted_key(link).w);
+  const uint other = ib_layer_of(link, adjacent);
   return other < layer ? -1 : (other > layer ? 1 : 0);
 }
 
@@ -31,11 +32,12 @@ void main() {
   const uint layer = ib_layer_of(s, pixel);
   const uvec4 links = ib_sorted_links(s);
   const float own_alpha = ib_sorted_color(s).a;
-  const float alpha = u_adaptive ? 1.0 - pow(1.0 - own_alpha, 1.0 / float(ib_count[pixel])) : own_alpha;
+  const float alpha = u_adaptive ? 1.0 - pow(1.0 - own_alpha, 1.0 / float(ib_pixel_count(pixel))) : own_alpha;
 
   const bool silhouette = any(equal(links, uvec4(IB_NONE)));
-  const ivec4 order = ivec4(compare_layer(layer, links.x), compare_layer(layer, links.y),
-                            compare_layer(layer, links.z), compare_layer(layer, links.w));
+  const uint row = uint(u_width);  // links: left, right, down, up (neighbors.comp)
+  const ivec4 order = ivec4(compare_layer(layer, links.x, pixel - 1u), compare_layer(layer, links.y, pixel + 1u),
+                            compare_layer(layer, links.z, pixel - row), compare_layer(layer, links.w, pixel + row));
   const bool under_a_neighbor = any(equal(order, ivec4(-1)));  // my layer index is greater
   const bool over_a_neighbor = any(equal(order, ivec4(1)));    // my layer index is smaller
 

@@ -57,6 +57,7 @@ uint64_t bytes_per_pixel(const Settings& s) { return tracks_convergence(s) ? 28 
 ShaderDefines fill_defines(const Settings& s) {
   ShaderDefines defines;
   if (s.measure_accuracy) defines.push_back({"IB_MEASURE", "1"});
+  if (s.records_surface()) defines.push_back({"IB_SURFACE", "1"});
   if (s.modulation == Modulation::angle) defines.push_back({"IB_ANGLE", "1"});
   if (s.modulation == Modulation::normal_variation) defines.push_back({"IB_NORMAL_VARIATION", "1"});
   return defines;
@@ -122,9 +123,9 @@ class IllustrationBuffer final : public Technique {
         worklists_[i] = make_buffer(list_bytes);
         worklist_views_[i] = make_buffer_texture(worklists_[i], GL_R32UI, 0, list_bytes);
       }
-      head_view_ = make_buffer_texture(head_, GL_R32UI, 0, GLsizeiptr(width) * height * 4);
-      count_view_ = make_buffer_texture(count_, GL_R32UI, 0, GLsizeiptr(width) * height * 4);
     }
+    head_view_ = make_buffer_texture(head_, GL_R32UI, 0, GLsizeiptr(width) * height * 4);
+    count_view_ = make_buffer_texture(count_, GL_R32UI, 0, GLsizeiptr(width) * height * 4);
     for (GLuint program : programs()) set_size(program, width, height);
   }
 
@@ -152,10 +153,14 @@ class IllustrationBuffer final : public Technique {
       const GLuint sort = sort_program(counts[1]);
       glUseProgram(sort);
       glBindTextureUnit(IB_FRAGMENT_UNIT, fragment_view_.id());
-      glBindTextureUnit(IB_NEXT_UNIT, next_view_.id());
+      if (s_.stores_triangle_vertices()) {
+        prepare_scene_data(frame.scene.scene());
+        glBindTextureUnit(IB_SORT_TRIANGLES_UNIT, triangles_view_.id());
+      }
       glDispatchCompute(GLuint(width_ + 7) / 8, GLuint(height_ + 7) / 8, 1);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
+    bind_sorted_views();
     const GLintptr second_range = second_field_range();
     if (modulated()) stylize(frame, second_range);
     auto stage = frame.clock.stage("compose");
@@ -169,8 +174,8 @@ class IllustrationBuffer final : public Technique {
     glUseProgram(compose_.id());
     frame.set_shared_uniforms(compose_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    for (GLuint unit : {IB_SEARCH_UNIT, IB_TRIANGLES_UNIT, IB_FIELDS_UNIT, IB_SHADE_UNIT, IB_WORK_UNIT, IB_HEAD_UNIT,
-                        IB_COUNT_UNIT})
+    for (GLuint unit : {IB_SEARCH_UNIT, IB_FIELDS_UNIT, IB_SHADE_UNIT, IB_WORK_UNIT, IB_HEAD_UNIT, IB_COUNT_UNIT,
+                        IB_FRAGMENT_UNIT, IB_SORT_TRIANGLES_UNIT})
       glBindTextureUnit(unit, 0);
   }
 
@@ -205,12 +210,9 @@ class IllustrationBuffer final : public Technique {
   // Neighbour search, then the fields' initial and boundary conditions
   // (stylize_init) and the `iterations` steps of eq. 8-9 (diffuse).
   void stylize(const Frame& frame, GLintptr second_range) {
-    glBindTextureUnit(IB_SEARCH_UNIT, search_view_.id());
-    glBindTextureUnit(IB_SHADE_UNIT, shade_view_.id());
     {
       auto stage = frame.clock.stage("neighbors");
-      prepare_scene_data(frame.scene.scene());
-      glBindTextureUnit(IB_TRIANGLES_UNIT, triangles_view_ ? triangles_view_.id() : 0);
+      if (s_.heuristic()) prepare_scene_data(frame.scene.scene());
       run_per_fragment(neighbors_.id());
     }
     {
@@ -233,6 +235,14 @@ class IllustrationBuffer final : public Technique {
         run_queued(uint32_t(i + 1));
       }
     }
+  }
+
+  // The sorted records and ranges as the later passes read them (views.glsl).
+  void bind_sorted_views() const {
+    glBindTextureUnit(IB_SEARCH_UNIT, search_view_.id());
+    glBindTextureUnit(IB_SHADE_UNIT, shade_view_.id());
+    glBindTextureUnit(IB_HEAD_UNIT, head_view_.id());
+    glBindTextureUnit(IB_COUNT_UNIT, count_view_.id());
   }
 
   // No pixel queued for any step yet (stamps 0); list 2 receives step 2's,
@@ -260,8 +270,6 @@ class IllustrationBuffer final : public Technique {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_WORK_OUT_BINDING, worklists_[(step + 1) % 3].id());
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, IB_WORK_NEXT_BINDING, worklists_[(step + 2) % 3].id(), 0, kWorklistHeaderBytes);
     glBindTextureUnit(IB_WORK_UNIT, worklist_views_[step % 3].id());
-    glBindTextureUnit(IB_HEAD_UNIT, head_view_.id());
-    glBindTextureUnit(IB_COUNT_UNIT, count_view_.id());
     glUseProgram(diffuse_listed_.id());
     set_uniform(diffuse_listed_.id(), IB_NEXT_STEP_LOCATION, step + 1);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.id());
@@ -290,8 +298,10 @@ class IllustrationBuffer final : public Technique {
         dynamic ? 0 : std::min(s_.max_per_pixel, std::max(kSmallestArray, std::bit_ceil(std::max<uint32_t>(longest, 1))));
     auto it = sorts_.find(size);
     if (it == sorts_.end()) {
-      const ShaderDefines defines =
+      ShaderDefines defines =
           dynamic ? ShaderDefines{{"IB_DYNAMIC", "1"}} : ShaderDefines{{"IB_ARRAY", std::to_string(size)}};
+      if (s_.stores_triangle_vertices()) defines.push_back({"IB_TRIANGLE_VERTICES", "1"});
+      if (s_.records_surface()) defines.push_back({"IB_SURFACE", "1"});
       it = sorts_.emplace(size, build_compute_program("algorithms/illustration_buffer/sort.comp", defines)).first;
       set_size(it->second.id(), width_, height_);
       if (dynamic) set_uniform(it->second.id(), IB_MAX_PER_PIXEL_LOCATION, s_.max_per_pixel);
@@ -350,6 +360,7 @@ class IllustrationBuffer final : public Technique {
     isolated_triangles_ = table.isolated_triangles;
   }
 
+
   void allocate_pool(uint64_t capacity) {
     next_ = make_buffer(GLsizeiptr(capacity) * kNextBytes);
     data_ = make_buffer(GLsizeiptr(capacity) * kFragmentBytes);
@@ -358,7 +369,6 @@ class IllustrationBuffer final : public Technique {
     if (s_.measure_accuracy) truth_ = make_buffer(GLsizeiptr(capacity) * kTruthBytes);
     gl_check("allocating the illustration buffer's fragment pool");
     fragment_view_ = make_buffer_texture(data_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kFragmentBytes);
-    next_view_ = make_buffer_texture(next_, GL_R32UI, 0, GLsizeiptr(capacity) * kNextBytes);
     search_view_ = make_buffer_texture(data2_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kSearchBytes);
     shade_view_ = make_buffer_texture(data3_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kShadeBytes);
     const GLsizeiptr field_bytes = kFieldBytes * GLsizeiptr(capacity);
@@ -392,7 +402,7 @@ class IllustrationBuffer final : public Technique {
   Buffer counters_, head_, count_, next_, data_, data2_, data3_, truth_, triangles_;
   Buffer stamps_, worklists_[3], pixel_updates_;  // skip_converged (worklist.glsl)
   Texture worklist_views_[3], head_view_, count_view_;
-  Texture fragment_view_, next_view_, search_view_, shade_view_, triangles_view_, fields_view_[2];  // read-only views (views.glsl)
+  Texture fragment_view_, search_view_, shade_view_, triangles_view_, fields_view_[2];  // read-only views (views.glsl)
   Framebuffer no_attachments_;
   const Scene* scene_seen_ = nullptr;
   std::string scene_hash_;
