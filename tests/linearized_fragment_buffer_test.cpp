@@ -93,14 +93,14 @@ TEST(LinearizedFragmentBuffer, EveryOptionMatchesTheReferenceOnThirtyTwoQuadsWit
     EXPECT_EQ(r.counters.overflow_retries, 0u) << what;
     EXPECT_EQ(r.counters.passes, 2u) << what << ": the count and the fill";
     // 24 B per fragment (8 B and the 64 triangles' flat colours, 16 B
-    // each, with flat-colour nodes), 12 B per pixel, the overflow word and
-    // the total, the prefix sum's block totals (2305 values: 3 blocks, then
-    // 1) and one length class (every list is 32 long: one full-screen draw);
-    // with the framebuffer-fetch fill 4 B per pixel more (the R32UI cursor
-    // target).
+    // each, with flat-colour nodes), 16 B per pixel (count, offset, length
+    // and fill cursor, a buffer or the R32UI target of the framebuffer-fetch
+    // fill), the overflow word and the total, the prefix sum's block totals
+    // (2305 values: 3 blocks, then 1) and one length class (every list is 32
+    // long: one full-screen draw).
     const uint64_t tiles = (w / 4) * (h / 4);
     const uint64_t nodes = flat_nodes(params) ? 8 * fragments + 64 * 16 : 24 * fragments;
-    const uint64_t per_pixel = find_figure(r.counters.extra, "framebuffer_fetch_fill") == 1.0 ? 16 : 12;
+    const uint64_t per_pixel = 16;
     EXPECT_EQ(r.counters.bytes_allocated, nodes + per_pixel * pixels + 8 + (3 + 1) * 4 + (16 + 4 * tiles)) << what;
     EXPECT_EQ(find_figure(r.counters.extra, "node_bytes"), flat_nodes(params) ? 8.0 : 24.0) << what;
   }

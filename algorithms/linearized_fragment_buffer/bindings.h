@@ -9,29 +9,29 @@
 #include "shaders/bindings.h"
 #include "algorithms/linked_list/bindings.h"
 
-// Storage buffer binding points: lengths.comp's, and the prefix sum's (a pass of its own).
-#define LFB_OFFSETS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 0)
-#define LFB_CURSORS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 1)
-#define LFB_KEYS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 2)  // the fill's 64-bit keys (LFB_KEY64)
-#define LFB_MISMATCHED_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 6)
+// Storage buffer binding points: the fill's and the resolve's, and the prefix sum's (a pass of its own).
+#define LFB_KEYS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 2)        // the fill's 64-bit keys (LFB_KEY64)
+#define LFB_MISMATCHED_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 6)  // the resolve's range check
 #define LFB_PREFIX_SUM_VALUES_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 0)
 #define LFB_PREFIX_SUM_SUMS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 1)
 
 // The nodes on image unit 0, the fill's cursors on image unit 2; the offsets
-// on texture unit 1 and, in the resolve, the cursors (the lengths) on the
-// unit where linked_list's classify.comp reads them; the prefix sum's counts
-// on texture unit 0; the scene's flat colours (flat_color_nodes) on unit 4
-// (unit 3 holds tile.vert's class tiles).
+// on texture unit 1 and, in the resolve, the lengths on the unit where
+// linked_list's classify.comp reads them; the prefix sum's counts on texture
+// unit 0; the scene's flat colours (flat_color_nodes) on unit 4 (unit 3 holds
+// tile.vert's class tiles); the fill's final cursors, which the resolve
+// checks, on unit 5.
 #define LFB_NODES_IMAGE_UNIT 0
 #define LFB_CURSORS_IMAGE_UNIT 2
 #define LFB_OFFSETS_UNIT 1
 #define LFB_LENGTHS_UNIT LINKED_LIST_LENGTHS_UNIT
 #define LFB_PREFIX_SUM_COUNTS_UNIT 0
 #define LFB_FLAT_COLORS_UNIT (LINKED_LIST_CLASS_TILES_UNIT + 1)
+#define LFB_FINAL_CURSORS_UNIT (LINKED_LIST_CLASS_TILES_UNIT + 2)
 
 // Uniform locations.
 #define LFB_PREFIX_SUM_COUNT_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 0)  // values at this level
 #define LFB_WIDTH_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 1)
-#define LFB_PIXELS_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 2)
+#define LFB_PIXELS_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 2)  // prefix_sum.comp
 
 #endif

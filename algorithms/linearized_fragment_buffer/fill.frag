@@ -39,7 +39,7 @@ layout(binding = LFB_NODES_IMAGE_UNIT, rg32ui) writeonly uniform uimageBuffer u_
 layout(location = LFB_WIDTH_LOCATION) uniform int u_width;
 
 void main() {
-  // No bounds check here: lengths.comp checks every pixel's range once.
+  // No bounds check here: the resolve checks every pixel's range once.
 #if defined(LFB_FETCH_CURSOR)
   const uint slot = cursor;
   cursor = slot + 1u;

@@ -37,9 +37,10 @@ namespace {
 // on unlit scenes with flat_color_nodes, the 8-byte key alone (the colour is
 // the triangle's, fetched by its id from the scene's flat-colour table).
 constexpr uint64_t kNodeBytes = 24, kFlatNodeBytes = 8, kTexelBytes = 8;
-// Per pixel: the R32F count, the offset and the fill cursor; the offsets
+// Per pixel: the R32F count, the offset, the length and the fill cursor (a
+// buffer, or the R32UI target with fill=framebuffer_fetch); the offsets
 // have one more value (the total).
-constexpr uint64_t kPixelBytes = 12;
+constexpr uint64_t kPixelBytes = 16;
 // The smallest array compiled, as in linked_list: tiny lists are not worth a program each.
 constexpr uint32_t kSmallestArray = 8;
 // The largest whole-list network; longer arrays are sorted in register
@@ -109,10 +110,12 @@ bool scans_on_host(const ParamSet& params) {
 }
 
 // The resolve's #defines for an array of `size` fragments: one network of
-// `size`, or blocks of `block` sorted by its network and merged.
-ShaderDefines resolve_defines(uint32_t size, bool blocks, uint32_t block, bool flat, bool key64) {
+// `size`, or blocks of `block` sorted by its network and merged; the final
+// cursors it checks in the fill's R32UI target (fetch) or cursor buffer.
+ShaderDefines resolve_defines(uint32_t size, bool blocks, uint32_t block, bool flat, bool key64, bool fetch) {
   ShaderDefines defines = linked_list::resolve_defines(linked_list::Sort::network, blocks ? block : size);
   if (flat) defines.push_back({"LFB_FLAT_COLOR", "1"});
+  if (fetch) defines.push_back({"LFB_FETCH_CURSOR", "1"});
   if (flat && key64) defines.push_back({"LFB_KEY64", "1"});
   if (!blocks) {
     defines.push_back({"LFB_NETWORK", "1"});
@@ -139,7 +142,6 @@ class LinearizedFragmentBuffer final : public Technique {
         host_scan_(scans_on_host(params)),
         key64_(uses_uint64_keys(params)),
         fill_(build_geometry_program(kFillShader, fill_defines(false))),
-        lengths_(build_compute_program("algorithms/linearized_fragment_buffer/lengths.comp")),
         mismatched_(make_buffer(4)),
         pool_("linearized_fragment_buffer", FragmentPool::Sizing::exact, kNodeBytes,
               [this](uint64_t capacity) { allocate_pool(capacity); }, 1, kTexelBytes) {}
@@ -151,9 +153,12 @@ class LinearizedFragmentBuffer final : public Technique {
     list_lengths_.resize(width, height);
     prefix_sum_.resize(pixels);
     offsets_ = make_buffer(GLsizeiptr((pixels + 1) * 4));
-    cursors_ = make_buffer(GLsizeiptr(pixels * 4));
+    lengths_ = make_buffer(GLsizeiptr(pixels * 4));
+    host_lengths_.resize(pixels);
     offsets_view_ = make_buffer_texture(offsets_, GL_R32UI);
-    cursors_view_ = make_buffer_texture(cursors_, GL_R32UI);
+    lengths_view_ = make_buffer_texture(lengths_, GL_R32UI);
+    cursors_ = fetch_cursors_ ? Buffer() : make_buffer(GLsizeiptr(pixels * 4));
+    cursors_view_ = fetch_cursors_ ? Texture() : make_buffer_texture(cursors_, GL_R32UI);
     class_capacity_ = 0;
     pool_.reset(1);  // the prefix sum sizes it before every fill
     if (fetch_cursors_) {
@@ -180,6 +185,7 @@ class LinearizedFragmentBuffer final : public Technique {
       // The total comes from the counts already read back, so the scan is
       // not waited for here (the fill is queued behind it).
       fragments_ = list_lengths_.total_fragments();
+      upload_lengths();
       glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);  // the copy below reads the scan's writes
       pool_.before_fill(frame);
       pool_.set_exact(fragments_);
@@ -193,7 +199,9 @@ class LinearizedFragmentBuffer final : public Technique {
     glBindImageTexture(LFB_NODES_IMAGE_UNIT, nodes_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32UI);
     glBindImageTexture(LFB_CURSORS_IMAGE_UNIT, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
     glBindTextureUnit(LFB_OFFSETS_UNIT, offsets_view_.id());
-    glBindTextureUnit(LFB_LENGTHS_UNIT, cursors_view_.id());
+    glBindTextureUnit(LFB_LENGTHS_UNIT, lengths_view_.id());
+    glBindTextureUnit(LFB_FINAL_CURSORS_UNIT, fetch_cursors_ ? cursor_target_.id() : cursors_view_.id());
+    bind_storage_buffers({{LFB_MISMATCHED_BINDING, &mismatched_}});
     if (flat_) glBindTextureUnit(LFB_FLAT_COLORS_UNIT, frame.scene.flat_colors_view());
     const std::vector<uint32_t> sizes = class_sizes();
     if (sizes.size() > class_capacity_) {
@@ -201,14 +209,16 @@ class LinearizedFragmentBuffer final : public Technique {
       classes_.resize(width_, height_, class_capacity_);
     }
     classes_.draw(frame, sizes, [&](uint32_t size) { return program(size); });
-    for (GLuint unit : {LFB_OFFSETS_UNIT, LFB_LENGTHS_UNIT, LFB_FLAT_COLORS_UNIT}) glBindTextureUnit(unit, 0);
+    for (GLuint unit : {LFB_OFFSETS_UNIT, LFB_LENGTHS_UNIT, LFB_FLAT_COLORS_UNIT, LFB_FINAL_CURSORS_UNIT})
+      glBindTextureUnit(unit, 0);
     glBindImageTexture(LFB_NODES_IMAGE_UNIT, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32UI);
+    fail_on_mismatched_ranges();
   }
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
     const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
-    c.bytes_allocated = pixels * (kPixelBytes + (fetch_cursors_ ? 4 : 0)) + 4 + prefix_sum_.bytes_allocated() +
+    c.bytes_allocated = pixels * kPixelBytes + 4 + prefix_sum_.bytes_allocated() +
                         pool_.capacity() * node_bytes() +
                         4 + (class_capacity_ > 0 ? classes_.bytes_allocated() : 0) + flat_table_bytes_;
     c.extra.push_back({"node_bytes", double(node_bytes())});
@@ -256,29 +266,21 @@ class LinearizedFragmentBuffer final : public Technique {
     }
     flat_table_bytes_ = flat_ ? frame.scene.flat_colors_bytes() : 0;
     draw_scene_pass(frame, flat_ ? fill_flat_ : fill_, framebuffer_);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-    if (fetch_cursors_) {
-      // The final cursors into the cursor buffer, where lengths.comp reads them.
-      glBindBuffer(GL_PIXEL_PACK_BUFFER, cursors_.id());
-      glGetTextureImage(cursor_target_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                        GLsizei(uint64_t(width_) * uint64_t(height_) * 4), nullptr);
-      glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    }
-    cursors_to_lengths();
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   }
 
-  // lengths.comp: the cursors become list lengths, and a pixel whose fill
-  // outgrew (or fell short of) its counted range fails the frame: the image
-  // would be wrong.
-  void cursors_to_lengths() {
-    const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
-    glUseProgram(lengths_.id());
-    set_uniform(lengths_.id(), LFB_PIXELS_LOCATION, GLuint(pixels));
-    bind_storage_buffers({{LFB_OFFSETS_BINDING, &offsets_},
-                          {LFB_CURSORS_BINDING, &cursors_},
-                          {LFB_MISMATCHED_BINDING, &mismatched_}});
-    glDispatchCompute(GLuint((pixels + 255) / 256), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  // The lengths the resolve and the length classes read: the counting
+  // pass's counts, already on the host (whole numbers in float).
+  void upload_lengths() {
+    const std::vector<float>& counts = list_lengths_.host_counts();
+    for (size_t i = 0; i < host_lengths_.size(); ++i) host_lengths_[i] = uint32_t(counts.at(i));
+    glNamedBufferSubData(lengths_.id(), 0, GLsizeiptr(host_lengths_.size() * 4), host_lengths_.data());
+  }
+
+  // The resolve counted the pixels whose fill outgrew (or fell short of)
+  // their counted range (resolve.frag, check_range): the image is wrong.
+  void fail_on_mismatched_ranges() const {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     GLuint mismatched = 0;
     glGetNamedBufferSubData(mismatched_.id(), 0, 4, &mismatched);
     if (mismatched != 0)
@@ -310,7 +312,7 @@ class LinearizedFragmentBuffer final : public Technique {
       const bool blocks = size > block_ && (register_blocks_ || size > kLargestNetwork);
       Program built = build_program({{GL_VERTEX_SHADER, "algorithms/linked_list/tile.vert"},
                                      {GL_FRAGMENT_SHADER, "algorithms/linearized_fragment_buffer/resolve.frag"}},
-                                    linked_list::tile_defines(resolve_defines(size, blocks, block_, flat_, key64_)));
+                                    linked_list::tile_defines(resolve_defines(size, blocks, block_, flat_, key64_, fetch_cursors_)));
       it = programs_.emplace(std::make_pair(size, flat_), std::move(built)).first;
       set_uniform(it->second.id(), LFB_WIDTH_LOCATION, width_);
     }
@@ -329,14 +331,15 @@ class LinearizedFragmentBuffer final : public Technique {
   bool backwards_allocation_, flat_color_nodes_, fetch_cursors_, host_scan_, key64_;
   bool flat_ = false;  // this frame stores flat-colour nodes
   uint64_t flat_table_bytes_ = 0;
-  Program fill_, fill_flat_, lengths_;
+  Program fill_, fill_flat_;
   ListLengthPass list_lengths_;
   lfb::PrefixSum prefix_sum_;
   linked_list::LengthClasses classes_;
   size_t class_capacity_ = 0;
   std::map<std::pair<uint32_t, bool>, Program> programs_;  // resolves by (array size, flat colours)
-  Buffer offsets_, cursors_, mismatched_, nodes_;
-  Texture offsets_view_, cursors_view_, nodes_view_, cursor_target_;
+  Buffer offsets_, lengths_, cursors_, mismatched_, nodes_;
+  Texture offsets_view_, lengths_view_, cursors_view_, nodes_view_, cursor_target_;
+  std::vector<uint32_t> host_lengths_;
   Framebuffer framebuffer_;
   int width_ = 0, height_ = 0;
   uint32_t longest_ = 0;

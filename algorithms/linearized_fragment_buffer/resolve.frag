@@ -41,9 +41,28 @@ vec4 color_of(uvec3 e) {
 #endif
 }
 layout(binding = LFB_OFFSETS_UNIT) uniform usamplerBuffer u_offsets;
-// The list lengths (lengths.comp); classify.comp reads them too.
+// The list lengths (the counting pass's counts); classify.comp reads them too.
 layout(binding = LFB_LENGTHS_UNIT) uniform usamplerBuffer u_lengths;
 layout(location = LFB_WIDTH_LOCATION) uniform int u_width;
+
+// Every pixel's cursor started at its offset and went up once per fragment
+// the fill wrote, so it must end at offset + length. A pixel where it does
+// not is counted, and the host fails the frame: the counting pass and the
+// fill rasterized different fragments (never expected: the same geometry
+// under the same state), so the fill wrote into another pixel's range. One
+// check per pixel here instead of a bounds check per fragment in the fill,
+// where it cost ~10% of the fill.
+#if defined(LFB_FETCH_CURSOR)
+layout(binding = LFB_FINAL_CURSORS_UNIT) uniform usampler2D u_final_cursors;  // the fill's R32UI target
+uint final_cursor(int pixel) { return texelFetch(u_final_cursors, ivec2(pixel % u_width, pixel / u_width), 0).x; }
+#else
+layout(binding = LFB_FINAL_CURSORS_UNIT) uniform usamplerBuffer u_final_cursors;  // the fill's cursor buffer
+uint final_cursor(int pixel) { return texelFetch(u_final_cursors, pixel).x; }
+#endif
+layout(std430, binding = LFB_MISMATCHED_BINDING) coherent buffer LfbMismatched { uint lfb_mismatched_pixels; };
+void check_range(int pixel, uint base, uint length) {
+  if (final_cursor(pixel) != base + length) atomicAdd(lfb_mismatched_pixels, 1u);
+}
 
 vec3 accumulated = vec3(0.0);
 float transmittance = 1.0;
@@ -98,6 +117,7 @@ void main() {
   const int pixel = int(oit_pixel_index(u_width));
   const uint base = texelFetch(u_offsets, pixel).x;
   const uint available = texelFetch(u_lengths, pixel).x;
+  check_range(pixel, base, available);
   LL_LOAD_ALL
   LL_NETWORK
   LL_BLEND_ALL
@@ -140,6 +160,7 @@ void main() {
   const int pixel = int(oit_pixel_index(u_width));
   const uint start = texelFetch(u_offsets, pixel).x;
   const uint count = texelFetch(u_lengths, pixel).x;
+  check_range(pixel, start, count);
   // A loop over the blocks, the network unrolled inside: code size grows with
   // the block, not with the list (unrolled over 16 blocks of 16, a 256-array
   // took llvmpipe most of a minute to compile).
