@@ -20,7 +20,7 @@ layout(location = OIT_UNIFORM_LIT) uniform bool u_lit;
 bool oit_scene_lit() { return u_lit; }
 #endif
 
-layout(std430, binding = OIT_BINDING_TRIANGLE_IDS) readonly buffer OitTriangleIds { uint oit_triangle_ids[]; };
+layout(binding = OIT_UNIT_TRIANGLE_IDS) uniform usamplerBuffer oit_triangle_ids;
 
 layout(location = OIT_UNIFORM_PIXEL_ORIGIN) uniform ivec2 u_pixel_origin;
 
@@ -31,7 +31,7 @@ ivec2 oit_image_pixel() { return ivec2(gl_FragCoord.xy) + u_pixel_origin; }
 
 // Stable triangle id: the deterministic depth tie-break, unchanged when the
 // triangles are submitted in another order.
-uint oit_triangle_id() { return oit_triangle_ids[gl_PrimitiveID]; }
+uint oit_triangle_id() { return texelFetch(oit_triangle_ids, gl_PrimitiveID).x; }
 
 // Distance along the view direction (positive in front of the camera).
 float oit_view_depth() { return -v_view_position.z; }

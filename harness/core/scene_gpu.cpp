@@ -4,10 +4,27 @@
 #include <cmath>
 #include <vector>
 #include <cstddef>
+#include <stdexcept>
+#include <string>
 
 #include "shaders/bindings.h"
 
 namespace oit {
+namespace {
+
+// The triangle ids as the shaders read them (OIT_UNIT_TRIANGLE_IDS); a
+// scene with more triangles than the device's buffer textures hold fails
+// here with the numbers, not with ids read as 0.
+Texture triangle_ids_view(const Buffer& ids, size_t triangles) {
+  GLint max_texels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+  if (uint64_t(triangles) > uint64_t(std::max(max_texels, 0)))
+    throw std::runtime_error("scene: " + std::to_string(triangles) + " triangles, but this device's buffer textures hold " +
+                             std::to_string(max_texels) + " texels (GL_MAX_TEXTURE_BUFFER_SIZE), the most triangles a scene may have here");
+  return make_buffer_texture(ids, GL_R32UI);
+}
+
+}  // namespace
 
 SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
   // GL rejects zero-sized buffer storage; an empty scene gets placeholders
@@ -19,6 +36,7 @@ SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
   vertices_ = upload(scene.vertices.size() * sizeof(Vertex), scene.vertices.data());
   indices_ = upload(scene.indices.size() * sizeof(uint32_t), scene.indices.data());
   triangle_ids_ = upload(scene.triangle_ids.size() * sizeof(uint32_t), scene.triangle_ids.data());
+  triangle_ids_view_ = triangle_ids_view(triangle_ids_, scene.triangle_ids.size());
   bool finite = true;
   for (const auto& v : scene.vertices) {
     finite &= std::isfinite(v.position.x) && std::isfinite(v.position.y) && std::isfinite(v.position.z);
@@ -84,7 +102,7 @@ void SceneGpu::build_flat_colors() const {
 
 void SceneGpu::bind() const {
   glBindVertexArray(vertex_array_.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, OIT_BINDING_TRIANGLE_IDS, triangle_ids_.id());
+  glBindTextureUnit(OIT_UNIT_TRIANGLE_IDS, triangle_ids_view_.id());
 }
 
 void SceneGpu::draw() const {

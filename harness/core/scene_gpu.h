@@ -38,6 +38,7 @@ class SceneGpu {
   void build_flat_colors() const;
 
   Buffer vertices_, indices_, triangle_ids_;
+  Texture triangle_ids_view_;
   mutable Buffer flat_colors_;
   mutable Texture flat_colors_view_;
   mutable bool flat_colors_built_ = false;
