@@ -1,13 +1,14 @@
 #version 450 core
-// Neighbour search (carnecky2013 section 4.4): every sorted fragment looks
-// for its geodesic neighbour in the list of each of the 4 adjacent pixels
-// (left = x-1, right = x+1, down = y-1, up = y+1, GL window coordinates).
+// Heuristic neighbour search (carnecky2013 section 4.4): every sorted
+// fragment looks for its geodesic neighbour in the list of each of the 4
+// adjacent pixels (left = x-1, right = x+1, down = y-1, up = y+1, GL window
+// coordinates).
 //  IB_HEURISTIC:      carnecky2013 Algorithm 2 with the continuity measure
 //                     eq. 1-3 and the mutual check (second loop over the own list).
 //                     IB_MERGE=1 (neighbors=heuristic_merge) finds the same
 //                     candidate by a walk from the depth-nearest fragment.
-//  IB_TRIANGLE_INDEX: pastyrik2016 Algorithm 3: the first (nearest) fragment
-//                     whose triangle shares a vertex index with this one's.
+// (neighbors=triangle_index, pastyrik2016 Algorithm 3, is
+// neighbors_triangle_index.comp: one invocation per pixel.)
 // Each search is its own loop over one contiguous range (no list walking,
 // no nesting); the four directions are unrolled calls.
 #include "algorithms/illustration_buffer/ib_storage.glsl"
@@ -138,40 +139,8 @@ uint find_neighbor(uint s, uint own_pixel, int dx, int dy, uint other_pixel) {
   return best;
 }
 
-#elif defined(IB_TRIANGLE_INDEX)
-// The sort stored the vertex indices of each fragment's triangle in its
-// geometry texel (xyz; w the fill record), so a candidate costs one read.
-bool shares_vertex(uvec3 mine, uvec3 theirs) {
-  // At least one shared vertex index: a neighbour (rules 2-4 of section 3.4).
-  return any(equal(mine, theirs.xxx)) || any(equal(mine, theirs.yyy)) || any(equal(mine, theirs.zzz));
-}
-
-// Whether candidate `first + k` shares a vertex, for k = 0..3.
-bvec4 four_share(uvec3 mine, uint first) {
-  return bvec4(shares_vertex(mine, ib_sorted_geometry(first).xyz), shares_vertex(mine, ib_sorted_geometry(first + 1u).xyz),
-               shares_vertex(mine, ib_sorted_geometry(first + 2u).xyz), shares_vertex(mine, ib_sorted_geometry(first + 3u).xyz));
-}
-
-uint first_of(bvec4 match) { return match.x ? 0u : match.y ? 1u : match.z ? 2u : 3u; }
-
-// Candidates are tested eight at a time (fewer loop iterations, independent
-// reads: neighbour stage 107 against 262 ms with a key read, a row read and
-// a loop iteration per candidate on 32 quads); the first match wins.
-uint find_neighbor(uint s, uint own_pixel, int dx, int dy, uint other_pixel) {
-  const uvec3 mine = ib_sorted_geometry(s).xyz;
-  const uint b_first = ib_pixel_first(other_pixel), b_end = b_first + ib_pixel_count(other_pixel);
-  uint b = b_first;
-  for (; b + 8u <= b_end; b += 8u) {
-    const bvec4 low = four_share(mine, b), high = four_share(mine, b + 4u);
-    if (any(low)) return b + first_of(low);
-    if (any(high)) return b + 4u + first_of(high);
-  }
-  for (; b < b_end; ++b)
-    if (shares_vertex(mine, ib_sorted_geometry(b).xyz)) return b;
-  return IB_NONE;
-}
 #else
-#error "neighbors.comp: define IB_HEURISTIC or IB_TRIANGLE_INDEX"
+#error "neighbors.comp: define IB_HEURISTIC (neighbors=triangle_index is neighbors_triangle_index.comp)"
 #endif
 
 uint search(uint s, uint pixel, int x, int y, int dx, int dy) {

@@ -79,10 +79,10 @@ class IllustrationBuffer final : public Technique {
                                         : s_.purely_local() ? ShaderDefines{{"IB_LOCAL_OPACITY", "1"}}
                                                              : ShaderDefines{});
     if (!modulated()) return;
-    neighbors_ = build_compute_program(
-        "algorithms/illustration_buffer/neighbors.comp",
-        {{s_.heuristic() ? "IB_HEURISTIC" : "IB_TRIANGLE_INDEX", "1"},
-         {"IB_MERGE", s_.neighbors == NeighborSearch::heuristic_merge ? "1" : "0"}});
+    neighbors_ = s_.heuristic() ? build_compute_program("algorithms/illustration_buffer/neighbors.comp",
+                                                        {{"IB_HEURISTIC", "1"},
+                                                         {"IB_MERGE", s_.neighbors == NeighborSearch::heuristic_merge ? "1" : "0"}})
+                                : build_compute_program("algorithms/illustration_buffer/neighbors_triangle_index.comp");
     if (s_.heuristic()) {
       set_uniform(neighbors_.id(), IB_WEIGHT_Z_LOCATION, s_.weight_z);
       set_uniform(neighbors_.id(), IB_WEIGHT_N_LOCATION, s_.weight_n);
@@ -157,8 +157,7 @@ class IllustrationBuffer final : public Technique {
         prepare_scene_data(frame.scene.scene());
         glBindTextureUnit(IB_SORT_TRIANGLES_UNIT, triangles_view_.id());
       }
-      glDispatchCompute(GLuint(width_ + 7) / 8, GLuint(height_ + 7) / 8, 1);
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+      run_per_pixel();
     }
     bind_sorted_views();
     const GLintptr second_range = second_field_range();
@@ -212,8 +211,13 @@ class IllustrationBuffer final : public Technique {
   void stylize(const Frame& frame, GLintptr second_range) {
     {
       auto stage = frame.clock.stage("neighbors");
-      if (s_.heuristic()) prepare_scene_data(frame.scene.scene());
-      run_per_fragment(neighbors_.id());
+      if (s_.heuristic()) {
+        prepare_scene_data(frame.scene.scene());
+        run_per_fragment(neighbors_.id());
+      } else {
+        glUseProgram(neighbors_.id());
+        run_per_pixel();
+      }
     }
     {
       auto stage = frame.clock.stage("stylize_init");
@@ -317,6 +321,13 @@ class IllustrationBuffer final : public Technique {
       const uint64_t x = std::min<uint64_t>(groups, 65535);
       glDispatchCompute(GLuint(x), GLuint((groups + x - 1) / x), 1);
     }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  }
+
+  // The bound program once per pixel, in 8x8 workgroups (sort.comp,
+  // neighbors_triangle_index.comp).
+  void run_per_pixel() const {
+    glDispatchCompute(GLuint(width_ + 7) / 8, GLuint(height_ + 7) / 8, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   }
 
