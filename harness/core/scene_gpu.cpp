@@ -19,8 +19,9 @@ Texture triangle_ids_view(const Buffer& ids, size_t triangles) {
   GLint max_texels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
   if (uint64_t(triangles) > uint64_t(std::max(max_texels, 0)))
-    throw std::runtime_error("scene: " + std::to_string(triangles) + " triangles, but this device's buffer textures hold " +
-                             std::to_string(max_texels) + " texels (GL_MAX_TEXTURE_BUFFER_SIZE), the most triangles a scene may have here");
+    throw std::runtime_error("scene: " + std::to_string(triangles) + " triangles, but this device's buffer textures " +
+                             "hold " + std::to_string(max_texels) +
+                             " texels (GL_MAX_TEXTURE_BUFFER_SIZE), the most triangles a scene may have here");
   return make_buffer_texture(ids, GL_R32UI);
 }
 
