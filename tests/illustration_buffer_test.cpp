@@ -249,9 +249,11 @@ TEST(IllustrationBuffer, TooSmallPoolGrowsAndGivesTheSameImage) {
   const int w = 32, h = 32;
   for (const char* modulation : {"none", "silhouette_halo"}) {
     const RunResult small = test::render_once(
-        "illustration_buffer", {{"modulation", modulation}, {"initial_nodes_per_pixel", "1"}}, "spheres", {}, w, h);
+        "illustration_buffer", {{"modulation", modulation}, {"storage", "linked"}, {"initial_nodes_per_pixel", "1"}},
+        "spheres", {}, w, h);
     const RunResult roomy = test::render_once(
-        "illustration_buffer", {{"modulation", modulation}, {"initial_nodes_per_pixel", "64"}}, "spheres", {}, w, h);
+        "illustration_buffer", {{"modulation", modulation}, {"storage", "linked"}, {"initial_nodes_per_pixel", "64"}},
+        "spheres", {}, w, h);
     EXPECT_GE(small.counters.overflow_retries, 1u) << modulation;
     EXPECT_EQ(small.counters.passes, 2u) << modulation;
     EXPECT_EQ(roomy.counters.overflow_retries, 0u) << modulation;
@@ -470,7 +472,8 @@ TEST(IllustrationBuffer, ADiffusionToleranceStaysWithinItsMeasuredError) {
 
 TEST(IllustrationBuffer, OneIterationTimesInitialisationAndTheStepApart) {
   const RunResult r = test::render_once("illustration_buffer", {{"iterations", "1"}}, "torus", {}, 32, 32);
-  for (const char* stage : {"clear", "fill", "sort", "neighbors", "stylize_init", "diffuse", "compose"})
+  // count: the default storage=linearized's counting pass (storage=linked clears instead).
+  for (const char* stage : {"count", "fill", "sort", "neighbors", "stylize_init", "diffuse", "compose"})
     EXPECT_NE(r.stage(stage, "wall"), nullptr) << stage;
   EXPECT_EQ(r.stage("stylize", "wall"), nullptr);
   EXPECT_EQ(test::extra_counter(r, "stylize_passes"), 2.0);
@@ -496,7 +499,9 @@ TEST(IllustrationBuffer, DynamicSortGivesTheArraySortsImage) {
                                    {"quads", {{"layers", "12"}}, {{"max_per_pixel", "5"}, {"modulation", "none"}}},
                                    {"torus", {}, {{"neighbors", "heuristic"}}}};
   for (const Case& c : cases) {
-    RawParams array = c.params, dynamic = c.params, automatic = c.params;
+    RawParams array = c.params;
+    array["storage"] = "linked";  // sort=dynamic sorts the fill's linked lists
+    RawParams dynamic = array, automatic = array;
     array["sort"] = "array";
     dynamic["sort"] = "dynamic";
     automatic["sort"] = "auto";
@@ -520,9 +525,66 @@ TEST(IllustrationBuffer, DynamicSortGivesTheArraySortsImage) {
         EXPECT_EQ(test::extra_counter(a, links), test::extra_counter(d, links)) << c.scene << " " << links;
     }
   }
-  const RunResult plain = test::render_once("illustration_buffer", {{"sort", "dynamic"}, {"modulation", "none"}},
-                                            "spheres", {}, 48, 48);
+  const RunResult plain = test::render_once(
+      "illustration_buffer", {{"sort", "dynamic"}, {"storage", "linked"}, {"modulation", "none"}}, "spheres", {}, 48, 48);
   EXPECT_LT(plain.error->max_abs, kFloatTolerance);
+}
+
+// storage=linearized (a counting pass, each pixel's contiguous range from
+// the prefix sum, filled in place) must give the records of the linked lists:
+// the same image, counts and links, with both ways of taking a slot, also
+// with truncated lists; exactly sized, so never a re-grow.
+TEST(IllustrationBuffer, LinearizedStorageGivesTheLinkedListsRecords) {
+  struct Case {
+    const char* scene;
+    RawParams scene_params, params;
+  };
+  const std::vector<Case> cases = {{"spheres", {}, {}},
+                                   {"torus", {}, {}},
+                                   {"torus", {}, {{"neighbors", "heuristic"}}},
+                                   {"random_quads", {{"count", "64"}, {"size", "0.3"}}, {{"modulation", "none"}}},
+                                   {"quads", {{"layers", "12"}}, {{"max_per_pixel", "5"}, {"modulation", "none"}}},
+                                   {"quads", {{"layers", "12"}, {"objects", "3"}}, {{"max_per_pixel", "5"}}}};
+  for (const Case& c : cases) {
+    RawParams linked = c.params;
+    linked["storage"] = "linked";
+    const RunResult l = test::render_once("illustration_buffer", linked, c.scene, c.scene_params, 48, 40);
+    for (const char* fill : {"auto", "atomic"}) {
+      RawParams linearized = c.params;
+      linearized["storage"] = "linearized";
+      linearized["fill"] = fill;
+      const RunResult r = test::render_once("illustration_buffer", linearized, c.scene, c.scene_params, 48, 40);
+      const std::string what = std::string(c.scene) + " fill=" + fill;
+      ASSERT_EQ(r.status, RunStatus::ok) << what << ": " << r.message;
+      EXPECT_EQ(largest_difference(l.image, r.image), 0.0) << what;
+      EXPECT_EQ(test::extra_counter(r, "linearized_storage"), 1.0) << what;
+      if (std::string(fill) == "atomic") EXPECT_EQ(test::extra_counter(r, "framebuffer_fetch_fill"), 0.0) << what;
+      EXPECT_EQ(r.counters.overflow_retries, 0u) << what;
+      EXPECT_EQ(r.counters.passes, 2u) << what;  // the counting pass and the fill
+      EXPECT_EQ(r.counters.fragments_stored, l.counters.fragments_stored) << what;
+      EXPECT_EQ(r.counters.fragments_dropped, l.counters.fragments_dropped) << what;
+      EXPECT_LT(r.counters.bytes_allocated, l.counters.bytes_allocated) << what;
+      EXPECT_EQ(test::work_saved(r, "fragments_not_sorted"), test::work_saved(l, "fragments_not_sorted")) << what;
+      for (const char* counter : {"lists_truncated", "links_left", "links_right", "links_down", "links_up",
+                                  "link_checksum", "silhouette_fragments", "fragment_updates"}) {
+        const bool counted = find_figure(l.counters.extra, counter).has_value();
+        EXPECT_EQ(find_figure(r.counters.extra, counter).has_value(), counted) << what << " " << counter;
+        if (counted) EXPECT_EQ(test::extra_counter(r, counter), test::extra_counter(l, counter)) << what << " " << counter;
+      }
+    }
+  }
+}
+
+TEST(IllustrationBuffer, StorageOptionsThatDoNotGoTogetherAreErrorsNamingThem) {
+  const TechniqueDescriptor& d = builtin_techniques().get("illustration_buffer");
+  for (const auto& [params, named] : std::vector<std::pair<RawParams, std::string>>{
+           {{{"storage", "linearized"}, {"sort", "dynamic"}}, "sort=dynamic"},
+           {{{"storage", "linked"}, {"fill", "atomic"}}, "fill=atomic"}}) {
+    const RunResult r = test::harness().run(test::one_frame("illustration_buffer", params, "quads", {}, 8));
+    EXPECT_EQ(r.status, RunStatus::error) << named;
+    EXPECT_NE(r.message.find(named), std::string::npos) << r.message;
+    EXPECT_THROW(d.create(ParamSet(d.params, params, "technique 'illustration_buffer'")), std::invalid_argument) << named;
+  }
 }
 
 // carnecky2013 Fig. 11(c): opacity = (2/pi) * the angle between normal and

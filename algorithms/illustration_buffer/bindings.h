@@ -38,6 +38,10 @@
 // The sort's (sort.comp), a program of its own: fill records and the triangle table.
 #define IB_FRAGMENT_UNIT 0
 #define IB_SORT_TRIANGLES_UNIT 1  // neighbors=triangle_index
+#define IB_OFFSETS_UNIT 2          // storage=linearized: the fill's per-pixel ranges
+#define IB_FINAL_CURSORS_UNIT 3    // storage=linearized: where each pixel's fill ended
+// Image units (fill.frag; the cursors with storage=linearized and fill=atomic).
+#define IB_CURSORS_IMAGE_UNIT 0
 
 // Uniform locations. u_width / u_height are declared by ib_storage.glsl for
 // every program, and each program uses a subset (the C++ asks uniform_active).

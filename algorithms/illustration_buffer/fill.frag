@@ -1,10 +1,18 @@
 #version 450 core
+#if defined(IB_FETCH_CURSOR)
+#extension GL_EXT_shader_framebuffer_fetch : require
+#endif
 #include "shaders/subgroup_atomics.glsl"
 // Fill (carnecky2013 Algorithm 1, pastyrik2016 Algorithm 1): every fragment
 // is appended to its pixel's list with its colour, depth, slopes, normal,
 // object and triangle id. The list length is counted even when the pool is
 // full, so the host learns how many records it needs (overflow -> grow and
 // render again) and how long the longest list is.
+// IB_LINEARIZED (storage=linearized): the host already knows every count
+// (the counting pass); pixel p owns records [offset[p], offset[p+1]) and a
+// fragment takes the next of them from its pixel's cursor, which started at
+// the offset: an image atomic, or (IB_FETCH_CURSOR) the pixel's R32UI colour
+// read and incremented in primitive order. No list, no global counter.
 #include "shaders/shading.glsl"
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 
@@ -24,6 +32,43 @@ layout(location = OIT_UNIFORM_PROJECTION) uniform mat4 u_projection;
 // Unit vector from the fragment towards the eye along its view ray: +z for
 // an orthographic camera (no perspective divide: projection[2][3] = 0).
 vec3 to_eye() { return u_projection[2][3] == 0.0 ? vec3(0.0, 0.0, 1.0) : normalize(-v_view_position); }
+
+#if defined(IB_FETCH_CURSOR)
+layout(location = 0) inout uint ib_cursor;
+#elif defined(IB_LINEARIZED)
+layout(binding = IB_CURSORS_IMAGE_UNIT, r32ui) uniform uimageBuffer ib_cursors;
+#endif
+
+// The record this fragment fills, or IB_NIL when the pool is full (storage=linked).
+uint take_record(uint pixel) {
+#if defined(IB_FETCH_CURSOR)
+  const uint slot = ib_cursor;
+  ib_cursor = slot + 1u;
+  return slot;
+#elif defined(IB_LINEARIZED)
+  return imageAtomicAdd(ib_cursors, int(pixel), 1u);
+#else
+  const uint position = atomicAdd(ib_count[pixel], 1u);
+  OIT_ATOMIC_RAISE(ib_longest, position + 1u);
+  // Beyond the sort's array: counted here; the sort keeps the nearest max_per_pixel.
+  if (position >= u_max_per_pixel) {
+    OIT_ATOMIC_COUNT(ib_dropped);
+    if (position == u_max_per_pixel) atomicAdd(ib_truncated, 1u);
+  }
+  uint index;
+  OIT_ATOMIC_APPEND(ib_produced, index);
+  return index < u_capacity ? index : IB_NIL;  // pool overflow: the host grows the pool and re-renders
+#endif
+}
+
+// The fill's list link of record `index`: the pixel's old head (storage=linked).
+uint link_record(uint pixel, uint index) {
+#if defined(IB_LINEARIZED)
+  return IB_NIL;  // the records of a pixel are contiguous
+#else
+  return atomicExchange(ib_head[pixel], index);
+#endif
+}
 
 #ifdef IB_MEASURE
 // Ground truth for the neighbour accuracy only (parameter measure_accuracy):
@@ -47,17 +92,9 @@ void main() {
   const vec2 footprint = fwidth(v_uv);
 #endif
   const uint pixel = uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);
-  const uint position = atomicAdd(ib_count[pixel], 1u);
-  OIT_ATOMIC_RAISE(ib_longest, position + 1u);
-  // Beyond the sort's array: counted here; the sort keeps the nearest max_per_pixel.
-  if (position >= u_max_per_pixel) {
-    OIT_ATOMIC_COUNT(ib_dropped);
-    if (position == u_max_per_pixel) atomicAdd(ib_truncated, 1u);
-  }
-  uint index;
-  OIT_ATOMIC_APPEND(ib_produced, index);
-  if (index >= u_capacity) return;  // pool overflow: the host grows the pool and re-renders
-  const uint next = atomicExchange(ib_head[pixel], index);
+  const uint index = take_record(pixel);
+  if (index == IB_NIL) return;
+  const uint next = link_record(pixel, index);
   const uvec4 key = uvec4(floatBitsToUint(depth), oit_triangle_id(), v_object_id, next);
 #ifdef IB_SURFACE
   const uvec4 surface = uvec4(floatBitsToUint(vec3(slopes, local_opacity)), ib_pack_normal(oit_view_normal()));

@@ -17,6 +17,9 @@ const Choices<Modulation> kModulations{{Modulation::none, "none"},
                                        {Modulation::normal_variation, "normal_variation"}};
 const Choices<SortMethod> kSorts{{SortMethod::automatic, "auto"}, {SortMethod::array, "array"},
                                  {SortMethod::dynamic, "dynamic"}};
+const Choices<Storage> kStorages{{Storage::linked, "linked"}, {Storage::linearized, "linearized"}};
+const Choices<SlotFill> kSlotFills{
+    {SlotFill::automatic, "auto"}, {SlotFill::atomic, "atomic"}, {SlotFill::framebuffer_fetch, "framebuffer_fetch"}};
 const Choices<Profile> kProfiles{{Profile::none, "none"}, {Profile::exponential, "exponential"}, {Profile::power, "power"}};
 
 }  // namespace
@@ -30,6 +33,8 @@ Settings settings_from(const ParamSet& p) {
   s.skip_converged = p.boolean("skip_converged");
   s.diffusion_tolerance = float(p.real("diffusion_tolerance"));
   s.sort = p.choice("sort", kSorts);
+  s.storage = p.choice("storage", kStorages);
+  s.fill = p.choice("fill", kSlotFills);
   s.normal_variation_scale = float(p.real("normal_variation_scale"));
   s.lambda_alpha = float(p.real("lambda_alpha"));
   s.lambda_beta = float(p.real("lambda_beta"));
@@ -92,15 +97,27 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
           illustration_buffer::kSorts.spec(
               "sort", illustration_buffer::SortMethod::automatic,
               "array = rank sort in a local array (carnecky2013 4.3); dynamic = insertion sort of the linked list in "
-              "the buffers (pastyrik2016 Algorithm 2); auto = dynamic when the frame's longest list has at most 4 "
-              "fragments, else array; the same records either way"),
+              "the buffers (pastyrik2016 Algorithm 2; storage=linked only); auto = dynamic when the lists are linked "
+              "and the frame's longest has at most 4 fragments, else array; the same records either way"),
+          illustration_buffer::kStorages.spec(
+              "storage", illustration_buffer::Storage::linearized,
+              "where the fill puts the records (the same records and image either way): linked = per-pixel linked lists in a pool sized from the previous "
+              "frame (grown with a re-render on overflow; carnecky2013 Algorithm 1); linearized = a counting pass, "
+              "then each pixel's contiguous range from the counts' prefix sum, exactly sized, filled in place "
+              "(Knowles et al. 2012): no list walk in the sort, no global counter in the fill"),
+          illustration_buffer::kSlotFills.spec(
+              "fill", illustration_buffer::SlotFill::automatic,
+              "storage=linearized: how a fragment takes its slot: atomic = an image atomic on its pixel's cursor; "
+              "framebuffer_fetch = the cursor is the pixel's R32UI colour, read and incremented in primitive order "
+              "(GL_EXT_shader_framebuffer_fetch); auto = framebuffer_fetch where the device has it"),
           ParamSpec::real("normal_variation_scale", 10.0, 0.0, 1000.0,
                           "modulation=normal_variation: opacity = min(1, scale * |grad n|), grad n the view normal's "
                           "change per pixel (dFdx, dFdy)"),
           ParamSpec::integer("max_per_pixel", 64, 1, 1024,
                              "sort array size; longer lists keep their nearest max_per_pixel fragments (counted)"),
           ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,
-                             "first frame's pool per pixel; it grows (with a re-render) on overflow"),
+                             "storage=linked: first frame's pool per pixel; it grows (with a re-render) on overflow "
+                             "(storage=linearized sizes the pool exactly from its counting pass)"),
           ParamSpec::boolean("measure_accuracy", false,
                              "record surface id and (u, v) per fragment and report neighbor_precision/recall "
                              "(16 B per fragment more; computed after the timed frames)"),
@@ -108,11 +125,13 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
                           "a link is correct when |du|, |dv| are within this many pixel footprints (fwidth(uv))")},
       // stylize_init sets the fields (carnecky2013 5.2-5.3); diffuse runs the
       // `iterations` steps of eq. 8-9 (iterations=1 times the paper's one solve step).
-      .stages = {"clear", "fill", "sort", "neighbors", "stylize_init", "diffuse", "compose"},
+      // count: storage=linearized's counting pass and prefix sum; clear: storage=linked's.
+      .stages = {"count", "clear", "fill", "sort", "neighbors", "stylize_init", "diffuse", "compose"},
       // The convergence tolerance trades error for time; the neighbour
       // searches change the links (heuristic and heuristic_merge find the same ones).
       .quality_sweep = {{"diffusion_tolerance", {"0.01", "0.001", "0"}},
-                        {"neighbors", {"heuristic_merge", "heuristic", "triangle_index"}}},
+                        {"neighbors", {"heuristic_merge", "heuristic", "triangle_index"}},
+                        {"storage", {"linked", "linearized"}}},
       // Approximate (the default): exact (float blend) only with modulation=none.
       .adaptive_switches = {{"skip_converged",
                               "diffuses only the pixels around fragments that changed in the previous iteration",
@@ -122,7 +141,7 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
         const illustration_buffer::Settings s = illustration_buffer::settings_from(params);
         if (s.diffused() && s.neighbors == illustration_buffer::NeighborSearch::triangle_index && !scene.indexed)
           return "neighbors=triangle_index needs indexed geometry (shared vertex indices)";
-        return "";
+        return illustration_buffer::missing_device_feature(s);
       },
       .create = [](const ParamSet& params) {
         return illustration_buffer::make_illustration_buffer(illustration_buffer::settings_from(params));

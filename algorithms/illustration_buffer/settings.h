@@ -2,6 +2,7 @@
 // The validated parameters of the illustration buffer, typed.
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include "harness/core/technique.h"
 
@@ -21,6 +22,15 @@ enum class Modulation { none, silhouette, halo, silhouette_halo, angle, normal_v
 // per frame the faster of the two on llvmpipe for the frame's longest list.
 enum class SortMethod { automatic, array, dynamic };
 enum class Profile { none, exponential, power };  // eq. 10 / eq. 11
+// Where the fill puts the records: per-pixel linked lists in a pool sized
+// from the previous frame (carnecky2013 Algorithm 1), or a linearized
+// buffer (Knowles et al. 2012): a counting pass and each pixel's range
+// from the counts' prefix sum, exactly sized, filled in place.
+enum class Storage { linked, linearized };
+// storage=linearized: how a fragment takes its slot in its pixel's range,
+// an image atomic on the pixel's cursor or the cursor as the pixel's R32UI
+// colour through framebuffer fetch (auto: fetch where the device has it).
+enum class SlotFill { automatic, atomic, framebuffer_fetch };
 
 struct Settings {
   NeighborSearch neighbors = NeighborSearch::triangle_index;
@@ -37,10 +47,13 @@ struct Settings {
   uint32_t max_per_pixel = 64;
   uint64_t initial_nodes_per_pixel = 8;
   SortMethod sort = SortMethod::automatic;
+  Storage storage = Storage::linearized;
+  SlotFill fill = SlotFill::automatic;
   float normal_variation_scale = 10.0f;
   bool measure_accuracy = false;
   double accuracy_footprints = 1.5;
 
+  bool linearized() const { return storage == Storage::linearized; }
   bool heuristic() const { return neighbors != NeighborSearch::triangle_index; }
   // The modes that search neighbours and diffuse fields (carnecky2013 section 5).
   bool diffused() const { return uses_beta() || uses_gamma(); }
@@ -57,6 +70,9 @@ struct Settings {
 };
 
 Settings settings_from(const ParamSet& params);
+// The explicit choice this device cannot run (fill=framebuffer_fetch without
+// the extension), or "": the harness skips such a run.
+std::string missing_device_feature(const Settings& settings);
 std::unique_ptr<Technique> make_illustration_buffer(const Settings& settings);
 // GPU storage of a frame of `content` (TechniqueDescriptor::storage_need).
 StorageNeed storage_need(const Settings& settings, const FrameContent& content);

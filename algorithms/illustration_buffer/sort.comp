@@ -15,6 +15,13 @@
 // nodes are copied as above. Equal keys keep list order in both variants,
 // so the records are the same.
 //
+// IB_LINEARIZED (storage=linearized): the pixel's fill records are the
+// contiguous range [offset[p], offset[p+1]) (fill.frag), read in order with
+// no list walk, and the sorted range is the one the host computed from the
+// kept lengths (ib_head, ib_count): no atomic. Every pixel also checks that
+// its fill ended at the end of its counted range (the host fails the frame
+// when one did not: the counting pass and the fill disagreed).
+//
 // The list is walked by ONE flat loop: each iteration either takes the next
 // node or moves the pending node's insertion hole one step nearer. Mesa 22.3
 // llvmpipe miscompiled nested loops following `next` pointers (only the head
@@ -33,6 +40,33 @@ layout(binding = IB_FRAGMENT_UNIT) uniform usamplerBuffer ib_fragment_view;
 // candidate instead of the key and then the triangle's row.
 layout(binding = IB_SORT_TRIANGLES_UNIT) uniform usamplerBuffer ib_triangle_rows;
 #endif
+
+#ifdef IB_LINEARIZED
+layout(binding = IB_OFFSETS_UNIT) uniform usamplerBuffer ib_offsets;  // W*H + 1 values
+#ifdef IB_FETCH_CURSOR
+layout(binding = IB_FINAL_CURSORS_UNIT) uniform usampler2D ib_final_cursors;  // the fill's R32UI target
+uint final_cursor(uint pixel) { return texelFetch(ib_final_cursors, ivec2(gl_GlobalInvocationID.xy), 0).x; }
+#else
+layout(binding = IB_FINAL_CURSORS_UNIT) uniform usamplerBuffer ib_final_cursors;
+uint final_cursor(uint pixel) { return texelFetch(ib_final_cursors, int(pixel)).x; }
+#endif
+// The fill record after `node` in the pixel's list (`taken`: sort_key(node)).
+#define IB_FOLLOW(node, taken) ((node) + 1u)
+#else
+#define IB_FOLLOW(node, taken) ((taken).w)
+#endif
+
+// The first index of the pixel's sorted range of `kept` records.
+uint sorted_range(uint pixel, uint kept) {
+#ifdef IB_LINEARIZED
+  return ib_head[pixel];  // the prefix sum of the kept lengths (host)
+#else
+  const uint first = kept == 0u ? 0u : atomicAdd(ib_allocated, kept);
+  ib_head[pixel] = first;
+  ib_count[pixel] = kept;
+  return first;
+#endif
+}
 
 bool precedes(uvec3 a, uvec3 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
 
@@ -98,27 +132,32 @@ uint sort_list(uint head) {
 void main() {
   if (gl_GlobalInvocationID.x >= uint(u_width) || gl_GlobalInvocationID.y >= uint(u_height)) return;
   const uint pixel = gl_GlobalInvocationID.y * uint(u_width) + gl_GlobalInvocationID.x;
+#ifdef IB_LINEARIZED
+  const uint start = texelFetch(ib_offsets, int(pixel)).x;
+  const uint length = texelFetch(ib_offsets, int(pixel) + 1).x - start;
+  if (final_cursor(pixel) != start + length) atomicAdd(ib_mismatched, 1u);
+#else
+  const uint start = ib_head[pixel];
+  const uint length = ib_count[pixel];
+#endif
   // Lists of 0 or 1 fragments (the fill's count) have nothing to sort: no
   // local array, no list walk; the one record is copied as it is.
-  const uint length = ib_count[pixel];
   if (length <= 1u) {
-    const uint only = length == 0u ? 0u : atomicAdd(ib_allocated, 1u);
-    if (length == 1u) copy_record(only, ib_head[pixel], pixel);
-    ib_head[pixel] = only;
+    const uint only = sorted_range(pixel, length);
+    if (length == 1u) copy_record(only, start, pixel);
     return;
   }
 #ifdef IB_DYNAMIC
   const uint kept = min(length, u_max_per_pixel);
-  uint node = sort_list(ib_head[pixel]);
-  const uint first = atomicAdd(ib_allocated, kept);
-  ib_head[pixel] = first;
-  ib_count[pixel] = kept;
+  uint node = sort_list(start);
+  const uint first = sorted_range(pixel, kept);
   for (uint i = 0u; i < kept; ++i) {
     copy_record(first + i, node, pixel);
     node = ib_next[node];
   }
 #else
   uvec3 items[IB_ARRAY];  // x: depth order bits, y: stable triangle id, z: fill record index
+  uint node = start;
   if (length <= uint(IB_ARRAY)) {
     // The whole list fits (always, unless it is truncated): gather it, then
     // copy each fragment to its rank, the number of fragments before it in
@@ -126,14 +165,12 @@ void main() {
     // a loop counter, the same in all lanes, so llvmpipe reads the array as
     // vectors, where the insertion below moves a per-lane hole (a gather and
     // a scatter per step): about 3x faster at 32 layers.
-    uint node = ib_head[pixel];
     for (uint k = 0u; k < length; ++k) {
       const uvec4 taken = sort_key(node);
       items[k] = taken.xyz;
-      node = taken.w;
+      node = IB_FOLLOW(node, taken);
     }
-    const uint first = atomicAdd(ib_allocated, length);
-    ib_head[pixel] = first;
+    const uint first = sorted_range(pixel, length);
     for (uint i = 0u; i < length; ++i) {
       uint rank = 0u;
       for (uint j = 0u; j < length; ++j)
@@ -142,15 +179,15 @@ void main() {
     }
     return;
   }
-  uint cursor = ib_head[pixel];
-  uint kept = 0u;
+  uint taken_count = 0u, kept = 0u;
   int hole = -1;  // where `pending` goes; -1: nothing being inserted
   uvec3 pending = uvec3(0u);
-  while (cursor != IB_NIL || hole >= 0) {
+  while (taken_count < length || hole >= 0) {
     if (hole < 0) {
-      const uvec4 taken = sort_key(cursor);
+      const uvec4 taken = sort_key(node);
       pending = taken.xyz;
-      cursor = taken.w;
+      node = IB_FOLLOW(node, taken);
+      ++taken_count;
       // Enters at the end while there is room, else replaces the farthest
       // kept fragment when nearer, else is left out (counted by the fill).
       if (kept < uint(IB_ARRAY)) {
@@ -167,9 +204,7 @@ void main() {
       hole = -1;
     }
   }
-  const uint first = atomicAdd(ib_allocated, kept);
-  ib_head[pixel] = first;
-  ib_count[pixel] = kept;
+  const uint first = sorted_range(pixel, kept);
   for (uint i = 0u; i < kept; ++i) copy_record(first + i, items[i].z, pixel);
 #endif
 }

@@ -7,6 +7,7 @@
 #include <bit>
 #include <limits>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include "algorithms/illustration_buffer/accuracy.h"
@@ -14,8 +15,10 @@
 #include "algorithms/illustration_buffer/settings.h"
 #include "algorithms/illustration_buffer/triangle_table.h"
 #include "harness/core/fragment_pool.h"
+#include "harness/core/list_length_pass.h"
 #include "harness/core/passes.h"
 #include "harness/gl/check.h"
+#include "harness/gl/context.h"
 #include "harness/gl/shader_program.h"
 #include "harness/gl/uniforms.h"
 
@@ -27,10 +30,10 @@ constexpr GLsizeiptr kFragmentBytes = 48, kNextBytes = 4, kTruthBytes = 16, kFie
 constexpr GLsizeiptr kSearchBytes = 32, kShadeBytes = 32;
 // The largest per-record buffer (fragData; it also holds both field ranges) bounds the pool.
 constexpr GLsizeiptr kLargestRecordBytes = std::max({kFragmentBytes, kSearchBytes, kShadeBytes, 2 * kFieldBytes});
-constexpr GLsizeiptr kCounterBytes = 20;  // produced, longest, dropped, truncated, allocated
+constexpr GLsizeiptr kCounterBytes = 24;  // produced, longest, dropped, truncated, allocated, mismatched
 // A worklist (worklist.glsl): indirect-dispatch arguments and count, then one entry per pixel.
 constexpr GLsizeiptr kWorklistHeaderBytes = 16;
-constexpr uint32_t kSmallestArray = 8;
+constexpr uint32_t kSmallestArray = 4;
 // sort=auto takes the dynamic sort up to this longest list: faster there on
 // llvmpipe (README, Sort variants), the array's ranks beyond.
 constexpr uint32_t kLongestDynamicList = 4;
@@ -45,17 +48,47 @@ void set_size(GLuint program, int width, int height) {
 }
 
 uint64_t bytes_per_fragment(const Settings& s) {
-  return uint64_t(kNextBytes + kFragmentBytes + kSearchBytes + kShadeBytes + (s.measure_accuracy ? kTruthBytes : 0));
+  return uint64_t((s.linearized() ? 0 : kNextBytes) + kFragmentBytes + kSearchBytes + kShadeBytes +
+                  (s.measure_accuracy ? kTruthBytes : 0));
 }
 
 bool tracks_convergence(const Settings& s) { return s.diffused() && s.skip_converged; }
 
-// Per pixel: head and count, plus (when the diffusion skips converged
-// fragments) a stamp, an entry in each of three worklists and an update count.
-uint64_t bytes_per_pixel(const Settings& s) { return tracks_convergence(s) ? 28 : 8; }
+// Per pixel: head and count; with storage=linearized the counting pass's
+// R32F count, the fill's offset and its cursor; plus (when the diffusion
+// skips converged fragments) a stamp, an entry in each of three worklists
+// and an update count.
+uint64_t bytes_per_pixel(const Settings& s) { return 8 + (s.linearized() ? 12 : 0) + (tracks_convergence(s) ? 20 : 0); }
+
+// storage=linearized with fill=auto: framebuffer fetch where the device has it.
+bool fetches_cursors(const Settings& s) {
+  return s.linearized() && (s.fill == SlotFill::framebuffer_fetch ||
+                            (s.fill == SlotFill::automatic && current_device_has_framebuffer_fetch()));
+}
+
+// Combinations that cannot work, named (the constructor throws them).
+void check_combination(const Settings& s) {
+  if (s.linearized() && s.sort == SortMethod::dynamic)
+    throw std::invalid_argument(
+        "illustration_buffer: sort=dynamic sorts the fill's linked lists and needs storage=linked (storage=linearized "
+        "sorts each pixel's contiguous range with sort=array or auto)");
+  if (!s.linearized() && s.fill != SlotFill::automatic)
+    throw std::invalid_argument("illustration_buffer: fill=atomic or fill=framebuffer_fetch chooses how "
+                                "storage=linearized takes its slots; with storage=linked leave fill=auto");
+  if (const std::string missing = missing_device_feature(s); !missing.empty())
+    throw std::runtime_error("illustration_buffer: " + missing);
+}
+
+// What the fill and the sort share: the storage and how the fill took its slots.
+ShaderDefines storage_defines(const Settings& s) {
+  ShaderDefines defines;
+  if (s.linearized()) defines.push_back({"IB_LINEARIZED", "1"});
+  if (fetches_cursors(s)) defines.push_back({"IB_FETCH_CURSOR", "1"});
+  return defines;
+}
 
 ShaderDefines fill_defines(const Settings& s) {
-  ShaderDefines defines;
+  ShaderDefines defines = storage_defines(s);
   if (s.measure_accuracy) defines.push_back({"IB_MEASURE", "1"});
   if (s.records_surface()) defines.push_back({"IB_SURFACE", "1"});
   if (s.modulation == Modulation::angle) defines.push_back({"IB_ANGLE", "1"});
@@ -68,10 +101,13 @@ class IllustrationBuffer final : public Technique {
   explicit IllustrationBuffer(const Settings& settings)
       : s_(settings),
         counters_(make_buffer(kCounterBytes)),
-        pool_("illustration_buffer", FragmentPool::Sizing::previous_frame, kLargestRecordBytes,
-              [this](uint64_t capacity) { allocate_pool(capacity); }, kSmallestPool) {
+        pool_("illustration_buffer",
+              s_.linearized() ? FragmentPool::Sizing::exact : FragmentPool::Sizing::previous_frame,
+              kLargestRecordBytes, [this](uint64_t capacity) { allocate_pool(capacity); }, kSmallestPool) {
+    check_combination(s_);
+    if (s_.linearized()) list_lengths_.emplace();
     fill_ = build_geometry_program("algorithms/illustration_buffer/fill.frag", fill_defines(s_));
-    set_uniform(fill_.id(), IB_MAX_PER_PIXEL_LOCATION, s_.max_per_pixel);
+    if (!s_.linearized()) set_uniform(fill_.id(), IB_MAX_PER_PIXEL_LOCATION, s_.max_per_pixel);
     if (s_.modulation == Modulation::normal_variation)
       set_uniform(fill_.id(), IB_NORMAL_VARIATION_SCALE_LOCATION, s_.normal_variation_scale);
     compose_ = build_fullscreen_program("algorithms/illustration_buffer/compose.frag",
@@ -113,8 +149,9 @@ class IllustrationBuffer final : public Technique {
     height_ = height;
     head_ = make_buffer(GLsizeiptr(width) * height * 4);
     count_ = make_buffer(GLsizeiptr(width) * height * 4);
-    pool_.reset(uint64_t(width) * uint64_t(height) * s_.initial_nodes_per_pixel);
+    pool_.reset(s_.linearized() ? 1 : uint64_t(width) * uint64_t(height) * s_.initial_nodes_per_pixel);
     no_attachments_ = make_attachmentless_framebuffer(width, height);
+    if (s_.linearized()) resize_linearized(width, height);
     if (tracks_convergence(s_)) {
       stamps_ = make_buffer(GLsizeiptr(width) * height * 4);
       pixel_updates_ = make_buffer(GLsizeiptr(width) * height * 4);
@@ -130,29 +167,16 @@ class IllustrationBuffer final : public Technique {
   }
 
   void render(const Frame& frame) override {
-    GLuint counts[5] = {};  // produced, longest, dropped, truncated, allocated
-    const auto clear = [&] {
-      fill_buffer_u32(head_, IB_NIL);
-      fill_buffer_u32(count_, 0);
-      fill_buffer_u32(counters_, 0);
-    };
-    const auto fill = [&]() -> uint64_t {
-      bind_storage();
-      draw_scene_pass(frame, fill_, no_attachments_);
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-      glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
-      return counts[0];
-    };
-    passes_ = pool_.fill_until_fits(frame, clear, fill);
-    produced_ = counts[0];
-    dropped_ = counts[2];
-    truncated_lists_ = counts[3];
-    stored_ = produced_ - dropped_;
+    const uint32_t longest = s_.linearized() ? fill_linearized(frame) : fill_linked(frame);
     {
       auto stage = frame.clock.stage("sort");
-      const GLuint sort = sort_program(counts[1]);
+      const GLuint sort = sort_program(longest);
       glUseProgram(sort);
       glBindTextureUnit(IB_FRAGMENT_UNIT, fragment_view_.id());
+      if (s_.linearized()) {
+        glBindTextureUnit(IB_OFFSETS_UNIT, offsets_view_.id());
+        glBindTextureUnit(IB_FINAL_CURSORS_UNIT, fetches_cursors(s_) ? cursor_target_.id() : cursors_view_.id());
+      }
       if (s_.stores_triangle_vertices()) {
         prepare_scene_data(frame.scene.scene());
         glBindTextureUnit(IB_SORT_TRIANGLES_UNIT, triangles_view_.id());
@@ -174,8 +198,9 @@ class IllustrationBuffer final : public Technique {
     frame.set_shared_uniforms(compose_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     for (GLuint unit : {IB_SEARCH_UNIT, IB_FIELDS_UNIT, IB_SHADE_UNIT, IB_WORK_UNIT, IB_HEAD_UNIT, IB_COUNT_UNIT,
-                        IB_FRAGMENT_UNIT, IB_SORT_TRIANGLES_UNIT})
+                        IB_FRAGMENT_UNIT, IB_SORT_TRIANGLES_UNIT, IB_OFFSETS_UNIT, IB_FINAL_CURSORS_UNIT})
       glBindTextureUnit(unit, 0);
+    if (s_.linearized()) fail_on_mismatched_ranges();
   }
 
   TechniqueCounters counters() const override {
@@ -189,6 +214,8 @@ class IllustrationBuffer final : public Technique {
     c.passes = passes_;
     c.overflow_retries = pool_.overflow_retries();
     c.extra = {{"lists_truncated", double(truncated_lists_)},
+               {"linearized_storage", s_.linearized() ? 1.0 : 0.0},
+               {"framebuffer_fetch_fill", fetches_cursors(s_) ? 1.0 : 0.0},
                {"neighbor_passes", modulated() ? 1.0 : 0.0},
                {"stylize_passes", modulated() ? double(1 + s_.iterations) : 0.0},
                {"dynamic_sort", sorted_dynamically_ ? 1.0 : 0.0, Combine::max}};
@@ -205,6 +232,118 @@ class IllustrationBuffer final : public Technique {
  private:
   // The modes with the neighbour search and the stylize stages.
   bool modulated() const { return s_.diffused(); }
+
+  // storage=linked: stage "clear", then the fill into linked lists, again
+  // after a pool overflow (the pool grew). Returns the longest list.
+  uint32_t fill_linked(const Frame& frame) {
+    GLuint counts[5] = {};  // produced, longest, dropped, truncated, allocated
+    const auto clear = [&] {
+      fill_buffer_u32(head_, IB_NIL);
+      fill_buffer_u32(count_, 0);
+      fill_buffer_u32(counters_, 0);
+    };
+    const auto fill = [&]() -> uint64_t {
+      bind_storage();
+      draw_scene_pass(frame, fill_, no_attachments_);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+      glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
+      return counts[0];
+    };
+    passes_ = pool_.fill_until_fits(frame, clear, fill);
+    produced_ = counts[0];
+    dropped_ = counts[2];
+    truncated_lists_ = counts[3];
+    stored_ = produced_ - dropped_;
+    return counts[1];
+  }
+
+  // storage=linearized: stage "count" (the counting pass; on the host the
+  // fill's ranges and the sorted ranges of the kept lengths, the pool sized
+  // exactly, the cursors started), then stage "fill". Returns the longest list.
+  uint32_t fill_linearized(const Frame& frame) {
+    uint32_t longest = 0;
+    {
+      auto stage = frame.clock.stage("count");
+      longest = list_lengths_->longest_list(frame);
+      const std::vector<float>& counts = list_lengths_->host_counts();
+      offsets_from_counts(counts, host_offsets_);
+      glNamedBufferSubData(offsets_.id(), 0, GLsizeiptr(host_offsets_.size() * 4), host_offsets_.data());
+      produced_ = host_offsets_.back();
+      if (longest > s_.max_per_pixel) {
+        lengths_from_counts(counts, host_lengths_, s_.max_per_pixel);
+        offsets_from_counts(counts, host_sorted_offsets_, s_.max_per_pixel);
+        glNamedBufferSubData(count_.id(), 0, GLsizeiptr(host_lengths_.size() * 4), host_lengths_.data());
+        glNamedBufferSubData(head_.id(), 0, GLsizeiptr(host_lengths_.size() * 4), host_sorted_offsets_.data());
+        stored_ = host_sorted_offsets_.back();
+        truncated_lists_ = uint64_t(std::count_if(counts.begin(), counts.end(),
+                                                  [&](float n) { return n > float(s_.max_per_pixel); }));
+      } else {
+        // Nothing is dropped: the sorted ranges are the fill's.
+        lengths_from_counts(counts, host_lengths_);
+        glNamedBufferSubData(count_.id(), 0, GLsizeiptr(host_lengths_.size() * 4), host_lengths_.data());
+        glCopyNamedBufferSubData(offsets_.id(), head_.id(), 0, 0, GLsizeiptr(host_lengths_.size() * 4));
+        stored_ = produced_;
+        truncated_lists_ = 0;
+      }
+      dropped_ = produced_ - stored_;
+      pool_.before_fill(frame);
+      pool_.set_exact(produced_);
+      fill_buffer_u32(counters_, 0);
+      start_cursors();
+    }
+    auto stage = frame.clock.stage("fill");
+    bind_storage();
+    if (!fetches_cursors(s_))
+      glBindImageTexture(IB_CURSORS_IMAGE_UNIT, cursors_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    draw_scene_pass(frame, fill_, fetches_cursors(s_) ? cursor_framebuffer_ : no_attachments_);
+    glBindImageTexture(IB_CURSORS_IMAGE_UNIT, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    passes_ = 2;
+    return longest;
+  }
+
+  // Every pixel's cursor starts at its offset: a copy into the cursor
+  // buffer (fill=atomic) or, through the pixel unpack buffer, into the
+  // R32UI target the fill reads and writes (fill=framebuffer_fetch).
+  void start_cursors() const {
+    const GLsizeiptr bytes = GLsizeiptr(width_) * height_ * 4;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
+    if (!fetches_cursors(s_)) {
+      glCopyNamedBufferSubData(offsets_.id(), cursors_.id(), 0, 0, bytes);
+      return;
+    }
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, offsets_.id());
+    glTextureSubImage2D(cursor_target_.id(), 0, 0, 0, width_, height_, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  }
+
+  void resize_linearized(int width, int height) {
+    const GLsizeiptr pixels = GLsizeiptr(width) * height;
+    list_lengths_->resize(width, height);
+    offsets_ = make_buffer((pixels + 1) * 4);
+    offsets_view_ = make_buffer_texture(offsets_, GL_R32UI, 0, (pixels + 1) * 4);
+    if (fetches_cursors(s_)) {
+      cursor_target_ = make_texture_2d(GL_R32UI, width, height);
+      cursor_framebuffer_ = make_target_framebuffer({&cursor_target_}, "illustration_buffer: cursor target (R32UI)");
+    } else {
+      cursors_ = make_buffer(pixels * 4);
+      cursors_view_ = make_buffer_texture(cursors_, GL_R32UI, 0, pixels * 4);
+    }
+    gl_check("allocating the illustration buffer's linearized ranges");
+  }
+
+  // The sort counted the pixels whose fill did not end at the end of their
+  // counted range (sort.comp): the records would be wrong.
+  void fail_on_mismatched_ranges() const {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GLuint mismatched = 0;
+    glGetNamedBufferSubData(counters_.id(), 5 * sizeof(GLuint), sizeof(GLuint), &mismatched);
+    gl_check("illustration_buffer: reading back the range check");
+    if (mismatched != 0)
+      throw std::runtime_error("illustration_buffer: in " + std::to_string(mismatched) +
+                               " pixels the fill produced another number of fragments than the counting pass counted (" +
+                               std::to_string(produced_) + " in all); the image would be wrong");
+  }
 
   // Neighbour search, then the fields' initial and boundary conditions
   // (stylize_init) and the `iterations` steps of eq. 8-9 (diffuse).
@@ -296,14 +435,14 @@ class IllustrationBuffer final : public Technique {
   // dynamic sort has no array: one program (keyed 0).
   GLuint sort_program(uint32_t longest) {
     const bool dynamic = s_.sort == SortMethod::dynamic ||
-                         (s_.sort == SortMethod::automatic && longest <= kLongestDynamicList);
+                         (s_.sort == SortMethod::automatic && !s_.linearized() && longest <= kLongestDynamicList);
     sorted_dynamically_ = dynamic;
     const uint32_t size =
         dynamic ? 0 : std::min(s_.max_per_pixel, std::max(kSmallestArray, std::bit_ceil(std::max<uint32_t>(longest, 1))));
     auto it = sorts_.find(size);
     if (it == sorts_.end()) {
-      ShaderDefines defines =
-          dynamic ? ShaderDefines{{"IB_DYNAMIC", "1"}} : ShaderDefines{{"IB_ARRAY", std::to_string(size)}};
+      ShaderDefines defines = storage_defines(s_);
+      defines.push_back(dynamic ? ShaderDefine{"IB_DYNAMIC", "1"} : ShaderDefine{"IB_ARRAY", std::to_string(size)});
       if (s_.stores_triangle_vertices()) defines.push_back({"IB_TRIANGLE_VERTICES", "1"});
       if (s_.records_surface()) defines.push_back({"IB_SURFACE", "1"});
       it = sorts_.emplace(size, build_compute_program("algorithms/illustration_buffer/sort.comp", defines)).first;
@@ -373,7 +512,7 @@ class IllustrationBuffer final : public Technique {
 
 
   void allocate_pool(uint64_t capacity) {
-    next_ = make_buffer(GLsizeiptr(capacity) * kNextBytes);
+    if (!s_.linearized()) next_ = make_buffer(GLsizeiptr(capacity) * kNextBytes);  // sort=dynamic's lists
     data_ = make_buffer(GLsizeiptr(capacity) * kFragmentBytes);
     data2_ = make_buffer(GLsizeiptr(capacity) * kSearchBytes);
     data3_ = make_buffer(GLsizeiptr(capacity) * kShadeBytes);
@@ -386,7 +525,7 @@ class IllustrationBuffer final : public Technique {
     fields_view_[0] = make_buffer_texture(data_, GL_RGBA32F, 0, field_bytes);
     fields_view_[1] = make_buffer_texture(data_, GL_RGBA32F, second_field_range(), field_bytes);
     gl_check("creating the illustration buffer's read-only views");
-    set_uniform(fill_.id(), IB_CAPACITY_LOCATION, GLuint(capacity));
+    if (!s_.linearized()) set_uniform(fill_.id(), IB_CAPACITY_LOCATION, GLuint(capacity));
   }
 
   void bind_storage() const {
@@ -415,6 +554,13 @@ class IllustrationBuffer final : public Technique {
   Texture worklist_views_[3], head_view_, count_view_;
   Texture fragment_view_, search_view_, shade_view_, triangles_view_, fields_view_[2];  // read-only views (views.glsl)
   Framebuffer no_attachments_;
+  // storage=linearized: the counting pass, the fill's ranges (offsets_, W*H + 1
+  // values) and cursors (a buffer, or the R32UI target with framebuffer fetch).
+  std::optional<ListLengthPass> list_lengths_;
+  Buffer offsets_, cursors_;
+  Texture offsets_view_, cursors_view_, cursor_target_;
+  Framebuffer cursor_framebuffer_;
+  std::vector<uint32_t> host_offsets_, host_sorted_offsets_, host_lengths_;
   const Scene* scene_seen_ = nullptr;
   std::string scene_hash_;
   int width_ = 0, height_ = 0;
@@ -537,8 +683,17 @@ std::unique_ptr<Technique> make_illustration_buffer(const Settings& settings) {
   return std::make_unique<IllustrationBuffer>(settings);
 }
 
+std::string missing_device_feature(const Settings& settings) {
+  if (settings.linearized() && settings.fill == SlotFill::framebuffer_fetch && !current_device_has_framebuffer_fetch())
+    return "fill=framebuffer_fetch needs GL_EXT_shader_framebuffer_fetch, which this device lacks (use fill=atomic or "
+           "auto)";
+  return "";
+}
+
 StorageNeed storage_need(const Settings& settings, const FrameContent& content) {
-  const uint64_t nodes = std::max(fragment_pool::nodes_for(content, settings.initial_nodes_per_pixel), kSmallestPool);
+  const uint64_t nodes = std::max(settings.linearized() ? content.fragments
+                                                        : fragment_pool::nodes_for(content, settings.initial_nodes_per_pixel),
+                                  kSmallestPool);
   return {nodes * uint64_t(kLargestRecordBytes),
           content.pixels() * bytes_per_pixel(settings) + nodes * bytes_per_fragment(settings)};
 }

@@ -65,14 +65,13 @@ const Choices<KeyFormat> kKeyFormats{
 
 constexpr const char* kFillShader = "algorithms/linearized_fragment_buffer/fill.frag";
 
-bool device_has_framebuffer_fetch() { return epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch"); }
 bool device_has_int64() { return epoxy_has_gl_extension("GL_ARB_gpu_shader_int64"); }
 
 // The explicit choice this device cannot run, or "": the harness skips
 // such a run (extra_support_check); the viewer, which builds techniques
 // directly, gets it as the constructor's error.
 std::string missing_device_feature(const ParamSet& params) {
-  if (params.choice("fill", kFills) == Fill::framebuffer_fetch && !device_has_framebuffer_fetch())
+  if (params.choice("fill", kFills) == Fill::framebuffer_fetch && !current_device_has_framebuffer_fetch())
     return "fill=framebuffer_fetch needs GL_EXT_shader_framebuffer_fetch, which this device lacks (use fill=atomic or "
            "auto)";
   if (params.choice("key_format", kKeyFormats) == KeyFormat::uint64 && !device_has_int64())
@@ -92,7 +91,7 @@ const ParamSet& runnable(const ParamSet& params) {
 // fill=auto: framebuffer fetch where the device has it.
 bool fetches_cursors(const ParamSet& params) {
   const Fill fill = params.choice("fill", kFills);
-  return fill == Fill::framebuffer_fetch || (fill == Fill::automatic && device_has_framebuffer_fetch());
+  return fill == Fill::framebuffer_fetch || (fill == Fill::automatic && current_device_has_framebuffer_fetch());
 }
 
 // key_format=auto: one uint64 where the device has 64-bit integers.
@@ -272,8 +271,7 @@ class LinearizedFragmentBuffer final : public Technique {
   // The lengths the resolve and the length classes read: the counting
   // pass's counts, already on the host (whole numbers in float).
   void upload_lengths() {
-    const std::vector<float>& counts = list_lengths_.host_counts();
-    for (size_t i = 0; i < host_lengths_.size(); ++i) host_lengths_[i] = uint32_t(counts.at(i));
+    lengths_from_counts(list_lengths_.host_counts(), host_lengths_);
     glNamedBufferSubData(lengths_.id(), 0, GLsizeiptr(host_lengths_.size() * 4), host_lengths_.data());
   }
 

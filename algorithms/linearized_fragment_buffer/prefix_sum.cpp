@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "harness/core/list_length_pass.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
 #include "harness/gl/uniforms.h"
@@ -69,14 +70,7 @@ void PrefixSum::scan_counts(const Texture& counts, int width, const Buffer& offs
 
 void PrefixSum::scan_host_counts(const std::vector<float>& counts, const Buffer& offsets) {
   if (counts.size() != pixels_) throw std::logic_error("prefix sum: the host counts are not one per pixel");
-  host_offsets_.resize(pixels_ + 1);
-  uint64_t sum = 0;
-  for (uint64_t i = 0; i < pixels_; ++i) {
-    host_offsets_[i] = uint32_t(sum);
-    sum += uint64_t(counts[i]);  // whole numbers below 2^24: exact in float
-  }
-  if (sum > UINT32_MAX) throw std::runtime_error("prefix sum: " + std::to_string(sum) + " fragments overflow 32-bit offsets");
-  host_offsets_[pixels_] = uint32_t(sum);
+  offsets_from_counts(counts, host_offsets_);
   glNamedBufferSubData(offsets.id(), 0, GLsizeiptr(host_offsets_.size() * 4), host_offsets_.data());
   gl_check("uploading the per-pixel offsets summed on the host");
 }

@@ -54,6 +54,24 @@ uint32_t ListLengthPass::longest_list(const Frame& frame) {
   return uint32_t(longest);
 }
 
+void offsets_from_counts(const std::vector<float>& counts, std::vector<uint32_t>& offsets, uint32_t most_per_pixel) {
+  offsets.resize(counts.size() + 1);
+  uint64_t sum = 0;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    offsets[i] = uint32_t(sum);
+    sum += std::min(uint64_t(counts[i]), uint64_t(most_per_pixel));  // whole numbers below 2^24: exact in float
+    if (sum > UINT32_MAX)
+      throw std::runtime_error("list lengths: more than " + std::to_string(UINT32_MAX) +
+                               " fragments in one frame overflow 32-bit offsets");
+  }
+  offsets.back() = uint32_t(sum);
+}
+
+void lengths_from_counts(const std::vector<float>& counts, std::vector<uint32_t>& lengths, uint32_t most_per_pixel) {
+  lengths.resize(counts.size());
+  for (size_t i = 0; i < counts.size(); ++i) lengths[i] = std::min(uint32_t(counts[i]), most_per_pixel);
+}
+
 uint64_t ListLengthPass::bytes_allocated() const { return uint64_t(width_) * uint64_t(height_) * 4u; }
 
 void check_slots_fit(const std::string& technique, int k, int width, int height, uint64_t largest_buffer_bytes,

@@ -43,6 +43,16 @@ class ListLengthPass {
   uint64_t total_ = 0;
 };
 
+// The ranges of a linearized buffer from the counts a ListLengthPass read
+// back (host_counts): pixel i owns [offsets[i], offsets[i + 1]) of an array
+// holding min(count, most_per_pixel) fragments of every pixel; pixels + 1
+// values, the last one the total. Throws when the total passes 32 bits.
+void offsets_from_counts(const std::vector<float>& counts, std::vector<uint32_t>& offsets,
+                         uint32_t most_per_pixel = UINT32_MAX);
+// min(count, most_per_pixel) of every pixel, as uints.
+void lengths_from_counts(const std::vector<float>& counts, std::vector<uint32_t>& lengths,
+                         uint32_t most_per_pixel = UINT32_MAX);
+
 // Throws std::runtime_error when a technique's largest buffer of per-pixel
 // slots, `largest_buffer_bytes` for k slots per pixel at width x height,
 // exceeds the device's largest storage block: "<technique>: k=<k> at

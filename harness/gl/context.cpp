@@ -165,6 +165,8 @@ std::vector<std::string> describe_egl_devices() {
 
 bool current_device_is_software() { return is_software_renderer(gl_string(GL_RENDERER)); }
 
+bool current_device_has_framebuffer_fetch() { return epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch"); }
+
 DeviceInfo query_current_device(const std::string& platform) {
   DeviceInfo info;
   info.renderer = gl_string(GL_RENDERER);

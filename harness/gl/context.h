@@ -53,4 +53,9 @@ DeviceInfo query_current_device(const std::string& platform);
 // the host for work a GPU would do in a shader (DeviceInfo::software).
 bool current_device_is_software();
 
+// Whether the current context has GL_EXT_shader_framebuffer_fetch: a
+// fragment reads and writes its pixel's colour in primitive order, which
+// lets a fill take per-pixel slots without atomics.
+bool current_device_has_framebuffer_fetch();
+
 }  // namespace oit
