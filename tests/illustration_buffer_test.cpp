@@ -575,6 +575,37 @@ TEST(IllustrationBuffer, LinearizedStorageGivesTheLinkedListsRecords) {
   }
 }
 
+// flat_color_records: on unlit scenes the fill stores no colour and the sort
+// fetches the triangle's; the records, and so the image, are the same.
+TEST(IllustrationBuffer, FlatColourRecordsGiveTheStoredColoursImage) {
+  struct Case {
+    const char* scene;
+    RawParams scene_params, params;
+    double flat;  // whether the scene is unlit (a flat-colour table exists)
+  };
+  const std::vector<Case> cases = {
+      {"quads", {{"layers", "12"}, {"objects", "3"}}, {}, 1.0},
+      {"random_quads", {{"count", "64"}, {"size", "0.3"}}, {{"modulation", "none"}}, 1.0},
+      {"quads", {{"layers", "12"}}, {{"modulation", "angle"}, {"storage", "linked"}}, 1.0},
+      {"quads", {{"layers", "6"}}, {{"neighbors", "heuristic"}, {"max_per_pixel", "4"}}, 1.0},
+      {"torus", {}, {}, 0.0}};
+  for (const Case& c : cases) {
+    RawParams stored = c.params, flat = c.params;
+    stored["flat_color_records"] = "false";
+    flat["flat_color_records"] = "true";
+    const RunResult a = test::render_once("illustration_buffer", stored, c.scene, c.scene_params, 40, 32);
+    const RunResult b = test::render_once("illustration_buffer", flat, c.scene, c.scene_params, 40, 32);
+    EXPECT_EQ(largest_difference(a.image, b.image), 0.0) << c.scene;
+    EXPECT_EQ(test::extra_counter(a, "flat_color_records"), 0.0) << c.scene;
+    EXPECT_EQ(test::extra_counter(b, "flat_color_records"), c.flat) << c.scene;
+    if (c.params.count("modulation") == 0)
+      EXPECT_EQ(test::extra_counter(a, "link_checksum"), test::extra_counter(b, "link_checksum")) << c.scene;
+  }
+  const RunResult plain = test::render_once("illustration_buffer", {{"modulation", "none"}}, "quads", {{"layers", "8"}}, 24, 24);
+  EXPECT_EQ(test::extra_counter(plain, "flat_color_records"), 1.0);
+  EXPECT_LT(plain.error->max_abs, kFloatTolerance);
+}
+
 TEST(IllustrationBuffer, StorageOptionsThatDoNotGoTogetherAreErrorsNamingThem) {
   const TechniqueDescriptor& d = builtin_techniques().get("illustration_buffer");
   for (const auto& [params, named] : std::vector<std::pair<RawParams, std::string>>{

@@ -40,6 +40,7 @@
 #define IB_SORT_TRIANGLES_UNIT 1  // neighbors=triangle_index
 #define IB_OFFSETS_UNIT 2          // storage=linearized: the fill's per-pixel ranges
 #define IB_FINAL_CURSORS_UNIT 3    // storage=linearized: where each pixel's fill ended
+#define IB_FLAT_COLORS_UNIT 4      // flat_color_records: the scene's colour per stable triangle id
 // Image units (fill.frag; the cursors with storage=linearized and fill=atomic).
 #define IB_CURSORS_IMAGE_UNIT 0
 

@@ -96,13 +96,20 @@ void main() {
   if (index == IB_NIL) return;
   const uint next = link_record(pixel, index);
   const uvec4 key = uvec4(floatBitsToUint(depth), oit_triangle_id(), v_object_id, next);
-#ifdef IB_SURFACE
+#if defined(IB_SURFACE) && !defined(IB_FLAT_COLOR)
   const uvec4 surface = uvec4(floatBitsToUint(vec3(slopes, local_opacity)), ib_pack_normal(oit_view_normal()));
   ib_fragments[index] = IbFragment(oit_shade(), key, surface);
 #else
-  // Nothing reads the normal, the slopes or a local opacity (Settings::records_surface).
+  // IB_FLAT_COLOR (flat_color_records on an unlit scene): the sort fetches the
+  // triangle's colour by its id, so the fill stores no colour (on llvmpipe
+  // each 16 B store at a per-lane address is a loop over the lanes).
+#ifndef IB_FLAT_COLOR
   ib_fragments[index].color = oit_shade();
+#endif
   ib_fragments[index].key = key;
+#ifdef IB_SURFACE
+  ib_fragments[index].surface = uvec4(floatBitsToUint(vec3(slopes, local_opacity)), ib_pack_normal(oit_view_normal()));
+#endif
 #endif
 #ifdef IB_MEASURE
   ib_truth[index] = uvec4(v_surface_id, floatBitsToUint(v_uv.x), floatBitsToUint(v_uv.y), packHalf2x16(footprint));

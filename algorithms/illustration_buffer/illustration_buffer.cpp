@@ -35,6 +35,7 @@ Settings settings_from(const ParamSet& p) {
   s.sort = p.choice("sort", kSorts);
   s.storage = p.choice("storage", kStorages);
   s.fill = p.choice("fill", kSlotFills);
+  s.flat_color_records = p.boolean("flat_color_records");
   s.normal_variation_scale = float(p.real("normal_variation_scale"));
   s.lambda_alpha = float(p.real("lambda_alpha"));
   s.lambda_beta = float(p.real("lambda_beta"));
@@ -110,6 +111,10 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
               "storage=linearized: how a fragment takes its slot: atomic = an image atomic on its pixel's cursor; "
               "framebuffer_fetch = the cursor is the pixel's R32UI colour, read and incremented in primitive order "
               "(GL_EXT_shader_framebuffer_fetch); auto = framebuffer_fetch where the device has it"),
+          ParamSpec::boolean("flat_color_records", true,
+                             "unlit scenes (every fragment has its triangle's flat colour): the fill stores no colour "
+                             "and the sort fetches the exact colour by triangle id; false, or lit scenes: the fill "
+                             "stores the float colour"),
           ParamSpec::real("normal_variation_scale", 10.0, 0.0, 1000.0,
                           "modulation=normal_variation: opacity = min(1, scale * |grad n|), grad n the view normal's "
                           "change per pixel (dFdx, dFdy)"),
@@ -136,7 +141,12 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
       .adaptive_switches = {{"skip_converged",
                               "diffuses only the pixels around fragments that changed in the previous iteration",
                               {{"skip_converged", "true"}},
-                              {{"skip_converged", "false"}}}},
+                              {{"skip_converged", "false"}}},
+                             {"flat_color_records",
+                              "stores no colour in the fill record on unlit scenes and fetches each fragment's flat "
+                              "colour by triangle id in the sort",
+                              {{"flat_color_records", "true"}},
+                              {{"flat_color_records", "false"}}}},
       .extra_support_check = [](const ParamSet& params, const SceneFacts& scene) -> std::string {
         const illustration_buffer::Settings s = illustration_buffer::settings_from(params);
         if (s.diffused() && s.neighbors == illustration_buffer::NeighborSearch::triangle_index && !scene.indexed)

@@ -49,6 +49,7 @@ struct Settings {
   SortMethod sort = SortMethod::automatic;
   Storage storage = Storage::linearized;
   SlotFill fill = SlotFill::automatic;
+  bool flat_color_records = true;  // unlit scenes: no colour in the fill record
   float normal_variation_scale = 10.0f;
   bool measure_accuracy = false;
   double accuracy_footprints = 1.5;

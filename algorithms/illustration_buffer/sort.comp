@@ -68,12 +68,22 @@ uint sorted_range(uint pixel, uint kept) {
 #endif
 }
 
+#ifdef IB_FLAT_COLOR
+// flat_color_records on an unlit scene: the fill stored no colour; each
+// fragment's is its triangle's flat colour, by stable triangle id (SceneGpu).
+layout(binding = IB_FLAT_COLORS_UNIT) uniform samplerBuffer ib_flat_colors;
+#endif
+
 bool precedes(uvec3 a, uvec3 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
 
 // Copies fill record `node` of `pixel` to sorted position `to`.
 void copy_record(uint to, uint node, uint pixel) {
-  const vec4 color = uintBitsToFloat(texelFetch(ib_fragment_view, int(node * 3u)));
   const uvec4 key = texelFetch(ib_fragment_view, int(node * 3u + 1u));
+#ifdef IB_FLAT_COLOR
+  const vec4 color = texelFetch(ib_flat_colors, int(key.y));
+#else
+  const vec4 color = uintBitsToFloat(texelFetch(ib_fragment_view, int(node * 3u)));
+#endif
 #if defined(IB_TRIANGLE_VERTICES)
   const uvec4 geometry = uvec4(texelFetch(ib_triangle_rows, int(key.y)).xyz, node);
 #elif defined(IB_SURFACE)

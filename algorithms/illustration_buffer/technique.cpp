@@ -87,8 +87,9 @@ ShaderDefines storage_defines(const Settings& s) {
   return defines;
 }
 
-ShaderDefines fill_defines(const Settings& s) {
+ShaderDefines fill_defines(const Settings& s, bool flat) {
   ShaderDefines defines = storage_defines(s);
+  if (flat) defines.push_back({"IB_FLAT_COLOR", "1"});
   if (s.measure_accuracy) defines.push_back({"IB_MEASURE", "1"});
   if (s.records_surface()) defines.push_back({"IB_SURFACE", "1"});
   if (s.modulation == Modulation::angle) defines.push_back({"IB_ANGLE", "1"});
@@ -106,10 +107,14 @@ class IllustrationBuffer final : public Technique {
               kLargestRecordBytes, [this](uint64_t capacity) { allocate_pool(capacity); }, kSmallestPool) {
     check_combination(s_);
     if (s_.linearized()) list_lengths_.emplace();
-    fill_ = build_geometry_program("algorithms/illustration_buffer/fill.frag", fill_defines(s_));
-    if (!s_.linearized()) set_uniform(fill_.id(), IB_MAX_PER_PIXEL_LOCATION, s_.max_per_pixel);
-    if (s_.modulation == Modulation::normal_variation)
-      set_uniform(fill_.id(), IB_NORMAL_VARIATION_SCALE_LOCATION, s_.normal_variation_scale);
+    fill_ = build_geometry_program("algorithms/illustration_buffer/fill.frag", fill_defines(s_, false));
+    if (s_.flat_color_records)
+      fill_flat_ = build_geometry_program("algorithms/illustration_buffer/fill.frag", fill_defines(s_, true));
+    for (const Program* fill : fills()) {
+      if (!s_.linearized()) set_uniform(fill->id(), IB_MAX_PER_PIXEL_LOCATION, s_.max_per_pixel);
+      if (s_.modulation == Modulation::normal_variation)
+        set_uniform(fill->id(), IB_NORMAL_VARIATION_SCALE_LOCATION, s_.normal_variation_scale);
+    }
     compose_ = build_fullscreen_program("algorithms/illustration_buffer/compose.frag",
                                         modulated()          ? ShaderDefines{{"IB_MODULATE", "1"}}
                                         : s_.purely_local() ? ShaderDefines{{"IB_LOCAL_OPACITY", "1"}}
@@ -167,12 +172,15 @@ class IllustrationBuffer final : public Technique {
   }
 
   void render(const Frame& frame) override {
+    flat_ = s_.flat_color_records && frame.scene.flat_colors_view() != 0;
+    flat_table_bytes_ = flat_ ? frame.scene.flat_colors_bytes() : 0;
     const uint32_t longest = s_.linearized() ? fill_linearized(frame) : fill_linked(frame);
     {
       auto stage = frame.clock.stage("sort");
       const GLuint sort = sort_program(longest);
       glUseProgram(sort);
       glBindTextureUnit(IB_FRAGMENT_UNIT, fragment_view_.id());
+      if (flat_) glBindTextureUnit(IB_FLAT_COLORS_UNIT, frame.scene.flat_colors_view());
       if (s_.linearized()) {
         glBindTextureUnit(IB_OFFSETS_UNIT, offsets_view_.id());
         glBindTextureUnit(IB_FINAL_CURSORS_UNIT, fetches_cursors(s_) ? cursor_target_.id() : cursors_view_.id());
@@ -198,7 +206,8 @@ class IllustrationBuffer final : public Technique {
     frame.set_shared_uniforms(compose_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     for (GLuint unit : {IB_SEARCH_UNIT, IB_FIELDS_UNIT, IB_SHADE_UNIT, IB_WORK_UNIT, IB_HEAD_UNIT, IB_COUNT_UNIT,
-                        IB_FRAGMENT_UNIT, IB_SORT_TRIANGLES_UNIT, IB_OFFSETS_UNIT, IB_FINAL_CURSORS_UNIT})
+                        IB_FRAGMENT_UNIT, IB_SORT_TRIANGLES_UNIT, IB_OFFSETS_UNIT, IB_FINAL_CURSORS_UNIT,
+                        IB_FLAT_COLORS_UNIT})
       glBindTextureUnit(unit, 0);
     if (s_.linearized()) fail_on_mismatched_ranges();
   }
@@ -207,7 +216,7 @@ class IllustrationBuffer final : public Technique {
     TechniqueCounters c;
     const uint64_t per_fragment = bytes_per_fragment(s_);
     c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * bytes_per_pixel(s_) + pool_.capacity() * per_fragment +
-                        kCounterBytes + triangle_rows_ * 16 +
+                        kCounterBytes + triangle_rows_ * 16 + flat_table_bytes_ +
                         (tracks_convergence(s_) ? 3 * kWorklistHeaderBytes : 0);
     c.fragments_stored = stored_;
     c.fragments_dropped = dropped_;
@@ -216,6 +225,7 @@ class IllustrationBuffer final : public Technique {
     c.extra = {{"lists_truncated", double(truncated_lists_)},
                {"linearized_storage", s_.linearized() ? 1.0 : 0.0},
                {"framebuffer_fetch_fill", fetches_cursors(s_) ? 1.0 : 0.0},
+               {"flat_color_records", flat_ ? 1.0 : 0.0},
                {"neighbor_passes", modulated() ? 1.0 : 0.0},
                {"stylize_passes", modulated() ? double(1 + s_.iterations) : 0.0},
                {"dynamic_sort", sorted_dynamically_ ? 1.0 : 0.0, Combine::max}};
@@ -233,6 +243,11 @@ class IllustrationBuffer final : public Technique {
   // The modes with the neighbour search and the stylize stages.
   bool modulated() const { return s_.diffused(); }
 
+  std::vector<const Program*> fills() const {
+    return fill_flat_ ? std::vector<const Program*>{&fill_, &fill_flat_} : std::vector<const Program*>{&fill_};
+  }
+  const Program& fill_program() const { return flat_ ? fill_flat_ : fill_; }
+
   // storage=linked: stage "clear", then the fill into linked lists, again
   // after a pool overflow (the pool grew). Returns the longest list.
   uint32_t fill_linked(const Frame& frame) {
@@ -244,7 +259,7 @@ class IllustrationBuffer final : public Technique {
     };
     const auto fill = [&]() -> uint64_t {
       bind_storage();
-      draw_scene_pass(frame, fill_, no_attachments_);
+      draw_scene_pass(frame, fill_program(), no_attachments_);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
       glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
       return counts[0];
@@ -295,7 +310,7 @@ class IllustrationBuffer final : public Technique {
     bind_storage();
     if (!fetches_cursors(s_))
       glBindImageTexture(IB_CURSORS_IMAGE_UNIT, cursors_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-    draw_scene_pass(frame, fill_, fetches_cursors(s_) ? cursor_framebuffer_ : no_attachments_);
+    draw_scene_pass(frame, fill_program(), fetches_cursors(s_) ? cursor_framebuffer_ : no_attachments_);
     glBindImageTexture(IB_CURSORS_IMAGE_UNIT, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     passes_ = 2;
@@ -424,7 +439,7 @@ class IllustrationBuffer final : public Technique {
 
   std::vector<GLuint> programs() const {
     std::vector<GLuint> all = {fill_.id(), compose_.id()};
-    for (const Program* p : {&neighbors_, &stylize_init_, &stylize_diffuse_, &diffuse_listed_})
+    for (const Program* p : {&fill_flat_, &neighbors_, &stylize_init_, &stylize_diffuse_, &diffuse_listed_})
       if (*p) all.push_back(p->id());
     for (const auto& [size, program] : sorts_) all.push_back(program.id());
     return all;
@@ -439,13 +454,14 @@ class IllustrationBuffer final : public Technique {
     sorted_dynamically_ = dynamic;
     const uint32_t size =
         dynamic ? 0 : std::min(s_.max_per_pixel, std::max(kSmallestArray, std::bit_ceil(std::max<uint32_t>(longest, 1))));
-    auto it = sorts_.find(size);
+    auto it = sorts_.find({size, flat_});
     if (it == sorts_.end()) {
       ShaderDefines defines = storage_defines(s_);
+      if (flat_) defines.push_back({"IB_FLAT_COLOR", "1"});
       defines.push_back(dynamic ? ShaderDefine{"IB_DYNAMIC", "1"} : ShaderDefine{"IB_ARRAY", std::to_string(size)});
       if (s_.stores_triangle_vertices()) defines.push_back({"IB_TRIANGLE_VERTICES", "1"});
       if (s_.records_surface()) defines.push_back({"IB_SURFACE", "1"});
-      it = sorts_.emplace(size, build_compute_program("algorithms/illustration_buffer/sort.comp", defines)).first;
+      it = sorts_.emplace(std::make_pair(size, flat_), build_compute_program("algorithms/illustration_buffer/sort.comp", defines)).first;
       set_size(it->second.id(), width_, height_);
       if (dynamic) set_uniform(it->second.id(), IB_MAX_PER_PIXEL_LOCATION, s_.max_per_pixel);
     }
@@ -525,7 +541,8 @@ class IllustrationBuffer final : public Technique {
     fields_view_[0] = make_buffer_texture(data_, GL_RGBA32F, 0, field_bytes);
     fields_view_[1] = make_buffer_texture(data_, GL_RGBA32F, second_field_range(), field_bytes);
     gl_check("creating the illustration buffer's read-only views");
-    if (!s_.linearized()) set_uniform(fill_.id(), IB_CAPACITY_LOCATION, GLuint(capacity));
+    if (!s_.linearized())
+      for (const Program* fill : fills()) set_uniform(fill->id(), IB_CAPACITY_LOCATION, GLuint(capacity));
   }
 
   void bind_storage() const {
@@ -546,8 +563,11 @@ class IllustrationBuffer final : public Technique {
   void read_lists(std::vector<uint32_t>& first, std::vector<uint32_t>& count, std::vector<SortedRecord>& sorted) const;
 
   Settings s_;
-  Program fill_, compose_, neighbors_, stylize_init_, stylize_diffuse_, diffuse_listed_;
-  std::map<uint32_t, Program> sorts_;  // by local array size (0: the dynamic sort)
+  // fill_flat_: flat_color_records, for unlit scenes (no colour in the record).
+  Program fill_, fill_flat_, compose_, neighbors_, stylize_init_, stylize_diffuse_, diffuse_listed_;
+  bool flat_ = false;  // this frame's records hold no colour
+  uint64_t flat_table_bytes_ = 0;
+  std::map<std::pair<uint32_t, bool>, Program> sorts_;  // by local array size (0: the dynamic sort), flat colours
   bool sorted_dynamically_ = false;    // the last frame's sort
   Buffer counters_, head_, count_, next_, data_, data2_, data3_, truth_, triangles_;
   Buffer stamps_, worklists_[3], pixel_updates_;  // skip_converged (worklist.glsl)
