@@ -3,19 +3,21 @@
 // range and writing the other:
 //  alpha <- alpha + lambda_alpha * laplacian(alpha)               (eq. 8)
 //     with the Laplacian normalised by the neighbour count,
-//     mean(alpha_neighbours) - alpha, so that lambda_alpha in [0, 1] is a
+//     mean(alpha_neighbours - alpha), so that lambda_alpha in [0, 1] is a
 //     convex blend (stable; lambda_alpha = 1 is the paper's default);
-//     missing neighbours are left out (zero flux across silhouettes);
+//     missing neighbours are left out (zero flux across silhouettes).
+//     The mean of the differences, not of the values, so that equal
+//     neighbours give exactly alpha (the init pass relies on it, below);
 //  u <- max(u, max(u_neighbours) - lambda_u), u in {beta, gamma}  (eq. 9)
 //     unless the fragment's u is fixed by a boundary condition.
-// Three variants: plain (skip_converged=false), one invocation per sorted
-// fragment; IB_TRACK (the first step with skip_converged): the same, and a
-// fragment that moved by more than u_tolerance queues the pixels around it
-// for the next step; IB_WORKLIST (the later steps): one invocation per
-// queued pixel, which updates the pixel's fragments and queues likewise
-// (worklist.glsl). With skip_converged a move of at most u_tolerance is not
-// applied (the fragment keeps its value), so a fragment that is not queued
-// has its value in both field ranges.
+// Two variants: plain (skip_converged=false), one invocation per sorted
+// fragment; IB_WORKLIST (every step with skip_converged): one invocation per
+// queued pixel, which updates the pixel's fragments, and a fragment that
+// moved by more than u_tolerance queues the pixels around it for the next
+// step (worklist.glsl). The first step's pixels are queued by stylize_init.
+// With skip_converged a move of at most u_tolerance is not applied (the
+// fragment keeps its value), so a fragment that is not queued has its value
+// in both field ranges.
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 #include "algorithms/illustration_buffer/per_fragment.glsl"
 #include "algorithms/illustration_buffer/fields.glsl"
@@ -28,23 +30,23 @@ layout(location = IB_LAMBDA_GAMMA_LOCATION) uniform float u_lambda_gamma;
 // The fields of fragment s after one iteration.
 vec4 diffused(uint s, vec4 field) {
   const uvec4 links = ib_sorted_links(s);
-  float alpha_sum = 0.0, neighbors = 0.0, beta_max = 0.0, gamma_max = 0.0;
+  float alpha_difference = 0.0, neighbors = 0.0, beta_max = 0.0, gamma_max = 0.0;
   for (int d = 0; d < 4; ++d) {
     if (links[d] >= IB_OFF_IMAGE) continue;
     const vec4 other = texelFetch(ib_fields_view, int(links[d]));
-    alpha_sum += other.x;
+    alpha_difference += other.x - field.x;
     neighbors += 1.0;
     beta_max = max(beta_max, other.y);
     gamma_max = max(gamma_max, other.z);
   }
   const uint flags = ib_flags(field);
-  const float alpha = neighbors > 0.0 ? field.x + u_lambda_alpha * (alpha_sum / neighbors - field.x) : field.x;
+  const float alpha = neighbors > 0.0 ? field.x + u_lambda_alpha * (alpha_difference / neighbors) : field.x;
   const float beta = (flags & IB_FIXED_BETA) != 0u ? field.y : max(field.y, beta_max - u_lambda_beta);
   const float gamma = (flags & IB_FIXED_GAMMA) != 0u ? field.z : max(field.z, gamma_max - u_lambda_gamma);
   return vec4(alpha, beta, gamma, field.w);
 }
 
-#if defined(IB_TRACK) || defined(IB_WORKLIST)
+#if defined(IB_WORKLIST)
 #include "algorithms/illustration_buffer/worklist.glsl"
 layout(location = IB_TOLERANCE_LOCATION) uniform float u_tolerance;
 
@@ -59,13 +61,7 @@ bool update(uint s) {
 }
 #endif
 
-#if defined(IB_TRACK)
-void main() {
-  const uint s = ib_fragment_index();
-  if (s >= u_fragments) return;
-  if (update(s)) ib_enqueue_around(ib_sorted_key(s).w);
-}
-#elif defined(IB_WORKLIST)
+#if defined(IB_WORKLIST)
 // The step's list (header: groups x, y, z, count; then pixels), read as a
 // buffer texture (a gather on llvmpipe, views.glsl).
 layout(binding = IB_WORK_UNIT) uniform usamplerBuffer ib_work_view;

@@ -8,10 +8,24 @@
 //  otherwise, a layer index greater than a neighbour's -> beta = 0, fixed;
 //  a layer index smaller than a neighbour's -> gamma = 1, fixed (halo).
 // Fields the chosen modulation does not use stay 0 and unfixed.
+//
+// IB_TRACK (skip_converged): the first diffusion step's worklist. A fragment
+// can change in that step only if a linked neighbour's initial value differs
+// from its own: alpha (eq. 8 takes the mean of the differences, exactly 0
+// when they are equal), or beta / gamma of 1 (unfixed fields start at 0, and
+// eq. 9 only ever raises them towards a neighbour's value). So every
+// fragment with beta or gamma fixed at 1, and every fragment whose alpha
+// differs from a linked neighbour's initial alpha, queues its pixel and the
+// 4 adjacent pixels (the links of any fragment reading it lie there); no
+// other fragment moves in the first step. Scenes without silhouettes, halos
+// or alpha differences (full-screen layers) queue nothing.
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 #include "algorithms/illustration_buffer/per_fragment.glsl"
 #include "algorithms/illustration_buffer/fields.glsl"
 #include "algorithms/illustration_buffer/views.glsl"
+#ifdef IB_TRACK
+#include "algorithms/illustration_buffer/worklist.glsl"
+#endif
 
 layout(location = IB_ADAPTIVE_LOCATION) uniform bool u_adaptive;
 layout(location = IB_USE_BETA_LOCATION) uniform bool u_use_beta;
@@ -25,6 +39,22 @@ int compare_layer(uint layer, uint link, uint adjacent) {
   return other < layer ? -1 : (other > layer ? 1 : 0);
 }
 
+// The initial alpha (eq. 4, or eq. 5 with u_adaptive) of a fragment of
+// alpha s in a pixel of n fragments.
+float initial_alpha(float s, uint n) { return u_adaptive ? 1.0 - pow(1.0 - s, 1.0 / float(n)) : s; }
+
+// Whether a linked neighbour starts with another alpha (IB_TRACK, above).
+bool alpha_differs(float alpha, uvec4 links, uint pixel) {
+  const uint row = uint(u_width);
+  const uvec4 adjacent = uvec4(pixel - 1u, pixel + 1u, pixel - row, pixel + row);
+  bool differs = false;
+  for (int d = 0; d < 4; ++d) {
+    if (links[d] >= IB_OFF_IMAGE) continue;
+    differs = differs || initial_alpha(ib_sorted_color(links[d]).a, ib_pixel_count(adjacent[d])) != alpha;
+  }
+  return differs;
+}
+
 void main() {
   const uint s = ib_fragment_index();
   if (s >= u_fragments) return;
@@ -32,7 +62,7 @@ void main() {
   const uint layer = ib_layer_of(s, pixel);
   const uvec4 links = ib_sorted_links(s);
   const float own_alpha = ib_sorted_color(s).a;
-  const float alpha = u_adaptive ? 1.0 - pow(1.0 - own_alpha, 1.0 / float(ib_pixel_count(pixel))) : own_alpha;
+  const float alpha = initial_alpha(own_alpha, ib_pixel_count(pixel));
 
   const bool silhouette = any(equal(links, uvec4(IB_NONE)));
   const uint row = uint(u_width);  // links: left, right, down, up (neighbors.comp)
@@ -52,4 +82,7 @@ void main() {
     flags |= IB_FIXED_GAMMA;
   }
   ib_fields_out[s] = vec4(alpha, beta, gamma, float(flags));
+#ifdef IB_TRACK
+  if (beta == 1.0 || gamma == 1.0 || alpha_differs(alpha, links, pixel)) ib_enqueue_around(pixel);
+#endif
 }

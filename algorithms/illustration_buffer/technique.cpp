@@ -128,16 +128,21 @@ class IllustrationBuffer final : public Technique {
       set_uniform(neighbors_.id(), IB_WEIGHT_Z_LOCATION, s_.weight_z);
       set_uniform(neighbors_.id(), IB_WEIGHT_N_LOCATION, s_.weight_n);
     }
-    stylize_init_ = build_compute_program("algorithms/illustration_buffer/stylize_init.comp");
+    // With skip_converged the init queues the first step's pixels and every
+    // step is a listed one; without, every step updates every fragment.
+    const bool track = tracks_convergence(s_);
+    stylize_init_ = build_compute_program("algorithms/illustration_buffer/stylize_init.comp",
+                                          track ? ShaderDefines{{"IB_TRACK", "1"}} : ShaderDefines{});
     set_uniform(stylize_init_.id(), IB_ADAPTIVE_LOCATION, int(s_.adaptive_alpha));
     set_uniform(stylize_init_.id(), IB_USE_BETA_LOCATION, int(s_.uses_beta()));
     set_uniform(stylize_init_.id(), IB_USE_GAMMA_LOCATION, int(s_.uses_gamma()));
-    const bool track = tracks_convergence(s_);
-    stylize_diffuse_ = build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp",
-                                             track ? ShaderDefines{{"IB_TRACK", "1"}} : ShaderDefines{});
-    if (track)
+    if (track) {
+      set_uniform(stylize_init_.id(), IB_NEXT_STEP_LOCATION, 1u);
       diffuse_listed_ =
           build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp", {{"IB_WORKLIST", "1"}});
+    } else {
+      stylize_diffuse_ = build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp");
+    }
     for (const Program* p : {&stylize_diffuse_, &diffuse_listed_}) {
       if (!*p) continue;
       if (track) set_uniform(p->id(), IB_TOLERANCE_LOCATION, s_.diffusion_tolerance);
@@ -373,25 +378,25 @@ class IllustrationBuffer final : public Technique {
         run_per_pixel();
       }
     }
+    const bool track = tracks_convergence(s_);
     {
       auto stage = frame.clock.stage("stylize_init");
+      if (track) start_worklists();
       // Ranges of fragData (dead after the sort) hold the two field buffers.
       bind_fields(0, second_range);
       run_per_fragment(stylize_init_.id());
+      // A listed step writes only the fragments it updates, so both ranges
+      // start with every initial value.
+      if (track && s_.iterations > 0 && stored_ > 0) {
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glCopyNamedBufferSubData(data_.id(), data_.id(), second_range, 0, kFieldBytes * GLsizeiptr(stored_));
+      }
     }
     auto stage = frame.clock.stage("diffuse");
-    const bool track = tracks_convergence(s_);
-    if (track) start_worklists();
     for (int i = 0; i < s_.iterations; ++i) {
       i % 2 == 0 ? bind_fields(second_range, 0) : bind_fields(0, second_range);
-      // With skip_converged the first step updates every fragment (so both
-      // ranges hold every value after it) and queues the pixels of the second.
-      if (i == 0 || !track) {
-        if (track) set_uniform(stylize_diffuse_.id(), IB_NEXT_STEP_LOCATION, 2u);
-        run_per_fragment(stylize_diffuse_.id());
-      } else {
-        run_queued(uint32_t(i + 1));
-      }
+      if (track) run_queued(uint32_t(i + 1));
+      else run_per_fragment(stylize_diffuse_.id());
     }
   }
 
@@ -403,16 +408,17 @@ class IllustrationBuffer final : public Technique {
     glBindTextureUnit(IB_COUNT_UNIT, count_view_.id());
   }
 
-  // No pixel queued for any step yet (stamps 0); list 2 receives step 2's,
-  // list 0 step 3's (step k reads list k % 3 and empties list (k + 2) % 3).
+  // No pixel queued for any step yet (stamps 0); list 1 receives step 1's
+  // (from the init), list 2 step 2's (step k reads list k % 3, fills list
+  // (k + 1) % 3 and empties list (k + 2) % 3 for step k + 2).
   void start_worklists() const {
     fill_buffer_u32(stamps_, 0);
     fill_buffer_u32(pixel_updates_, 0);
+    reset_worklist(worklists_[1]);
     reset_worklist(worklists_[2]);
-    reset_worklist(worklists_[0]);
     bind_storage_buffers({{IB_STAMPS_BINDING, &stamps_},
                           {IB_PIXEL_UPDATES_BINDING, &pixel_updates_},
-                          {IB_WORK_OUT_BINDING, &worklists_[2]}});
+                          {IB_WORK_OUT_BINDING, &worklists_[1]}});
   }
 
   static void reset_worklist(const Buffer& list) {
@@ -420,7 +426,7 @@ class IllustrationBuffer final : public Technique {
     glNamedBufferSubData(list.id(), 0, sizeof(header), header);
   }
 
-  // Step `step` (>= 2) over the pixels queued for it (list step % 3),
+  // Step `step` (>= 1) over the pixels queued for it (list step % 3),
   // queueing the next step's pixels in list (step + 1) % 3 (emptied by the
   // step before) and emptying list (step + 2) % 3 for the step after.
   void run_queued(uint32_t step) const {
@@ -657,8 +663,8 @@ void IllustrationBuffer::append_diffusion_work(TechniqueCounters& c) const {
   if (!per_pixel.empty())
     glGetNamedBufferSubData(pixel_updates_.id(), 0, GLsizeiptr(per_pixel.size() * 4), per_pixel.data());
   gl_check("illustration_buffer: reading back the diffusion's update counts");
-  // The first step updates every fragment; the counts are the later steps'.
-  uint64_t updates = s_.iterations > 0 ? stored_ : 0;
+  // Every step is a listed one: each pixel counted its own updates.
+  uint64_t updates = 0;
   for (GLuint n : per_pixel) updates += n;
   const uint64_t all = stored_ * uint64_t(s_.iterations);
   c.extra.push_back({"fragment_updates", double(updates)});
