@@ -278,25 +278,16 @@ TEST(IllustrationBuffer, WithoutModulationNeighboursAndStylizeAreNotDispatched) 
   EXPECT_EQ(plain.stage("neighbors", "wall"), nullptr);
   EXPECT_EQ(plain.stage("stylize_init", "wall"), nullptr);
   EXPECT_EQ(plain.stage("diffuse", "wall"), nullptr);
-  // The neighbour search (which sets the initial fields with the default
-  // triangle_index) and 5 diffusion iterations.
-  EXPECT_EQ(test::work_saved(plain, "passes_skipped"), 6.0);
+  // The neighbour search, the stylize init and 5 diffusion iterations.
+  EXPECT_EQ(test::work_saved(plain, "passes_skipped"), 7.0);
   EXPECT_EQ(test::extra_counter(plain, "neighbor_passes"), 0.0);
   EXPECT_EQ(test::extra_counter(plain, "stylize_passes"), 0.0);
   const RunResult styled = test::render_once("illustration_buffer", {{"iterations", "5"}}, "spheres", {}, 32, 32);
   EXPECT_NE(styled.stage("neighbors", "wall"), nullptr);
-  EXPECT_EQ(styled.stage("stylize_init", "wall"), nullptr);
+  EXPECT_NE(styled.stage("stylize_init", "wall"), nullptr);
   EXPECT_NE(styled.stage("diffuse", "wall"), nullptr);
   EXPECT_EQ(test::work_saved(styled, "passes_skipped"), 0.0);
-  EXPECT_EQ(test::extra_counter(styled, "stylize_passes"), 5.0);
-  // The heuristic searches leave the fields to stylize_init.
-  const RunResult heuristic = test::render_once(
-      "illustration_buffer", {{"iterations", "5"}, {"neighbors", "heuristic"}}, "spheres", {}, 32, 32);
-  EXPECT_NE(heuristic.stage("stylize_init", "wall"), nullptr);
-  EXPECT_EQ(test::extra_counter(heuristic, "stylize_passes"), 6.0);
-  const RunResult heuristic_plain = test::render_once(
-      "illustration_buffer", {{"modulation", "none"}, {"iterations", "5"}, {"neighbors", "heuristic"}}, "spheres", {}, 32, 32);
-  EXPECT_EQ(test::work_saved(heuristic_plain, "passes_skipped"), 7.0);
+  EXPECT_EQ(test::extra_counter(styled, "stylize_passes"), 6.0);
 }
 
 TEST(IllustrationBuffer, SingleFragmentListsSkipTheSortAndMatchTheReference) {
@@ -485,14 +476,11 @@ TEST(IllustrationBuffer, ADiffusionToleranceStaysWithinItsMeasuredError) {
 
 TEST(IllustrationBuffer, OneIterationTimesInitialisationAndTheStepApart) {
   const RunResult r = test::render_once("illustration_buffer", {{"iterations", "1"}}, "torus", {}, 32, 32);
-  // count: the default storage=linearized's counting pass (storage=linked
-  // clears instead); the default triangle-index search sets the initial
-  // fields itself (no stylize_init).
-  for (const char* stage : {"count", "fill", "sort", "neighbors", "diffuse", "compose"})
+  // count: the default storage=linearized's counting pass (storage=linked clears instead).
+  for (const char* stage : {"count", "fill", "sort", "neighbors", "stylize_init", "diffuse", "compose"})
     EXPECT_NE(r.stage(stage, "wall"), nullptr) << stage;
   EXPECT_EQ(r.stage("stylize", "wall"), nullptr);
-  EXPECT_EQ(r.stage("stylize_init", "wall"), nullptr);
-  EXPECT_EQ(test::extra_counter(r, "stylize_passes"), 1.0);
+  EXPECT_EQ(test::extra_counter(r, "stylize_passes"), 2.0);
   // measure_accuracy is off unless asked for: no truth records, no precision.
   EXPECT_EQ(find_figure(r.counters.extra, "neighbor_precision"), std::nullopt);
   const RunResult measured =

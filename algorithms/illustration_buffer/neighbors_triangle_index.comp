@@ -18,27 +18,15 @@
 // on 32 layers (neighbours 97-101 against 114-137 ms) and no slower than the
 // dispatch per fragment on the torus's lists of 1-4 (eight was ~1.5x slower
 // there: unrolled tests for fragments a short list does not have).
-//
-// IB_INIT_FIELDS (modulated modes): each fragment's initial fields are set
-// here too (fields_init.glsl), from the links just found and the layers
-// they point at (a link's position in its adjacent list), instead of in a
-// pass of its own that would read them all back.
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 #include "algorithms/illustration_buffer/views.glsl"
-#ifdef IB_INIT_FIELDS
-#include "algorithms/illustration_buffer/fields.glsl"
-#include "algorithms/illustration_buffer/fields_init.glsl"
-#endif
 
 #define IB_GROUP 4
 
 // This group's fragments (their triangles' vertex indices) and their links.
 uvec3 mine[IB_GROUP];
 uvec4 links[IB_GROUP];
-// The first sorted index of each adjacent pixel's list (a link minus it is
-// the neighbour's layer).
-uvec4 adjacent_first;
 
 bool shares_vertex(uvec3 a, uvec3 b) {
   // At least one shared vertex index: a neighbour (rules 2-4 of section 3.4).
@@ -49,9 +37,8 @@ bool shares_vertex(uvec3 a, uvec3 b) {
 // with mine[i], for the group's fragments in `pending` (a bit each); the
 // others keep IB_NONE.
 void scan(uint other, int d, uint pending) {
-  adjacent_first[d] = ib_pixel_first(other);
-  const uint end = adjacent_first[d] + ib_pixel_count(other);
-  for (uint b = adjacent_first[d]; b < end && pending != 0u; ++b) {
+  const uint end = ib_pixel_first(other) + ib_pixel_count(other);
+  for (uint b = ib_pixel_first(other); b < end && pending != 0u; ++b) {
     const uvec3 theirs = ib_sorted_geometry(b).xyz;
     for (int i = 0; i < IB_GROUP; ++i) {
       if ((pending & (1u << i)) != 0u && shares_vertex(mine[i], theirs)) {
@@ -87,18 +74,7 @@ void main() {
     search(x + 1, y, 1, pending);
     search(x, y - 1, 2, pending);
     search(x, y + 1, 3, pending);
-    for (int i = 0; i < IB_GROUP; ++i) {
-      if (uint(i) >= size) continue;
-      const uint s = group + uint(i);
-      ib_shade[s].links = links[i];
-#ifdef IB_INIT_FIELDS
-      const float alpha = ib_initial_alpha(ib_sorted_color(s).a, count);
-      const vec4 fields = ib_initial_fields(alpha, s - first, links[i], links[i] - adjacent_first);
-      ib_fields_out[s] = fields;
-#ifdef IB_TRACK
-      ib_seed_diffusion(fields, links[i], pixel);
-#endif
-#endif
-    }
+    for (int i = 0; i < IB_GROUP; ++i)
+      if (uint(i) < size) ib_shade[group + uint(i)].links = links[i];
   }
 }

@@ -1,30 +1,88 @@
 #version 450 core
-// Initial and boundary conditions, one invocation per sorted fragment
-// (fields_init.glsl; neighbors=triangle_index sets them in its search).
+// Initial and boundary conditions (carnecky2013 sections 5.2-5.3), one
+// invocation per sorted fragment:
+//  alpha = s (eq. 4) or 1 - (1 - s)^(1/n) (eq. 5, u_adaptive), s = the
+//          fragment's own alpha, n = its pixel's fragment count;
+//  fewer than 4 neighbours (adjacent pixels outside the image do not count
+//          as missing) -> silhouette: beta = 1, fixed;
+//  otherwise, a layer index greater than a neighbour's -> beta = 0, fixed;
+//  a layer index smaller than a neighbour's -> gamma = 1, fixed (halo).
+// Fields the chosen modulation does not use stay 0 and unfixed.
+//
+// IB_TRACK (skip_converged): the first diffusion step's worklist. A fragment
+// can change in that step only if a linked neighbour's initial value differs
+// from its own: alpha (eq. 8 takes the mean of the differences, exactly 0
+// when they are equal), or beta / gamma of 1 (unfixed fields start at 0, and
+// eq. 9 only ever raises them towards a neighbour's value). So every
+// fragment with beta or gamma fixed at 1, and every fragment whose alpha
+// differs from a linked neighbour's initial alpha, queues its pixel and the
+// 4 adjacent pixels (the links of any fragment reading it lie there); no
+// other fragment moves in the first step. Scenes without silhouettes, halos
+// or alpha differences (full-screen layers) queue nothing.
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 #include "algorithms/illustration_buffer/per_fragment.glsl"
 #include "algorithms/illustration_buffer/fields.glsl"
 #include "algorithms/illustration_buffer/views.glsl"
-#include "algorithms/illustration_buffer/fields_init.glsl"
+#ifdef IB_TRACK
+#include "algorithms/illustration_buffer/worklist.glsl"
+#endif
 
-// The layer of the neighbour behind link d (the adjacent pixel's list).
-uvec4 neighbor_layers(uvec4 links, uint pixel) {
-  const uvec4 adjacent = ib_adjacent_pixels(pixel);
-  uvec4 layers = uvec4(0u);
-  for (int d = 0; d < 4; ++d)
-    if (links[d] < IB_OFF_IMAGE) layers[d] = ib_layer_of(links[d], adjacent[d]);
-  return layers;
+layout(location = IB_ADAPTIVE_LOCATION) uniform bool u_adaptive;
+layout(location = IB_USE_BETA_LOCATION) uniform bool u_use_beta;
+layout(location = IB_USE_GAMMA_LOCATION) uniform bool u_use_gamma;
+
+// -1: the neighbour is nearer in its list, +1: deeper, 0: same layer or no
+// neighbour. `adjacent` is the pixel of the link's direction (the link lies there).
+int compare_layer(uint layer, uint link, uint adjacent) {
+  if (link >= IB_OFF_IMAGE) return 0;
+  const uint other = ib_layer_of(link, adjacent);
+  return other < layer ? -1 : (other > layer ? 1 : 0);
+}
+
+// The initial alpha (eq. 4, or eq. 5 with u_adaptive) of a fragment of
+// alpha s in a pixel of n fragments.
+float initial_alpha(float s, uint n) { return u_adaptive ? 1.0 - pow(1.0 - s, 1.0 / float(n)) : s; }
+
+// Whether a linked neighbour starts with another alpha (IB_TRACK, above).
+bool alpha_differs(float alpha, uvec4 links, uint pixel) {
+  const uint row = uint(u_width);
+  const uvec4 adjacent = uvec4(pixel - 1u, pixel + 1u, pixel - row, pixel + row);
+  bool differs = false;
+  for (int d = 0; d < 4; ++d) {
+    if (links[d] >= IB_OFF_IMAGE) continue;
+    differs = differs || initial_alpha(ib_sorted_color(links[d]).a, ib_pixel_count(adjacent[d])) != alpha;
+  }
+  return differs;
 }
 
 void main() {
   const uint s = ib_fragment_index();
   if (s >= u_fragments) return;
   const uint pixel = ib_sorted_key(s).w;
+  const uint layer = ib_layer_of(s, pixel);
   const uvec4 links = ib_sorted_links(s);
-  const float alpha = ib_initial_alpha(ib_sorted_color(s).a, ib_pixel_count(pixel));
-  const vec4 fields = ib_initial_fields(alpha, ib_layer_of(s, pixel), links, neighbor_layers(links, pixel));
-  ib_fields_out[s] = fields;
+  const float own_alpha = ib_sorted_color(s).a;
+  const float alpha = initial_alpha(own_alpha, ib_pixel_count(pixel));
+
+  const bool silhouette = any(equal(links, uvec4(IB_NONE)));
+  const uint row = uint(u_width);  // links: left, right, down, up (neighbors.comp)
+  const ivec4 order = ivec4(compare_layer(layer, links.x, pixel - 1u), compare_layer(layer, links.y, pixel + 1u),
+                            compare_layer(layer, links.z, pixel - row), compare_layer(layer, links.w, pixel + row));
+  const bool under_a_neighbor = any(equal(order, ivec4(-1)));  // my layer index is greater
+  const bool over_a_neighbor = any(equal(order, ivec4(1)));    // my layer index is smaller
+
+  float beta = 0.0, gamma = 0.0;
+  uint flags = 0u;
+  if (u_use_beta && (silhouette || under_a_neighbor)) {
+    beta = silhouette ? 1.0 : 0.0;  // the silhouette rule wins over the "underneath" rule
+    flags |= IB_FIXED_BETA;
+  }
+  if (u_use_gamma && over_a_neighbor) {
+    gamma = 1.0;
+    flags |= IB_FIXED_GAMMA;
+  }
+  ib_fields_out[s] = vec4(alpha, beta, gamma, float(flags));
 #ifdef IB_TRACK
-  ib_seed_diffusion(fields, links, pixel);
+  if (beta == 1.0 || gamma == 1.0 || alpha_differs(alpha, links, pixel)) ib_enqueue_around(pixel);
 #endif
 }

@@ -120,29 +120,24 @@ class IllustrationBuffer final : public Technique {
                                         : s_.purely_local() ? ShaderDefines{{"IB_LOCAL_OPACITY", "1"}}
                                                              : ShaderDefines{});
     if (!modulated()) return;
+    neighbors_ = s_.heuristic() ? build_compute_program("algorithms/illustration_buffer/neighbors.comp",
+                                                        {{"IB_HEURISTIC", "1"},
+                                                         {"IB_MERGE", s_.neighbors == NeighborSearch::heuristic_merge ? "1" : "0"}})
+                                : build_compute_program("algorithms/illustration_buffer/neighbors_triangle_index.comp");
+    if (s_.heuristic()) {
+      set_uniform(neighbors_.id(), IB_WEIGHT_Z_LOCATION, s_.weight_z);
+      set_uniform(neighbors_.id(), IB_WEIGHT_N_LOCATION, s_.weight_n);
+    }
     // With skip_converged the init queues the first step's pixels and every
     // step is a listed one; without, every step updates every fragment.
     const bool track = tracks_convergence(s_);
-    const ShaderDefines tracking = track ? ShaderDefines{{"IB_TRACK", "1"}} : ShaderDefines{};
-    if (s_.heuristic()) {
-      neighbors_ = build_compute_program("algorithms/illustration_buffer/neighbors.comp",
-                                         {{"IB_HEURISTIC", "1"},
-                                          {"IB_MERGE", s_.neighbors == NeighborSearch::heuristic_merge ? "1" : "0"}});
-      set_uniform(neighbors_.id(), IB_WEIGHT_Z_LOCATION, s_.weight_z);
-      set_uniform(neighbors_.id(), IB_WEIGHT_N_LOCATION, s_.weight_n);
-      stylize_init_ = build_compute_program("algorithms/illustration_buffer/stylize_init.comp", tracking);
-    } else {
-      // The triangle-index search sets the initial fields as it finds the links.
-      ShaderDefines defines = tracking;
-      defines.push_back({"IB_INIT_FIELDS", "1"});
-      neighbors_ = build_compute_program("algorithms/illustration_buffer/neighbors_triangle_index.comp", defines);
-    }
-    const GLuint initializer = fields_initializer().id();
-    set_uniform(initializer, IB_ADAPTIVE_LOCATION, int(s_.adaptive_alpha));
-    set_uniform(initializer, IB_USE_BETA_LOCATION, int(s_.uses_beta()));
-    set_uniform(initializer, IB_USE_GAMMA_LOCATION, int(s_.uses_gamma()));
+    stylize_init_ = build_compute_program("algorithms/illustration_buffer/stylize_init.comp",
+                                          track ? ShaderDefines{{"IB_TRACK", "1"}} : ShaderDefines{});
+    set_uniform(stylize_init_.id(), IB_ADAPTIVE_LOCATION, int(s_.adaptive_alpha));
+    set_uniform(stylize_init_.id(), IB_USE_BETA_LOCATION, int(s_.uses_beta()));
+    set_uniform(stylize_init_.id(), IB_USE_GAMMA_LOCATION, int(s_.uses_gamma()));
     if (track) {
-      set_uniform(initializer, IB_NEXT_STEP_LOCATION, 1u);
+      set_uniform(stylize_init_.id(), IB_NEXT_STEP_LOCATION, 1u);
       diffuse_listed_ =
           build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp", {{"IB_WORKLIST", "1"}});
     } else {
@@ -237,7 +232,7 @@ class IllustrationBuffer final : public Technique {
                {"framebuffer_fetch_fill", fetches_cursors(s_) ? 1.0 : 0.0},
                {"flat_color_records", flat_ ? 1.0 : 0.0},
                {"neighbor_passes", modulated() ? 1.0 : 0.0},
-               {"stylize_passes", modulated() ? double(stylize_passes()) : 0.0},
+               {"stylize_passes", modulated() ? double(1 + s_.iterations) : 0.0},
                {"dynamic_sort", sorted_dynamically_ ? 1.0 : 0.0, Combine::max}};
     if (modulated() && s_.neighbors == NeighborSearch::triangle_index)
       c.extra.push_back({"isolated_triangles", double(isolated_triangles_), Combine::max});
@@ -370,48 +365,32 @@ class IllustrationBuffer final : public Technique {
                                std::to_string(produced_) + " in all); the image would be wrong");
   }
 
-  // The stylize dispatches of a modulated frame: stylize_init (not with the
-  // triangle-index search, which sets the fields itself) and the steps.
-  int stylize_passes() const { return (s_.heuristic() ? 1 : 0) + s_.iterations; }
-
-  // The program that sets the fields' initial and boundary conditions: the
-  // triangle-index search itself, or stylize_init after the heuristics.
-  const Program& fields_initializer() const { return s_.heuristic() ? stylize_init_ : neighbors_; }
-
   // Neighbour search, then the fields' initial and boundary conditions
-  // (stylize_init, or in the triangle-index search) and the `iterations`
-  // steps of eq. 8-9 (diffuse).
+  // (stylize_init) and the `iterations` steps of eq. 8-9 (diffuse).
   void stylize(const Frame& frame, GLintptr second_range) {
-    const bool track = tracks_convergence(s_);
-    const auto before_init = [&] {
-      if (track) start_worklists();
-      // Ranges of fragData (dead after the sort) hold the two field buffers.
-      bind_fields(0, second_range);
-    };
-    // A listed step writes only the fragments it updates, so both ranges
-    // start with every initial value.
-    const auto after_init = [&] {
-      if (!track || s_.iterations == 0 || stored_ == 0) return;
-      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-      glCopyNamedBufferSubData(data_.id(), data_.id(), second_range, 0, kFieldBytes * GLsizeiptr(stored_));
-    };
     {
       auto stage = frame.clock.stage("neighbors");
       if (s_.heuristic()) {
         prepare_scene_data(frame.scene.scene());
         run_per_fragment(neighbors_.id());
       } else {
-        before_init();
         glUseProgram(neighbors_.id());
         run_per_pixel();
-        after_init();
       }
     }
-    if (s_.heuristic()) {
+    const bool track = tracks_convergence(s_);
+    {
       auto stage = frame.clock.stage("stylize_init");
-      before_init();
+      if (track) start_worklists();
+      // Ranges of fragData (dead after the sort) hold the two field buffers.
+      bind_fields(0, second_range);
       run_per_fragment(stylize_init_.id());
-      after_init();
+      // A listed step writes only the fragments it updates, so both ranges
+      // start with every initial value.
+      if (track && s_.iterations > 0 && stored_ > 0) {
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glCopyNamedBufferSubData(data_.id(), data_.id(), second_range, 0, kFieldBytes * GLsizeiptr(stored_));
+      }
     }
     auto stage = frame.clock.stage("diffuse");
     for (int i = 0; i < s_.iterations; ++i) {
@@ -663,7 +642,7 @@ void IllustrationBuffer::append_neighbor_statistics(TechniqueCounters& c) const 
 // fragments of 1-fragment lists, which the sort copies without walking or
 // sorting (read back from the per-pixel counts, outside the frame).
 void IllustrationBuffer::work_saved(TechniqueCounters& c) const {
-  const double skipped = !modulated() && stored_ > 0 ? double(1 + stylize_passes()) : 0.0;
+  const double skipped = !modulated() && stored_ > 0 ? double(2 + s_.iterations) : 0.0;
   std::vector<uint32_t> count(size_t(width_) * size_t(height_));
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   if (!count.empty()) glGetNamedBufferSubData(count_.id(), 0, GLsizeiptr(count.size() * 4), count.data());
