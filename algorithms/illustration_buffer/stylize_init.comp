@@ -18,7 +18,9 @@
 // differs from a linked neighbour's initial alpha, queues its pixel and the
 // 4 adjacent pixels (the links of any fragment reading it lie there); no
 // other fragment moves in the first step. Scenes without silhouettes, halos
-// or alpha differences (full-screen layers) queue nothing.
+// or alpha differences (full-screen layers) queue nothing. Where every
+// triangle of the scene has one alpha and eq. 4 is used (u_one_alpha), no
+// alpha differs, and the neighbours' colours are not read.
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 #include "algorithms/illustration_buffer/per_fragment.glsl"
 #include "algorithms/illustration_buffer/fields.glsl"
@@ -30,6 +32,9 @@
 layout(location = IB_ADAPTIVE_LOCATION) uniform bool u_adaptive;
 layout(location = IB_USE_BETA_LOCATION) uniform bool u_use_beta;
 layout(location = IB_USE_GAMMA_LOCATION) uniform bool u_use_gamma;
+#ifdef IB_TRACK
+layout(location = IB_ONE_ALPHA_LOCATION) uniform bool u_one_alpha;
+#endif
 
 // -1: the neighbour is nearer in its list, +1: deeper, 0: same layer or no
 // neighbour. `adjacent` is the pixel of the link's direction (the link lies there).
@@ -83,6 +88,6 @@ void main() {
   }
   ib_fields_out[s] = vec4(alpha, beta, gamma, float(flags));
 #ifdef IB_TRACK
-  if (beta == 1.0 || gamma == 1.0 || alpha_differs(alpha, links, pixel)) ib_enqueue_around(pixel);
+  if (beta == 1.0 || gamma == 1.0 || (!u_one_alpha && alpha_differs(alpha, links, pixel))) ib_enqueue_around(pixel);
 #endif
 }

@@ -381,7 +381,10 @@ class IllustrationBuffer final : public Technique {
     const bool track = tracks_convergence(s_);
     {
       auto stage = frame.clock.stage("stylize_init");
-      if (track) start_worklists();
+      if (track) {
+        start_worklists();
+        set_uniform(stylize_init_.id(), IB_ONE_ALPHA_LOCATION, int(!s_.adaptive_alpha && one_alpha(frame.scene.scene())));
+      }
       // Ranges of fragData (dead after the sort) hold the two field buffers.
       bind_fields(0, second_range);
       run_per_fragment(stylize_init_.id());
@@ -510,6 +513,17 @@ class IllustrationBuffer final : public Technique {
     return (offset + alignment - 1) / alignment * alignment;
   }
 
+  // Whether every triangle of `scene` has the same alpha (then, with eq. 4,
+  // every fragment starts with it: stylize_init.comp). Once per scene.
+  bool one_alpha(const Scene& scene) {
+    if (&scene != one_alpha_scene_) {
+      one_alpha_scene_ = &scene;
+      one_alpha_ = std::all_of(scene.vertices.begin(), scene.vertices.end(),
+                               [&](const Vertex& v) { return v.color.a == scene.vertices.front().color.a; });
+    }
+    return one_alpha_;
+  }
+
   // Once per scene: the bounding-sphere radius (heuristic, eq. 1) or the
   // triangle table (triangle_index), keyed by the scene's content hash.
   void prepare_scene_data(const Scene& scene) {
@@ -588,6 +602,8 @@ class IllustrationBuffer final : public Technique {
   Framebuffer cursor_framebuffer_;
   std::vector<uint32_t> host_offsets_, host_sorted_offsets_, host_lengths_;
   const Scene* scene_seen_ = nullptr;
+  const Scene* one_alpha_scene_ = nullptr;
+  bool one_alpha_ = false;
   std::string scene_hash_;
   int width_ = 0, height_ = 0;
   FragmentPool pool_;
