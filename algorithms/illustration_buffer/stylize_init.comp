@@ -19,8 +19,9 @@
 // 4 adjacent pixels (the links of any fragment reading it lie there); no
 // other fragment moves in the first step. Scenes without silhouettes, halos
 // or alpha differences (full-screen layers) queue nothing. Where every
-// triangle of the scene has one alpha and eq. 4 is used (u_one_alpha), no
-// alpha differs, and the neighbours' colours are not read.
+// triangle of the scene has one alpha and eq. 4 is used, no alpha differs:
+// that variant is compiled without IB_ALPHA_SEEDS and reads no neighbour's
+// colour (llvmpipe runs the code of an `if` even when no lane takes it).
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 #include "algorithms/illustration_buffer/per_fragment.glsl"
 #include "algorithms/illustration_buffer/fields.glsl"
@@ -32,9 +33,6 @@
 layout(location = IB_ADAPTIVE_LOCATION) uniform bool u_adaptive;
 layout(location = IB_USE_BETA_LOCATION) uniform bool u_use_beta;
 layout(location = IB_USE_GAMMA_LOCATION) uniform bool u_use_gamma;
-#ifdef IB_TRACK
-layout(location = IB_ONE_ALPHA_LOCATION) uniform bool u_one_alpha;
-#endif
 
 // -1: the neighbour is nearer in its list, +1: deeper, 0: same layer or no
 // neighbour. `adjacent` is the pixel of the link's direction (the link lies there).
@@ -48,6 +46,7 @@ int compare_layer(uint layer, uint link, uint adjacent) {
 // alpha s in a pixel of n fragments.
 float initial_alpha(float s, uint n) { return u_adaptive ? 1.0 - pow(1.0 - s, 1.0 / float(n)) : s; }
 
+#ifdef IB_ALPHA_SEEDS
 // Whether a linked neighbour starts with another alpha (IB_TRACK, above).
 bool alpha_differs(float alpha, uvec4 links, uint pixel) {
   const uint row = uint(u_width);
@@ -59,6 +58,9 @@ bool alpha_differs(float alpha, uvec4 links, uint pixel) {
   }
   return differs;
 }
+#else
+bool alpha_differs(float alpha, uvec4 links, uint pixel) { return false; }
+#endif
 
 void main() {
   const uint s = ib_fragment_index();
@@ -88,6 +90,6 @@ void main() {
   }
   ib_fields_out[s] = vec4(alpha, beta, gamma, float(flags));
 #ifdef IB_TRACK
-  if (beta == 1.0 || gamma == 1.0 || (!u_one_alpha && alpha_differs(alpha, links, pixel))) ib_enqueue_around(pixel);
+  if (beta == 1.0 || gamma == 1.0 || alpha_differs(alpha, links, pixel)) ib_enqueue_around(pixel);
 #endif
 }

@@ -131,13 +131,21 @@ class IllustrationBuffer final : public Technique {
     // With skip_converged the init queues the first step's pixels and every
     // step is a listed one; without, every step updates every fragment.
     const bool track = tracks_convergence(s_);
-    stylize_init_ = build_compute_program("algorithms/illustration_buffer/stylize_init.comp",
-                                          track ? ShaderDefines{{"IB_TRACK", "1"}} : ShaderDefines{});
-    set_uniform(stylize_init_.id(), IB_ADAPTIVE_LOCATION, int(s_.adaptive_alpha));
-    set_uniform(stylize_init_.id(), IB_USE_BETA_LOCATION, int(s_.uses_beta()));
-    set_uniform(stylize_init_.id(), IB_USE_GAMMA_LOCATION, int(s_.uses_gamma()));
+    // stylize_inits_[1] also queues fragments whose alpha differs from a
+    // neighbour's (stylize_init.comp, IB_ALPHA_SEEDS): for scenes of more
+    // than one alpha, or eq. 5.
+    for (int alpha_seeds = 0; alpha_seeds < (track ? 2 : 1); ++alpha_seeds) {
+      ShaderDefines defines;
+      if (track) defines.push_back({"IB_TRACK", "1"});
+      if (alpha_seeds) defines.push_back({"IB_ALPHA_SEEDS", "1"});
+      Program& init = stylize_inits_[alpha_seeds];
+      init = build_compute_program("algorithms/illustration_buffer/stylize_init.comp", defines);
+      set_uniform(init.id(), IB_ADAPTIVE_LOCATION, int(s_.adaptive_alpha));
+      set_uniform(init.id(), IB_USE_BETA_LOCATION, int(s_.uses_beta()));
+      set_uniform(init.id(), IB_USE_GAMMA_LOCATION, int(s_.uses_gamma()));
+      if (track) set_uniform(init.id(), IB_NEXT_STEP_LOCATION, 1u);
+    }
     if (track) {
-      set_uniform(stylize_init_.id(), IB_NEXT_STEP_LOCATION, 1u);
       diffuse_listed_ =
           build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp", {{"IB_WORKLIST", "1"}});
     } else {
@@ -381,13 +389,11 @@ class IllustrationBuffer final : public Technique {
     const bool track = tracks_convergence(s_);
     {
       auto stage = frame.clock.stage("stylize_init");
-      if (track) {
-        start_worklists();
-        set_uniform(stylize_init_.id(), IB_ONE_ALPHA_LOCATION, int(!s_.adaptive_alpha && one_alpha(frame.scene.scene())));
-      }
+      if (track) start_worklists();
+      const bool alpha_seeds = track && (s_.adaptive_alpha || !one_alpha(frame.scene.scene()));
       // Ranges of fragData (dead after the sort) hold the two field buffers.
       bind_fields(0, second_range);
-      run_per_fragment(stylize_init_.id());
+      run_per_fragment(stylize_inits_[alpha_seeds ? 1 : 0].id());
       // A listed step writes only the fragments it updates, so both ranges
       // start with every initial value.
       if (track && s_.iterations > 0 && stored_ > 0) {
@@ -448,7 +454,8 @@ class IllustrationBuffer final : public Technique {
 
   std::vector<GLuint> programs() const {
     std::vector<GLuint> all = {fill_.id(), compose_.id()};
-    for (const Program* p : {&fill_flat_, &neighbors_, &stylize_init_, &stylize_diffuse_, &diffuse_listed_})
+    for (const Program* p : {&fill_flat_, &neighbors_, &stylize_inits_[0], &stylize_inits_[1], &stylize_diffuse_,
+                             &diffuse_listed_})
       if (*p) all.push_back(p->id());
     for (const auto& [size, program] : sorts_) all.push_back(program.id());
     return all;
@@ -584,7 +591,7 @@ class IllustrationBuffer final : public Technique {
 
   Settings s_;
   // fill_flat_: flat_color_records, for unlit scenes (no colour in the record).
-  Program fill_, fill_flat_, compose_, neighbors_, stylize_init_, stylize_diffuse_, diffuse_listed_;
+  Program fill_, fill_flat_, compose_, neighbors_, stylize_inits_[2], stylize_diffuse_, diffuse_listed_;
   bool flat_ = false;  // this frame's records hold no colour
   uint64_t flat_table_bytes_ = 0;
   std::map<std::pair<uint32_t, bool>, Program> sorts_;  // by local array size (0: the dynamic sort), flat colours
