@@ -26,6 +26,7 @@
 #define IB_WORK_OUT_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 11)
 #define IB_PIXEL_UPDATES_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 12)
 #define IB_WORK_NEXT_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 13)  // stylize_diffuse.comp, IB_WORKLIST
+#define IB_SEEDS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 14)      // stylize_init.comp, IB_TRACK
 
 // Texture units of the read-only buffer-texture views. The per-fragment
 // passes' (views.glsl) and the listed diffusion steps' (stylize_diffuse.comp):
@@ -35,6 +36,7 @@
 #define IB_WORK_UNIT 3
 #define IB_HEAD_UNIT 4
 #define IB_COUNT_UNIT 5
+#define IB_SEEDS_UNIT 6  // stylize_seed_queue.comp
 // The sort's (sort.comp), a program of its own: fill records and the triangle table.
 #define IB_FRAGMENT_UNIT 0
 #define IB_SORT_TRIANGLES_UNIT 1  // neighbors=triangle_index

@@ -17,7 +17,11 @@
 // fragment with beta or gamma fixed at 1, and every fragment whose alpha
 // differs from a linked neighbour's initial alpha, queues its pixel and the
 // 4 adjacent pixels (the links of any fragment reading it lie there); no
-// other fragment moves in the first step. Scenes without silhouettes, halos
+// other fragment moves in the first step. Here such a fragment only marks
+// its pixel (ib_seeds); stylize_seed_queue.comp then lists every pixel with
+// a mark in its cross, once per pixel (queueing here, five stamp checks and
+// atomics per fragment, cost llvmpipe about as much as the init itself even
+// where no lane queued: it runs a branch's code with the lanes masked off). Scenes without silhouettes, halos
 // or alpha differences (full-screen layers) queue nothing. Where every
 // triangle of the scene has one alpha and eq. 4 is used, no alpha differs:
 // that variant is compiled without IB_ALPHA_SEEDS and reads no neighbour's
@@ -27,7 +31,7 @@
 #include "algorithms/illustration_buffer/fields.glsl"
 #include "algorithms/illustration_buffer/views.glsl"
 #ifdef IB_TRACK
-#include "algorithms/illustration_buffer/worklist.glsl"
+layout(std430, binding = IB_SEEDS_BINDING) writeonly buffer IbSeeds { uint ib_seeds[]; };
 #endif
 
 layout(location = IB_ADAPTIVE_LOCATION) uniform bool u_adaptive;
@@ -90,6 +94,6 @@ void main() {
   }
   ib_fields_out[s] = vec4(alpha, beta, gamma, float(flags));
 #ifdef IB_TRACK
-  if (beta == 1.0 || gamma == 1.0 || alpha_differs(alpha, links, pixel)) ib_enqueue_around(pixel);
+  if (beta == 1.0 || gamma == 1.0 || alpha_differs(alpha, links, pixel)) ib_seeds[pixel] = 1u;
 #endif
 }

@@ -57,8 +57,8 @@ bool tracks_convergence(const Settings& s) { return s.diffused() && s.skip_conve
 // Per pixel: head and count; with storage=linearized the counting pass's
 // R32F count, the fill's offset and its cursor; plus (when the diffusion
 // skips converged fragments) a stamp, an entry in each of three worklists
-// and an update count.
-uint64_t bytes_per_pixel(const Settings& s) { return 8 + (s.linearized() ? 12 : 0) + (tracks_convergence(s) ? 20 : 0); }
+// an update count and a seed mark (stylize_seed_queue.comp).
+uint64_t bytes_per_pixel(const Settings& s) { return 8 + (s.linearized() ? 12 : 0) + (tracks_convergence(s) ? 24 : 0); }
 
 // storage=linearized with fill=auto: framebuffer fetch where the device has it.
 bool fetches_cursors(const Settings& s) {
@@ -143,9 +143,9 @@ class IllustrationBuffer final : public Technique {
       set_uniform(init.id(), IB_ADAPTIVE_LOCATION, int(s_.adaptive_alpha));
       set_uniform(init.id(), IB_USE_BETA_LOCATION, int(s_.uses_beta()));
       set_uniform(init.id(), IB_USE_GAMMA_LOCATION, int(s_.uses_gamma()));
-      if (track) set_uniform(init.id(), IB_NEXT_STEP_LOCATION, 1u);
     }
     if (track) {
+      seed_queue_ = build_compute_program("algorithms/illustration_buffer/stylize_seed_queue.comp");
       diffuse_listed_ =
           build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp", {{"IB_WORKLIST", "1"}});
     } else {
@@ -173,6 +173,8 @@ class IllustrationBuffer final : public Technique {
     if (tracks_convergence(s_)) {
       stamps_ = make_buffer(GLsizeiptr(width) * height * 4);
       pixel_updates_ = make_buffer(GLsizeiptr(width) * height * 4);
+      seeds_ = make_buffer(GLsizeiptr(width) * height * 4);
+      seeds_view_ = make_buffer_texture(seeds_, GL_R32UI, 0, GLsizeiptr(width) * height * 4);
       const GLsizeiptr list_bytes = kWorklistHeaderBytes + GLsizeiptr(width) * height * 4;
       for (int i = 0; i < 3; ++i) {
         worklists_[i] = make_buffer(list_bytes);
@@ -220,7 +222,7 @@ class IllustrationBuffer final : public Technique {
     glDrawArrays(GL_TRIANGLES, 0, 3);
     for (GLuint unit : {IB_SEARCH_UNIT, IB_FIELDS_UNIT, IB_SHADE_UNIT, IB_WORK_UNIT, IB_HEAD_UNIT, IB_COUNT_UNIT,
                         IB_FRAGMENT_UNIT, IB_SORT_TRIANGLES_UNIT, IB_OFFSETS_UNIT, IB_FINAL_CURSORS_UNIT,
-                        IB_FLAT_COLORS_UNIT})
+                        IB_FLAT_COLORS_UNIT, IB_SEEDS_UNIT})
       glBindTextureUnit(unit, 0);
     if (s_.linearized()) fail_on_mismatched_ranges();
   }
@@ -394,6 +396,11 @@ class IllustrationBuffer final : public Technique {
       // Ranges of fragData (dead after the sort) hold the two field buffers.
       bind_fields(0, second_range);
       run_per_fragment(stylize_inits_[alpha_seeds ? 1 : 0].id());
+      if (track) {
+        glUseProgram(seed_queue_.id());
+        glBindTextureUnit(IB_SEEDS_UNIT, seeds_view_.id());
+        run_per_pixel();  // lists the first step's pixels
+      }
       // A listed step writes only the fragments it updates, so both ranges
       // start with every initial value.
       if (track && s_.iterations > 0 && stored_ > 0) {
@@ -423,10 +430,12 @@ class IllustrationBuffer final : public Technique {
   void start_worklists() const {
     fill_buffer_u32(stamps_, 0);
     fill_buffer_u32(pixel_updates_, 0);
+    fill_buffer_u32(seeds_, 0);
     reset_worklist(worklists_[1]);
     reset_worklist(worklists_[2]);
     bind_storage_buffers({{IB_STAMPS_BINDING, &stamps_},
                           {IB_PIXEL_UPDATES_BINDING, &pixel_updates_},
+                          {IB_SEEDS_BINDING, &seeds_},
                           {IB_WORK_OUT_BINDING, &worklists_[1]}});
   }
 
@@ -454,8 +463,8 @@ class IllustrationBuffer final : public Technique {
 
   std::vector<GLuint> programs() const {
     std::vector<GLuint> all = {fill_.id(), compose_.id()};
-    for (const Program* p : {&fill_flat_, &neighbors_, &stylize_inits_[0], &stylize_inits_[1], &stylize_diffuse_,
-                             &diffuse_listed_})
+    for (const Program* p : {&fill_flat_, &neighbors_, &stylize_inits_[0], &stylize_inits_[1], &seed_queue_,
+                             &stylize_diffuse_, &diffuse_listed_})
       if (*p) all.push_back(p->id());
     for (const auto& [size, program] : sorts_) all.push_back(program.id());
     return all;
@@ -591,14 +600,14 @@ class IllustrationBuffer final : public Technique {
 
   Settings s_;
   // fill_flat_: flat_color_records, for unlit scenes (no colour in the record).
-  Program fill_, fill_flat_, compose_, neighbors_, stylize_inits_[2], stylize_diffuse_, diffuse_listed_;
+  Program fill_, fill_flat_, compose_, neighbors_, stylize_inits_[2], seed_queue_, stylize_diffuse_, diffuse_listed_;
   bool flat_ = false;  // this frame's records hold no colour
   uint64_t flat_table_bytes_ = 0;
   std::map<std::pair<uint32_t, bool>, Program> sorts_;  // by local array size (0: the dynamic sort), flat colours
   bool sorted_dynamically_ = false;    // the last frame's sort
   Buffer counters_, head_, count_, next_, data_, data2_, data3_, truth_, triangles_;
-  Buffer stamps_, worklists_[3], pixel_updates_;  // skip_converged (worklist.glsl)
-  Texture worklist_views_[3], head_view_, count_view_;
+  Buffer stamps_, worklists_[3], pixel_updates_, seeds_;  // skip_converged (worklist.glsl)
+  Texture worklist_views_[3], seeds_view_, head_view_, count_view_;
   Texture fragment_view_, search_view_, shade_view_, triangles_view_, fields_view_[2];  // read-only views (views.glsl)
   Framebuffer no_attachments_;
   // storage=linearized: the counting pass, the fill's ranges (offsets_, W*H + 1

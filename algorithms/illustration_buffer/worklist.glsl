@@ -25,14 +25,19 @@ layout(std430, binding = IB_PIXEL_UPDATES_BINDING) buffer IbPixelUpdates { uint 
 // The step the pixels queued now are for (2 = the second diffusion step).
 layout(location = IB_NEXT_STEP_LOCATION) uniform uint u_next_step;
 
+// Appends pixel q to the list being filled (one more group per 64 entries).
+void ib_append(uint q) {
+  const uint at = atomicAdd(ib_out_count, 1u);
+  if (at % 64u == 0u && at > 0u && at / 64u < 65535u) atomicAdd(ib_out_groups_x, 1u);
+  ib_work_out[at] = q;
+}
+
 void ib_enqueue(int x, int y) {
   if (x < 0 || y < 0 || x >= u_width || y >= u_height) return;
   const uint q = uint(y) * uint(u_width) + uint(x);
   // A plain read first: most queued pixels are seen by several fragments.
   if (ib_stamp[q] >= u_next_step || atomicMax(ib_stamp[q], u_next_step) >= u_next_step) return;
-  const uint at = atomicAdd(ib_out_count, 1u);
-  if (at % 64u == 0u && at > 0u && at / 64u < 65535u) atomicAdd(ib_out_groups_x, 1u);
-  ib_work_out[at] = q;
+  ib_append(q);
 }
 
 // Queues `pixel` and its 4 adjacent pixels for step u_next_step.
