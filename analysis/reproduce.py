@@ -217,9 +217,11 @@ def pastyrik_fig7(catalogue, scenes, size, warmup, frames):
     linked lists the buffer is built on (linked_list `sort`)."""
     for technique in ("illustration_buffer", "linked_list"):
         variants = catalogue.choices(technique, "sort")
+        # The paper sorts linked lists (its dynamic sort needs them).
+        lists = [("storage", "linked")] if "linked" in catalogue.choices(technique, "storage") else []
         if variants:
             points = [p for v in variants
-                      for p in model_points([technique], scenes, MODEL_CAMERAS, size, [("sort", v)])]
+                      for p in model_points([technique], scenes, MODEL_CAMERAS, size, [("sort", v)] + lists)]
             return Sweep("pastyrik_fig7", points, [("pastyrik_fig7", {})], warmup, frames)
     return Sweep("pastyrik_fig7", [], [("pastyrik_fig7", {})], warmup, frames,
                  "neither illustration_buffer nor linked_list has a `sort` choice in this build")
