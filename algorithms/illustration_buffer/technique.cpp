@@ -287,35 +287,15 @@ class IllustrationBuffer final : public Technique {
     return counts[1];
   }
 
-  // storage=linearized: stage "count" (the counting pass; on the host the
-  // fill's ranges and the sorted ranges of the kept lengths, the pool sized
-  // exactly, the cursors started), then stage "fill". Returns the longest list.
+  // storage=linearized: stage "count" (the counting pass, the ranges from
+  // its counts, the pool sized exactly, the cursors started), then stage
+  // "fill". Returns the longest list.
   uint32_t fill_linearized(const Frame& frame) {
     uint32_t longest = 0;
     {
       auto stage = frame.clock.stage("count");
       longest = list_lengths_->longest_list(frame);
-      const std::vector<float>& counts = list_lengths_->host_counts();
-      offsets_from_counts(counts, host_offsets_);
-      glNamedBufferSubData(offsets_.id(), 0, GLsizeiptr(host_offsets_.size() * 4), host_offsets_.data());
-      produced_ = host_offsets_.back();
-      if (longest > s_.max_per_pixel) {
-        lengths_from_counts(counts, host_lengths_, s_.max_per_pixel);
-        offsets_from_counts(counts, host_sorted_offsets_, s_.max_per_pixel);
-        glNamedBufferSubData(count_.id(), 0, GLsizeiptr(host_lengths_.size() * 4), host_lengths_.data());
-        glNamedBufferSubData(head_.id(), 0, GLsizeiptr(host_lengths_.size() * 4), host_sorted_offsets_.data());
-        stored_ = host_sorted_offsets_.back();
-        truncated_lists_ = uint64_t(std::count_if(counts.begin(), counts.end(),
-                                                  [&](float n) { return n > float(s_.max_per_pixel); }));
-      } else {
-        // Nothing is dropped: the sorted ranges are the fill's.
-        lengths_from_counts(counts, host_lengths_);
-        glNamedBufferSubData(count_.id(), 0, GLsizeiptr(host_lengths_.size() * 4), host_lengths_.data());
-        glCopyNamedBufferSubData(offsets_.id(), head_.id(), 0, 0, GLsizeiptr(host_lengths_.size() * 4));
-        stored_ = produced_;
-        truncated_lists_ = 0;
-      }
-      dropped_ = produced_ - stored_;
+      upload_ranges(list_lengths_->host_counts(), longest > s_.max_per_pixel);
       pool_.before_fill(frame);
       pool_.set_exact(produced_);
       fill_buffer_u32(counters_, 0);
@@ -330,6 +310,30 @@ class IllustrationBuffer final : public Technique {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     passes_ = 2;
     return longest;
+  }
+
+  // From the counted lengths: the fill's ranges (offsets_), and the sorted
+  // ranges and lengths of the kept fragments (head_, count_: the prefix sum
+  // of min(count, max_per_pixel), the fill's own ranges unless `truncated`).
+  void upload_ranges(const std::vector<float>& counts, bool truncated) {
+    offsets_from_counts(counts, host_offsets_);
+    glNamedBufferSubData(offsets_.id(), 0, GLsizeiptr(host_offsets_.size() * 4), host_offsets_.data());
+    lengths_from_counts(counts, host_lengths_, s_.max_per_pixel);
+    const GLsizeiptr pixel_bytes = GLsizeiptr(host_lengths_.size() * 4);
+    glNamedBufferSubData(count_.id(), 0, pixel_bytes, host_lengths_.data());
+    produced_ = host_offsets_.back();
+    stored_ = produced_;
+    truncated_lists_ = 0;
+    if (truncated) {
+      offsets_from_counts(counts, host_sorted_offsets_, s_.max_per_pixel);
+      glNamedBufferSubData(head_.id(), 0, pixel_bytes, host_sorted_offsets_.data());
+      stored_ = host_sorted_offsets_.back();
+      const float most = float(s_.max_per_pixel);
+      truncated_lists_ = uint64_t(std::count_if(counts.begin(), counts.end(), [&](float n) { return n > most; }));
+    } else {
+      glCopyNamedBufferSubData(offsets_.id(), head_.id(), 0, 0, pixel_bytes);
+    }
+    dropped_ = produced_ - stored_;
   }
 
   // Every pixel's cursor starts at its offset: a copy into the cursor
