@@ -29,6 +29,21 @@ double largest_difference(const Image& a, const Image& b) {
   return worst;
 }
 
+// The illustration buffer on `scene` at w x h, once per value of parameter
+// `key`, every other parameter from `params`: the runs of a switch whose
+// values must give the same image.
+std::vector<RunResult> render_each(const std::string& key, const std::vector<std::string>& values,
+                                   const RawParams& params, const std::string& scene, const RawParams& scene_params,
+                                   int w, int h) {
+  std::vector<RunResult> runs;
+  for (const std::string& value : values) {
+    RawParams with = params;
+    with[key] = value;
+    runs.push_back(test::render_once("illustration_buffer", with, scene, scene_params, w, h));
+  }
+  return runs;
+}
+
 TEST(IllustrationBuffer, WithoutModulationEveryNeighbourModeMatchesTheReference) {
   for (const std::string& search : kSearches) {
     const RawParams params = {{"modulation", "none"}, {"neighbors", search}};
@@ -428,11 +443,10 @@ TEST(IllustrationBuffer, SkippingConvergedFragmentsGivesTheSameImage) {
       // alphas (the scene has more than one), but each links within its layer.
       {"stress_layers", {{"alpha_mode", "mixed"}, {"layers", "8"}}, {}, false}};
   for (const Case& c : cases) {
-    RawParams on = c.params, off = c.params;
-    on["skip_converged"] = "true";
-    off["skip_converged"] = "false";
-    const RunResult fast = test::render_once("illustration_buffer", on, c.scene, c.scene_params, 64, 64);
-    const RunResult full = test::render_once("illustration_buffer", off, c.scene, c.scene_params, 64, 64);
+    const std::vector<RunResult> runs = render_each("skip_converged", {"true", "false"}, c.params, c.scene,
+                                                    c.scene_params, 64, 64);
+    const RunResult& fast = runs[0];
+    const RunResult& full = runs[1];
     EXPECT_EQ(largest_difference(fast.image, full.image), 0.0) << c.scene;
     const double iterations = c.params.count("iterations") ? 10.0 : 20.0;
     const double all = iterations * double(fast.counters.fragments_stored);
@@ -507,15 +521,13 @@ TEST(IllustrationBuffer, DynamicSortGivesTheArraySortsImage) {
                                    {"quads", {{"layers", "12"}}, {{"max_per_pixel", "5"}, {"modulation", "none"}}},
                                    {"torus", {}, {{"neighbors", "heuristic"}}}};
   for (const Case& c : cases) {
-    RawParams array = c.params;
-    array["storage"] = "linked";  // sort=dynamic sorts the fill's linked lists
-    RawParams dynamic = array, automatic = array;
-    array["sort"] = "array";
-    dynamic["sort"] = "dynamic";
-    automatic["sort"] = "auto";
-    const RunResult a = test::render_once("illustration_buffer", array, c.scene, c.scene_params, 48, 48);
-    const RunResult d = test::render_once("illustration_buffer", dynamic, c.scene, c.scene_params, 48, 48);
-    const RunResult x = test::render_once("illustration_buffer", automatic, c.scene, c.scene_params, 48, 48);
+    RawParams linked = c.params;
+    linked["storage"] = "linked";  // sort=dynamic sorts the fill's linked lists
+    const std::vector<RunResult> runs =
+        render_each("sort", {"array", "dynamic", "auto"}, linked, c.scene, c.scene_params, 48, 48);
+    const RunResult& a = runs[0];
+    const RunResult& d = runs[1];
+    const RunResult& x = runs[2];
     EXPECT_EQ(largest_difference(a.image, d.image), 0.0) << c.scene;
     EXPECT_EQ(largest_difference(a.image, x.image), 0.0) << c.scene;
     EXPECT_EQ(test::extra_counter(a, "dynamic_sort"), 0.0) << c.scene;
@@ -598,11 +610,10 @@ TEST(IllustrationBuffer, FlatColourRecordsGiveTheStoredColoursImage) {
       {"quads", {{"layers", "6"}}, {{"neighbors", "heuristic"}, {"max_per_pixel", "4"}}, 1.0},
       {"torus", {}, {}, 0.0}};
   for (const Case& c : cases) {
-    RawParams stored = c.params, flat = c.params;
-    stored["flat_color_records"] = "false";
-    flat["flat_color_records"] = "true";
-    const RunResult a = test::render_once("illustration_buffer", stored, c.scene, c.scene_params, 40, 32);
-    const RunResult b = test::render_once("illustration_buffer", flat, c.scene, c.scene_params, 40, 32);
+    const std::vector<RunResult> runs =
+        render_each("flat_color_records", {"false", "true"}, c.params, c.scene, c.scene_params, 40, 32);
+    const RunResult& a = runs[0];
+    const RunResult& b = runs[1];
     EXPECT_EQ(largest_difference(a.image, b.image), 0.0) << c.scene;
     EXPECT_EQ(test::extra_counter(a, "flat_color_records"), 0.0) << c.scene;
     EXPECT_EQ(test::extra_counter(b, "flat_color_records"), c.flat) << c.scene;

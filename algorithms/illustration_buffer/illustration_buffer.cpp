@@ -102,8 +102,9 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
               "and the frame's longest has at most 4 fragments, else array; the same records either way"),
           illustration_buffer::kStorages.spec(
               "storage", illustration_buffer::Storage::linearized,
-              "where the fill puts the records (the same records and image either way): linked = per-pixel linked lists in a pool sized from the previous "
-              "frame (grown with a re-render on overflow; carnecky2013 Algorithm 1); linearized = a counting pass, "
+              "where the fill puts the records (the same records and image either way): linked = per-pixel "
+              "linked lists in a pool sized from the previous frame (grown with a re-render on overflow; "
+              "carnecky2013 Algorithm 1); linearized = a counting pass, "
               "then each pixel's contiguous range from the counts' prefix sum, exactly sized, filled in place "
               "(Knowles et al. 2012): no list walk in the sort, no global counter in the fill"),
           illustration_buffer::kSlotFills.spec(
