@@ -17,15 +17,16 @@
 // fragment with beta or gamma fixed at 1, and every fragment whose alpha
 // differs from a linked neighbour's initial alpha, queues its pixel and the
 // 4 adjacent pixels (the links of any fragment reading it lie there); no
-// other fragment moves in the first step. Here such a fragment only marks
-// its pixel (ib_seeds); stylize_seed_queue.comp then lists every pixel with
-// a mark in its cross, once per pixel (queueing here, five stamp checks and
-// atomics per fragment, cost llvmpipe about as much as the init itself even
-// where no lane queued: it runs a branch's code with the lanes masked off). Scenes without silhouettes, halos
-// or alpha differences (full-screen layers) queue nothing. Where every
-// triangle of the scene has one alpha and eq. 4 is used, no alpha differs:
-// that variant is compiled without IB_ALPHA_SEEDS and reads no neighbour's
-// colour (llvmpipe runs the code of an `if` even when no lane takes it).
+// other fragment moves in the first step. Scenes without silhouettes, halos
+// or alpha differences (full-screen layers) queue nothing.
+// Llvmpipe runs the code of a branch even when no lane takes it, so:
+//  - a seed only marks its pixel (ib_seeds), and stylize_seed_queue.comp
+//    lists every pixel with a mark in its cross, once per pixel (queueing
+//    here, five stamp checks and atomics per fragment, cost as much as the
+//    init itself where no lane queued);
+//  - where every triangle of the scene has one alpha and eq. 4 is used, no
+//    alpha differs: that variant is compiled without IB_ALPHA_SEEDS and
+//    reads no neighbour's colour.
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 #include "algorithms/illustration_buffer/per_fragment.glsl"
 #include "algorithms/illustration_buffer/fields.glsl"
