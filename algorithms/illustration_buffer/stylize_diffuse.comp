@@ -7,7 +7,7 @@
 //     convex blend (stable; lambda_alpha = 1 is the paper's default);
 //     missing neighbours are left out (zero flux across silhouettes).
 //     The mean of the differences, not of the values, so that equal
-//     neighbours give exactly alpha (the init pass relies on it, below);
+//     neighbours give exactly alpha (stylize_init relies on it);
 //  u <- max(u, max(u_neighbours) - lambda_u), u in {beta, gamma}  (eq. 9)
 //     unless the fragment's u is fixed by a boundary condition.
 // Two variants: plain (skip_converged=false), one invocation per sorted
@@ -59,9 +59,7 @@ bool update(uint s) {
   ib_fields_out[s] = changed ? next : field;
   return changed;
 }
-#endif
 
-#if defined(IB_WORKLIST)
 // The step's list (header: groups x, y, z, count; then pixels), read as a
 // buffer texture (a gather on llvmpipe, views.glsl).
 layout(binding = IB_WORK_UNIT) uniform usamplerBuffer ib_work_view;

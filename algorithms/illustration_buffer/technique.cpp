@@ -33,6 +33,8 @@ constexpr GLsizeiptr kLargestRecordBytes = std::max({kFragmentBytes, kSearchByte
 constexpr GLsizeiptr kCounterBytes = 24;  // produced, longest, dropped, truncated, allocated, mismatched
 // A worklist (worklist.glsl): indirect-dispatch arguments and count, then one entry per pixel.
 constexpr GLsizeiptr kWorklistHeaderBytes = 16;
+// The smallest sort array compiled (lists of up to 4, e.g. the torus's, with
+// storage=linearized, where the dynamic sort is not offered).
 constexpr uint32_t kSmallestArray = 4;
 // sort=auto takes the dynamic sort up to this longest list: faster there on
 // llvmpipe (README, Sort variants), the array's ranks beyond.
