@@ -294,9 +294,9 @@ class BucketedKBuffer final : public Technique {
   // uniforms of every program.
   void prepare_frame(const Frame& frame) {
     const Scene& scene = frame.scene.scene();
-    if (bounds_scene_ != &scene) {  // O(vertices): once per scene, not per frame
+    if (bounds_scene_ != frame.scene.serial()) {  // O(vertices): once per scene, not per frame
       bounds_ = scene.bounds();
-      bounds_scene_ = &scene;
+      bounds_scene_ = frame.scene.serial();
     }
     analytic_curvature_ = scene.analytic_curvature;
     search_ = mode_ == BucketMode::off ? Search::brute_force
@@ -410,7 +410,7 @@ class BucketedKBuffer final : public Technique {
   Texture color_transfer_, opacity_transfer_;
   Framebuffer no_attachments_;
   int width_ = 0, height_ = 0;
-  const Scene* bounds_scene_ = nullptr;
+  uint64_t bounds_scene_ = 0;  // SceneGpu::serial of bounds_, 0: none yet
   BoundingSphere bounds_;
   Search search_ = Search::hashed;  // this frame's
   bool analytic_curvature_ = false;

@@ -203,7 +203,7 @@ class IllustrationBuffer final : public Technique {
         glBindTextureUnit(IB_FINAL_CURSORS_UNIT, fetches_cursors(s_) ? cursor_target_.id() : cursors_view_.id());
       }
       if (s_.stores_triangle_vertices()) {
-        prepare_scene_data(frame.scene.scene());
+        prepare_scene_data(frame.scene);
         glBindTextureUnit(IB_SORT_TRIANGLES_UNIT, triangles_view_.id());
       }
       run_per_pixel();
@@ -387,7 +387,7 @@ class IllustrationBuffer final : public Technique {
     {
       auto stage = frame.clock.stage("neighbors");
       if (s_.heuristic()) {
-        prepare_scene_data(frame.scene.scene());
+        prepare_scene_data(frame.scene);
         run_per_fragment(neighbors_.id());
       } else {
         glUseProgram(neighbors_.id());
@@ -398,7 +398,7 @@ class IllustrationBuffer final : public Technique {
     {
       auto stage = frame.clock.stage("stylize_init");
       if (track) start_worklists();
-      const bool alpha_seeds = track && (s_.adaptive_alpha || !one_alpha(frame.scene.scene()));
+      const bool alpha_seeds = track && (s_.adaptive_alpha || !one_alpha(frame.scene));
       // Ranges of fragData (dead after the sort) hold the two field buffers.
       bind_fields(0, second_range);
       run_per_fragment(stylize_inits_[alpha_seeds ? 1 : 0].id());
@@ -537,9 +537,10 @@ class IllustrationBuffer final : public Technique {
 
   // Whether every triangle of `scene` has the same alpha (then, with eq. 4,
   // every fragment starts with it: stylize_init.comp). Once per scene.
-  bool one_alpha(const Scene& scene) {
-    if (&scene != one_alpha_scene_) {
-      one_alpha_scene_ = &scene;
+  bool one_alpha(const SceneGpu& uploaded) {
+    if (uploaded.serial() != one_alpha_scene_) {
+      one_alpha_scene_ = uploaded.serial();
+      const Scene& scene = uploaded.scene();
       one_alpha_ = std::all_of(scene.vertices.begin(), scene.vertices.end(),
                                [&](const Vertex& v) { return v.color.a == scene.vertices.front().color.a; });
     }
@@ -547,13 +548,11 @@ class IllustrationBuffer final : public Technique {
   }
 
   // Once per scene: the bounding-sphere radius (heuristic, eq. 1) or the
-  // triangle table (triangle_index), keyed by the scene's content hash.
-  void prepare_scene_data(const Scene& scene) {
-    if (&scene == scene_seen_) return;
-    scene_seen_ = &scene;
-    const std::string hash = scene.content_hash();
-    if (hash == scene_hash_) return;
-    scene_hash_ = hash;
+  // triangle table (triangle_index).
+  void prepare_scene_data(const SceneGpu& uploaded) {
+    if (uploaded.serial() == prepared_scene_) return;
+    prepared_scene_ = uploaded.serial();
+    const Scene& scene = uploaded.scene();
     if (s_.heuristic()) {
       const float radius = scene.bounds().radius;
       set_uniform(neighbors_.id(), IB_INVERSE_RADIUS_LOCATION, radius > 0.0f ? 1.0f / radius : 1.0f);
@@ -623,10 +622,9 @@ class IllustrationBuffer final : public Technique {
   Texture offsets_view_, cursors_view_, cursor_target_;
   Framebuffer cursor_framebuffer_;
   std::vector<uint32_t> host_offsets_, host_sorted_offsets_, host_lengths_;
-  const Scene* scene_seen_ = nullptr;
-  const Scene* one_alpha_scene_ = nullptr;
+  // SceneGpu::serial of the scene prepare_scene_data() and one_alpha() last saw (0: none).
+  uint64_t prepared_scene_ = 0, one_alpha_scene_ = 0;
   bool one_alpha_ = false;
-  std::string scene_hash_;
   int width_ = 0, height_ = 0;
   FragmentPool pool_;
   uint64_t produced_ = 0, stored_ = 0, dropped_ = 0, truncated_lists_ = 0;

@@ -88,7 +88,7 @@ TriangleIdPeeler::TriangleIdPeeler(std::string technique, uint32_t largest_id, i
       bytes_per_pixel_(bytes_per_pixel) {}
 
 void TriangleIdPeeler::begin_frame(const Frame& frame) {
-  triangle_ids_.check(frame.scene.scene());
+  triangle_ids_.check(frame.scene);
   passes_ = 0;
 }
 
@@ -126,16 +126,16 @@ TechniqueCounters TriangleIdPeeler::counters() const {
   return c;
 }
 
-void TriangleIdLimit::check(const Scene& scene) {
-  if (&scene == checked_scene_ && scene.triangle_ids.data() == checked_ids_) return;
+void TriangleIdLimit::check(const SceneGpu& uploaded) {
+  if (uploaded.serial() == checked_scene_) return;
+  const Scene& scene = uploaded.scene();
   const auto largest = std::max_element(scene.triangle_ids.begin(), scene.triangle_ids.end());
   if (largest != scene.triangle_ids.end() && *largest > largest_id_) {
     throw std::runtime_error(technique_ + ": tie_break=triangle_id ranks stable triangle ids up to " +
                              std::to_string(largest_id_) + "; scene '" + scene.name + "' has id " +
                              std::to_string(*largest) + " (use tie_break=submission)");
   }
-  checked_scene_ = &scene;
-  checked_ids_ = scene.triangle_ids.data();
+  checked_scene_ = uploaded.serial();
 }
 
 }  // namespace oit

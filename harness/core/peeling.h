@@ -68,13 +68,12 @@ class TriangleIdLimit {
   TriangleIdLimit(std::string technique, uint32_t largest_id)
       : technique_(std::move(technique)), largest_id_(largest_id) {}
   // Throws std::runtime_error naming the technique, the scene and its id.
-  void check(const Scene& scene);
+  void check(const SceneGpu& scene);
 
  private:
   std::string technique_;
   uint32_t largest_id_;
-  const Scene* checked_scene_ = nullptr;
-  const uint32_t* checked_ids_ = nullptr;
+  uint64_t checked_scene_ = 0;  // SceneGpu::serial, 0: none yet
 };
 
 // The skeleton both tie_break=triangle_id peelers share: the pass cap and

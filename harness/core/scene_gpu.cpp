@@ -1,6 +1,7 @@
 #include "harness/core/scene_gpu.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <vector>
 #include <cstddef>
@@ -25,9 +26,14 @@ Texture triangle_ids_view(const Buffer& ids, size_t triangles) {
   return make_buffer_texture(ids, GL_R32UI);
 }
 
+uint64_t next_serial() {
+  static std::atomic<uint64_t> next{1};
+  return next++;
+}
+
 }  // namespace
 
-SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
+SceneGpu::SceneGpu(const Scene& scene) : scene_(scene), serial_(next_serial()) {
   // GL rejects zero-sized buffer storage; an empty scene gets placeholders
   // (nothing is drawn from them).
   auto upload = [](size_t bytes, const void* data) {

@@ -1,4 +1,6 @@
 #pragma once
+#include <cstdint>
+
 #include "harness/core/scene_rect.h"
 #include "harness/gl/handles.h"
 #include "harness/gl/shader_program.h"
@@ -12,6 +14,10 @@ class SceneGpu {
  public:
   explicit SceneGpu(const Scene& scene);
   const Scene& scene() const { return scene_; }
+  // Unique to this upload within the process, never reused: the key of any
+  // per-scene data a technique keeps between frames. (A later scene can be
+  // built at an earlier one's address, as when the viewer loads another.)
+  uint64_t serial() const { return serial_; }
   // What the programs that draw this scene may be built for (SceneShadingScope).
   SceneShading shading() const { return scene_.lit ? SceneShading::lit : SceneShading::unlit; }
   // Binds the vertex array and the triangle-id buffer; techniques call draw().
@@ -35,6 +41,7 @@ class SceneGpu {
 
  private:
   const Scene& scene_;
+  uint64_t serial_;
   void build_flat_colors() const;
 
   Buffer vertices_, indices_, triangle_ids_;

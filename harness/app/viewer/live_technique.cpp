@@ -26,7 +26,7 @@ std::string LiveTechnique::configure(const std::string& id, const RawParams& par
     gl_check("creating " + id);
     prepared_ = std::move(prepared);
     shading_ = shading;
-    planned_scene_ = nullptr;
+    planned_scene_ = 0;
     target_ = std::move(target);
     clock_ = std::make_unique<StageClock>(clock_kind_, prepared_->descriptor().stages);
     frames_in_window_ = 0;
@@ -54,7 +54,7 @@ void LiveTechnique::render(const SceneGpu& scene, const glm::mat4& view, const g
     const SceneShadingScope scope(scene.shading());
     prepared_->create(untiled_plan(width_, height_));
     shading_ = scene.shading();
-    planned_scene_ = nullptr;
+    planned_scene_ = 0;
     restart_clock();
     timed_frames_ = 0;
     warmup_left_ = kWarmup;
@@ -86,7 +86,7 @@ void LiveTechnique::restart_clock() {
 }
 
 void LiveTechnique::plan_for(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection) {
-  if (planned_scene_ == &scene && planned_view_ == view && planned_projection_ == projection) return;
+  if (planned_scene_ == scene.serial() && planned_view_ == view && planned_projection_ == projection) return;
   if (prepared_->replan(
           prepared_->plan(measure_depth_complexity(scene, view, projection, width_, height_), query_device_limits()))) {
     // Timings of the old plan do not mix with the new one's.
@@ -94,7 +94,7 @@ void LiveTechnique::plan_for(const SceneGpu& scene, const glm::mat4& view, const
     timed_frames_ = 0;
     warmup_left_ = kWarmup;
   }
-  planned_scene_ = &scene;
+  planned_scene_ = scene.serial();
   planned_view_ = view;
   planned_projection_ = projection;
 }

@@ -82,7 +82,7 @@ class LiveTechnique {
   std::unique_ptr<PreparedRun> prepared_;
   SceneShading shading_ = SceneShading::any;  // what the technique's programs were built for
   glm::mat4 planned_view_{0.0f}, planned_projection_{0.0f};
-  const SceneGpu* planned_scene_ = nullptr;
+  uint64_t planned_scene_ = 0;  // SceneGpu::serial, 0: none
   std::unique_ptr<RenderTarget> target_;
   std::unique_ptr<StageClock> clock_;
   int frames_in_window_ = 0;  // timed frames in clock_
