@@ -196,6 +196,27 @@ std::vector<DiagnosticImage> diagnostic_images_once(const std::string& technique
   return prepared.technique().diagnostic_images();
 }
 
+TechniqueRenderer::TechniqueRenderer(const TechniqueDescriptor& descriptor, int width, int height)
+    : technique(descriptor.create(ParamSet(descriptor.params, {}, descriptor.id))),
+      width(width),
+      height(height),
+      target(width, height) {
+  technique->resize(width, height);
+}
+
+Image TechniqueRenderer::render(const SceneGpu& gpu, const glm::mat4& view, const glm::mat4& projection,
+                                glm::vec3 background, bool scene_rect, ScreenRect* used) {
+  const Frame frame{gpu, view, projection, width, height, background, target.framebuffer.id(), clock};
+  const ScreenRect rect = render_frame(*technique, frame, false, scene_rect);
+  if (used) *used = rect;
+  return read_texture_rgba32f(target.color.id(), width, height);
+}
+
+Image TechniqueRenderer::render(const SceneGpu& gpu) {
+  const Camera& camera = gpu.scene().camera;
+  return render(gpu, camera.view, camera.projection(float(width) / float(height)), glm::vec3(0.0f), true);
+}
+
 const DiagnosticImage* find_diagnostic(const std::vector<DiagnosticImage>& images, const std::string& name) {
   for (const DiagnosticImage& d : images)
     if (d.name == name) return &d;

@@ -78,6 +78,21 @@ std::vector<DiagnosticImage> diagnostic_images_once(const std::string& technique
 // (2, 2) of a 4x4 RGBA32F target: what the shader-loader tests check.
 glm::vec4 drawn_texel(const Program& program);
 
+// One instance of a technique with default parameters, sized width x height,
+// rendering frames into its own RGBA32F target (render_frame, as the
+// harness does) and reading each image back.
+struct TechniqueRenderer {
+  std::unique_ptr<Technique> technique;
+  int width, height;
+  RenderTarget target;
+  StageClock clock{ClockKind::wall};
+  TechniqueRenderer(const TechniqueDescriptor& descriptor, int width, int height);
+  Image render(const SceneGpu& gpu, const glm::mat4& view, const glm::mat4& projection, glm::vec3 background,
+               bool scene_rect, ScreenRect* used = nullptr);
+  // The scene's own camera, black background, the scene rectangle on.
+  Image render(const SceneGpu& gpu);
+};
+
 // The image called `name` among `images`; nullptr, and a test failure, when there is none.
 const DiagnosticImage* find_diagnostic(const std::vector<DiagnosticImage>& images, const std::string& name);
 

@@ -72,21 +72,9 @@ glm::mat4 far_view(const Scene& scene, glm::vec2 offset) {
   return glm::translate(glm::mat4(1.0f), glm::vec3(offset * half_view, -2.0f * distance)) * scene.camera.view;
 }
 
-struct Renderer {
-  std::unique_ptr<Technique> technique;
-  RenderTarget target{kSize, kSize};
-  StageClock clock{ClockKind::wall};
-  Renderer(const TechniqueDescriptor& descriptor) {
-    technique = descriptor.create(ParamSet(descriptor.params, {}, descriptor.id));
-    technique->resize(kSize, kSize);
-  }
-  Image render(const SceneGpu& gpu, const glm::mat4& view, const glm::mat4& projection, glm::vec3 background,
-               bool scene_rect, ScreenRect* used = nullptr) {
-    const Frame frame{gpu, view, projection, kSize, kSize, background, target.framebuffer.id(), clock};
-    const ScreenRect rect = render_frame(*technique, frame, false, scene_rect);
-    if (used) *used = rect;
-    return read_texture_rgba32f(target.color.id(), kSize, kSize);
-  }
+// A technique instance at kSize x kSize.
+struct Renderer : test::TechniqueRenderer {
+  explicit Renderer(const TechniqueDescriptor& descriptor) : TechniqueRenderer(descriptor, kSize, kSize) {}
 };
 
 double max_difference(const Image& a, const Image& b) { return compare_images(a, b).max_abs; }

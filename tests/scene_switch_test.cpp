@@ -15,31 +15,13 @@ namespace {
 
 constexpr int kSize = 48;
 
-// One instance of a technique with defaults, rendering into its own target.
-struct Renderer {
-  std::unique_ptr<Technique> technique;
-  RenderTarget target{kSize, kSize};
-  StageClock clock{ClockKind::wall};
-  explicit Renderer(const TechniqueDescriptor& descriptor) {
-    technique = descriptor.create(ParamSet(descriptor.params, {}, descriptor.id));
-    technique->resize(kSize, kSize);
-  }
-  Image render(const SceneGpu& gpu) {
-    const Scene& scene = gpu.scene();
-    const Frame frame{gpu,  scene.camera.view, scene.camera.projection(1.0f), kSize, kSize, glm::vec3(0.0f),
-                      target.framebuffer.id(), clock};
-    render_frame(*technique, frame, false);
-    return read_texture_rgba32f(target.color.id(), kSize, kSize);
-  }
-};
-
 TEST(EveryTechnique, ASceneBuiltWhereAnEarlierOneLivedRendersAsInAFreshInstance) {
   test::gl_context();
   for (const TechniqueDescriptor& descriptor : builtin_techniques().all()) {
     SCOPED_TRACE(descriptor.id);
-    Renderer reused(descriptor), fresh(descriptor);
-    // std::optional builds each scene in the same storage: the second torus
-    // and its upload sit at the first one's addresses.
+    test::TechniqueRenderer reused(descriptor, kSize, kSize), fresh(descriptor, kSize, kSize);
+    // std::optional builds each scene in the same storage: the spheres and
+    // their upload sit at the torus's addresses.
     std::optional<Scene> scene(load_scene("torus", {}));
     std::optional<SceneGpu> gpu(std::in_place, *scene);
     reused.render(*gpu);
