@@ -18,8 +18,6 @@ const Choices<Modulation> kModulations{{Modulation::none, "none"},
 const Choices<SortMethod> kSorts{{SortMethod::automatic, "auto"}, {SortMethod::array, "array"},
                                  {SortMethod::dynamic, "dynamic"}};
 const Choices<Storage> kStorages{{Storage::linked, "linked"}, {Storage::linearized, "linearized"}};
-const Choices<SlotFill> kSlotFills{
-    {SlotFill::automatic, "auto"}, {SlotFill::atomic, "atomic"}, {SlotFill::framebuffer_fetch, "framebuffer_fetch"}};
 const Choices<Profile> kProfiles{{Profile::none, "none"}, {Profile::exponential, "exponential"}, {Profile::power, "power"}};
 
 }  // namespace
@@ -107,8 +105,8 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
               "carnecky2013 Algorithm 1); linearized = a counting pass, "
               "then each pixel's contiguous range from the counts' prefix sum, exactly sized, filled in place "
               "(Knowles et al. 2012): no list walk in the sort, no global counter in the fill"),
-          illustration_buffer::kSlotFills.spec(
-              "fill", illustration_buffer::SlotFill::automatic,
+          kSlotFills.spec(
+              "fill", SlotFill::automatic,
               "storage=linearized: how a fragment takes its slot: atomic = an image atomic on its pixel's cursor; "
               "framebuffer_fetch = the cursor is the pixel's R32UI colour, read and incremented in primitive order "
               "(GL_EXT_shader_framebuffer_fetch); auto = framebuffer_fetch where the device has it"),

@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "harness/core/list_length_pass.h"
 #include "harness/core/technique.h"
 
 namespace oit::illustration_buffer {
@@ -27,10 +28,6 @@ enum class Profile { none, exponential, power };  // eq. 10 / eq. 11
 // buffer (Knowles et al. 2012): a counting pass and each pixel's range
 // from the counts' prefix sum, exactly sized, filled in place.
 enum class Storage { linked, linearized };
-// storage=linearized: how a fragment takes its slot in its pixel's range,
-// an image atomic on the pixel's cursor or the cursor as the pixel's R32UI
-// colour through framebuffer fetch (auto: fetch where the device has it).
-enum class SlotFill { automatic, atomic, framebuffer_fetch };
 
 struct Settings {
   NeighborSearch neighbors = NeighborSearch::triangle_index;
@@ -48,7 +45,7 @@ struct Settings {
   uint64_t initial_nodes_per_pixel = 8;
   SortMethod sort = SortMethod::automatic;
   Storage storage = Storage::linearized;
-  SlotFill fill = SlotFill::automatic;
+  SlotFill fill = SlotFill::automatic;  // storage=linearized (list_length_pass.h)
   bool flat_color_records = true;  // unlit scenes: no colour in the fill record
   float normal_variation_scale = 10.0f;
   bool measure_accuracy = false;

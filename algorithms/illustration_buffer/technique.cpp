@@ -18,7 +18,6 @@
 #include "harness/core/list_length_pass.h"
 #include "harness/core/passes.h"
 #include "harness/gl/check.h"
-#include "harness/gl/context.h"
 #include "harness/gl/shader_program.h"
 #include "harness/gl/uniforms.h"
 
@@ -58,15 +57,12 @@ bool tracks_convergence(const Settings& s) { return s.diffused() && s.skip_conve
 
 // Per pixel: head and count; with storage=linearized the counting pass's
 // R32F count, the fill's offset and its cursor; plus (when the diffusion
-// skips converged fragments) a stamp, an entry in each of three worklists
+// skips converged fragments) a stamp, an entry in each of three worklists,
 // an update count and a seed mark (stylize_seed_queue.comp).
 uint64_t bytes_per_pixel(const Settings& s) { return 8 + (s.linearized() ? 12 : 0) + (tracks_convergence(s) ? 24 : 0); }
 
-// storage=linearized with fill=auto: framebuffer fetch where the device has it.
-bool fetches_cursors(const Settings& s) {
-  return s.linearized() && (s.fill == SlotFill::framebuffer_fetch ||
-                            (s.fill == SlotFill::automatic && current_device_has_framebuffer_fetch()));
-}
+// storage=linearized taking its slots by framebuffer fetch (fill, resolved on this device).
+bool fetches_cursors(const Settings& s) { return s.linearized() && fills_by_framebuffer_fetch(s.fill); }
 
 // Combinations that cannot work, named (the constructor throws them).
 void check_combination(const Settings& s) {
@@ -746,10 +742,7 @@ std::unique_ptr<Technique> make_illustration_buffer(const Settings& settings) {
 }
 
 std::string missing_device_feature(const Settings& settings) {
-  if (settings.linearized() && settings.fill == SlotFill::framebuffer_fetch && !current_device_has_framebuffer_fetch())
-    return "fill=framebuffer_fetch needs GL_EXT_shader_framebuffer_fetch, which this device lacks (use fill=atomic or "
-           "auto)";
-  return "";
+  return settings.linearized() ? missing_slot_fill_feature(settings.fill) : "";
 }
 
 StorageNeed storage_need(const Settings& settings, const FrameContent& content) {

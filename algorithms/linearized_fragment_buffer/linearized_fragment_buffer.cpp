@@ -53,8 +53,6 @@ const Choices<uint32_t> kBlockSizes{{8, "8"}, {16, "16"}, {32, "32"}};
 // How a fragment finds its slot (README: fill): an atomic increment of the
 // pixel's cursor in an image, or the cursor as the pixel's R32UI colour,
 // read and written in primitive order through framebuffer fetch.
-enum class Fill { automatic, atomic, framebuffer_fetch };
-const Choices<Fill> kFills{{Fill::automatic, "auto"}, {Fill::atomic, "atomic"}, {Fill::framebuffer_fetch, "framebuffer_fetch"}};
 // Where the counts become offsets (README: scan).
 enum class Scan { automatic, compute, host };
 const Choices<Scan> kScans{{Scan::automatic, "auto"}, {Scan::compute, "compute"}, {Scan::host, "host"}};
@@ -71,9 +69,8 @@ bool device_has_int64() { return epoxy_has_gl_extension("GL_ARB_gpu_shader_int64
 // such a run (extra_support_check); the viewer, which builds techniques
 // directly, gets it as the constructor's error.
 std::string missing_device_feature(const ParamSet& params) {
-  if (params.choice("fill", kFills) == Fill::framebuffer_fetch && !current_device_has_framebuffer_fetch())
-    return "fill=framebuffer_fetch needs GL_EXT_shader_framebuffer_fetch, which this device lacks (use fill=atomic or "
-           "auto)";
+  if (std::string missing = missing_slot_fill_feature(params.choice("fill", kSlotFills)); !missing.empty())
+    return missing;
   if (params.choice("key_format", kKeyFormats) == KeyFormat::uint64 && !device_has_int64())
     return "key_format=uint64 needs GL_ARB_gpu_shader_int64, which this device lacks (use key_format=uint32_pair or "
            "auto)";
@@ -88,11 +85,7 @@ const ParamSet& runnable(const ParamSet& params) {
   return params;
 }
 
-// fill=auto: framebuffer fetch where the device has it.
-bool fetches_cursors(const ParamSet& params) {
-  const Fill fill = params.choice("fill", kFills);
-  return fill == Fill::framebuffer_fetch || (fill == Fill::automatic && current_device_has_framebuffer_fetch());
-}
+bool fetches_cursors(const ParamSet& params) { return fills_by_framebuffer_fetch(params.choice("fill", kSlotFills)); }
 
 // key_format=auto: one uint64 where the device has 64-bit integers.
 bool uses_uint64_keys(const ParamSet& params) {
@@ -364,7 +357,7 @@ void register_technique_linearized_fragment_buffer(TechniqueRegistry& registry) 
                              "resolve each 4x4 tile with the smallest array that holds its longest list (backwards "
                              "memory allocation, Knowles et al. 2013; 0/1-fragment tiles unsorted); false: one "
                              "full-screen resolve sized for the frame's longest list"),
-          kFills.spec("fill", Fill::automatic,
+          kSlotFills.spec("fill", SlotFill::automatic,
                       "how a fragment takes its slot: atomic: an atomic increment of its pixel's cursor; "
                       "framebuffer_fetch: the cursor is the pixel's R32UI colour, read and incremented in primitive "
                       "order through GL_EXT_shader_framebuffer_fetch, no atomic; auto: framebuffer_fetch where the "

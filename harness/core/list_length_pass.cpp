@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "harness/gl/check.h"
+#include "harness/gl/context.h"
 #include "harness/gl/shader_program.h"
 
 namespace oit {
@@ -52,6 +53,18 @@ uint32_t ListLengthPass::longest_list(const Frame& frame) {
     total_ += uint64_t(count);
   }
   return uint32_t(longest);
+}
+
+bool fills_by_framebuffer_fetch(SlotFill fill) {
+  return fill == SlotFill::framebuffer_fetch ||
+         (fill == SlotFill::automatic && current_device_has_framebuffer_fetch());
+}
+
+std::string missing_slot_fill_feature(SlotFill fill) {
+  if (fill == SlotFill::framebuffer_fetch && !current_device_has_framebuffer_fetch())
+    return "fill=framebuffer_fetch needs GL_EXT_shader_framebuffer_fetch, which this device lacks (use fill=atomic or "
+           "auto)";
+  return "";
 }
 
 void offsets_from_counts(const std::vector<float>& counts, std::vector<uint32_t>& offsets, uint32_t most_per_pixel) {

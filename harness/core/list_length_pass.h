@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "base/params.h"
 #include "harness/core/technique.h"
 #include "harness/gl/handles.h"
 
@@ -49,6 +50,20 @@ class ListLengthPass {
 // values, the last one the total. Throws when the total passes 32 bits.
 void offsets_from_counts(const std::vector<float>& counts, std::vector<uint32_t>& offsets,
                          uint32_t most_per_pixel = UINT32_MAX);
+// How the fill of such ranges takes a fragment's slot in its pixel's range
+// (the parameter `fill` of every technique that fills them): an image
+// atomic on the pixel's cursor, or the cursor as the pixel's R32UI colour,
+// read and incremented in primitive order through framebuffer fetch
+// (GL_EXT_shader_framebuffer_fetch, no atomic); auto: framebuffer fetch
+// where the device has it.
+enum class SlotFill { automatic, atomic, framebuffer_fetch };
+inline const Choices<SlotFill> kSlotFills{
+    {SlotFill::automatic, "auto"}, {SlotFill::atomic, "atomic"}, {SlotFill::framebuffer_fetch, "framebuffer_fetch"}};
+// Whether `fill` takes slots by framebuffer fetch on the current device.
+bool fills_by_framebuffer_fetch(SlotFill fill);
+// "" when the current device can run `fill`, else why not (naming fill=).
+std::string missing_slot_fill_feature(SlotFill fill);
+
 // min(count, most_per_pixel) of every pixel, as uints.
 void lengths_from_counts(const std::vector<float>& counts, std::vector<uint32_t>& lengths,
                          uint32_t most_per_pixel = UINT32_MAX);
