@@ -104,7 +104,10 @@ class IllustrationBuffer final : public Technique {
               s_.linearized() ? FragmentPool::Sizing::exact : FragmentPool::Sizing::previous_frame,
               kLargestRecordBytes, [this](uint64_t capacity) { allocate_pool(capacity); }, kSmallestPool) {
     check_combination(s_);
-    if (s_.linearized()) list_lengths_.emplace();
+    if (s_.linearized()) {
+      list_lengths_.emplace();
+      cursors_.emplace(s_.fill);
+    }
     fill_ = build_geometry_program("algorithms/illustration_buffer/fill.frag", fill_defines(s_, false));
     if (s_.flat_color_records)
       fill_flat_ = build_geometry_program("algorithms/illustration_buffer/fill.frag", fill_defines(s_, true));
@@ -196,7 +199,7 @@ class IllustrationBuffer final : public Technique {
       if (flat_) glBindTextureUnit(IB_FLAT_COLORS_UNIT, frame.scene.flat_colors_view());
       if (s_.linearized()) {
         glBindTextureUnit(IB_OFFSETS_UNIT, offsets_view_.id());
-        glBindTextureUnit(IB_FINAL_CURSORS_UNIT, fetches_cursors(s_) ? cursor_target_.id() : cursors_view_.id());
+        glBindTextureUnit(IB_FINAL_CURSORS_UNIT, cursors_->final_cursors());
       }
       if (s_.stores_triangle_vertices()) {
         prepare_scene_data(frame.scene);
@@ -222,7 +225,7 @@ class IllustrationBuffer final : public Technique {
                         IB_FRAGMENT_UNIT, IB_SORT_TRIANGLES_UNIT, IB_OFFSETS_UNIT, IB_FINAL_CURSORS_UNIT,
                         IB_FLAT_COLORS_UNIT, IB_SEEDS_UNIT})
       glBindTextureUnit(unit, 0);
-    if (s_.linearized()) fail_on_mismatched_ranges();
+    if (s_.linearized()) check_ranges();
   }
 
   TechniqueCounters counters() const override {
@@ -297,14 +300,13 @@ class IllustrationBuffer final : public Technique {
       pool_.before_fill(frame);
       pool_.set_exact(produced_);
       fill_buffer_u32(counters_, 0);
-      start_cursors();
+      cursors_->start(offsets_);
     }
     auto stage = frame.clock.stage("fill");
     bind_storage();
-    if (!fetches_cursors(s_))
-      glBindImageTexture(IB_CURSORS_IMAGE_UNIT, cursors_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-    draw_scene_pass(frame, fill_program(), fetches_cursors(s_) ? cursor_framebuffer_ : no_attachments_);
-    glBindImageTexture(IB_CURSORS_IMAGE_UNIT, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    cursors_->bind_image(IB_CURSORS_IMAGE_UNIT);
+    draw_scene_pass(frame, fill_program(), cursors_->fill_framebuffer());
+    SlotCursors::unbind_image(IB_CURSORS_IMAGE_UNIT);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     passes_ = 2;
     return longest;
@@ -334,47 +336,23 @@ class IllustrationBuffer final : public Technique {
     dropped_ = produced_ - stored_;
   }
 
-  // Every pixel's cursor starts at its offset: a copy into the cursor
-  // buffer (fill=atomic) or, through the pixel unpack buffer, into the
-  // R32UI target the fill reads and writes (fill=framebuffer_fetch).
-  void start_cursors() const {
-    const GLsizeiptr bytes = GLsizeiptr(width_) * height_ * 4;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
-    if (!fetches_cursors(s_)) {
-      glCopyNamedBufferSubData(offsets_.id(), cursors_.id(), 0, 0, bytes);
-      return;
-    }
-    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, offsets_.id());
-    glTextureSubImage2D(cursor_target_.id(), 0, 0, 0, width_, height_, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-  }
-
   void resize_linearized(int width, int height) {
     const GLsizeiptr pixels = GLsizeiptr(width) * height;
     list_lengths_->resize(width, height);
     offsets_ = make_buffer((pixels + 1) * 4);
     offsets_view_ = make_buffer_texture(offsets_, GL_R32UI, 0, (pixels + 1) * 4);
-    if (fetches_cursors(s_)) {
-      cursor_target_ = make_texture_2d(GL_R32UI, width, height);
-      cursor_framebuffer_ = make_target_framebuffer({&cursor_target_}, "illustration_buffer: cursor target (R32UI)");
-    } else {
-      cursors_ = make_buffer(pixels * 4);
-      cursors_view_ = make_buffer_texture(cursors_, GL_R32UI, 0, pixels * 4);
-    }
+    cursors_->resize(width, height, "illustration_buffer");
     gl_check("allocating the illustration buffer's linearized ranges");
   }
 
   // The sort counted the pixels whose fill did not end at the end of their
   // counted range (sort.comp): the records would be wrong.
-  void fail_on_mismatched_ranges() const {
+  void check_ranges() const {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     GLuint mismatched = 0;
     glGetNamedBufferSubData(counters_.id(), 5 * sizeof(GLuint), sizeof(GLuint), &mismatched);
     gl_check("illustration_buffer: reading back the range check");
-    if (mismatched != 0)
-      throw std::runtime_error("illustration_buffer: in " + std::to_string(mismatched) +
-                               " pixels the fill produced another number of fragments than the counting pass counted (" +
-                               std::to_string(produced_) + " in all); the image would be wrong");
+    fail_on_mismatched_ranges("illustration_buffer", mismatched, produced_);
   }
 
   // Neighbour search, then the fields' initial and boundary conditions
@@ -614,9 +592,9 @@ class IllustrationBuffer final : public Technique {
   // storage=linearized: the counting pass, the fill's ranges (offsets_, W*H + 1
   // values) and cursors (a buffer, or the R32UI target with framebuffer fetch).
   std::optional<ListLengthPass> list_lengths_;
-  Buffer offsets_, cursors_;
-  Texture offsets_view_, cursors_view_, cursor_target_;
-  Framebuffer cursor_framebuffer_;
+  std::optional<SlotCursors> cursors_;
+  Buffer offsets_;
+  Texture offsets_view_;
   std::vector<uint32_t> host_offsets_, host_sorted_offsets_, host_lengths_;
   // SceneGpu::serial of the scene prepare_scene_data() and one_alpha() last saw (0: none).
   uint64_t prepared_scene_ = 0, one_alpha_scene_ = 0;

@@ -85,8 +85,6 @@ const ParamSet& runnable(const ParamSet& params) {
   return params;
 }
 
-bool fetches_cursors(const ParamSet& params) { return fills_by_framebuffer_fetch(params.choice("fill", kSlotFills)); }
-
 // key_format=auto: one uint64 where the device has 64-bit integers.
 bool uses_uint64_keys(const ParamSet& params) {
   const KeyFormat format = params.choice("key_format", kKeyFormats);
@@ -130,9 +128,9 @@ class LinearizedFragmentBuffer final : public Technique {
         block_(params.choice("block_size", kBlockSizes)),
         backwards_allocation_(params.boolean("backwards_allocation")),
         flat_color_nodes_(params.boolean("flat_color_nodes")),
-        fetch_cursors_(fetches_cursors(params)),
         host_scan_(scans_on_host(params)),
         key64_(uses_uint64_keys(params)),
+        cursors_(params.choice("fill", kSlotFills)),
         fill_(build_geometry_program(kFillShader, fill_defines(false))),
         mismatched_(make_buffer(4)),
         pool_("linearized_fragment_buffer", FragmentPool::Sizing::exact, kNodeBytes,
@@ -149,16 +147,9 @@ class LinearizedFragmentBuffer final : public Technique {
     host_lengths_.resize(pixels);
     offsets_view_ = make_buffer_texture(offsets_, GL_R32UI);
     lengths_view_ = make_buffer_texture(lengths_, GL_R32UI);
-    cursors_ = fetch_cursors_ ? Buffer() : make_buffer(GLsizeiptr(pixels * 4));
-    cursors_view_ = fetch_cursors_ ? Texture() : make_buffer_texture(cursors_, GL_R32UI);
+    cursors_.resize(width, height, "linearized_fragment_buffer");
     class_capacity_ = 0;
     pool_.reset(1);  // the prefix sum sizes it before every fill
-    if (fetch_cursors_) {
-      cursor_target_ = make_texture_2d(GL_R32UI, width, height);
-      framebuffer_ = make_target_framebuffer({&cursor_target_}, "linearized_fragment_buffer: cursor target (R32UI)");
-    } else {
-      framebuffer_ = make_attachmentless_framebuffer(width, height);
-    }
     for (const Program* fill : {&fill_, &fill_flat_})
       if (fill->id() != 0) set_uniform(fill->id(), LFB_WIDTH_LOCATION, width);
     for (auto& [size, program] : programs_) set_uniform(program.id(), LFB_WIDTH_LOCATION, width);
@@ -181,7 +172,7 @@ class LinearizedFragmentBuffer final : public Technique {
       glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);  // the copy below reads the scan's writes
       pool_.before_fill(frame);
       pool_.set_exact(fragments_);
-      start_cursors();
+      cursors_.start(offsets_);
       fill_buffer_u32(mismatched_, 0);
     }
     fill(frame);
@@ -189,10 +180,10 @@ class LinearizedFragmentBuffer final : public Technique {
     frame.bind_target();
     // Read-write: register blocks write their sorted blocks back.
     glBindImageTexture(LFB_NODES_IMAGE_UNIT, nodes_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32UI);
-    glBindImageTexture(LFB_CURSORS_IMAGE_UNIT, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    SlotCursors::unbind_image(LFB_CURSORS_IMAGE_UNIT);
     glBindTextureUnit(LFB_OFFSETS_UNIT, offsets_view_.id());
     glBindTextureUnit(LFB_LENGTHS_UNIT, lengths_view_.id());
-    glBindTextureUnit(LFB_FINAL_CURSORS_UNIT, fetch_cursors_ ? cursor_target_.id() : cursors_view_.id());
+    glBindTextureUnit(LFB_FINAL_CURSORS_UNIT, cursors_.final_cursors());
     bind_storage_buffers({{LFB_MISMATCHED_BINDING, &mismatched_}});
     if (flat_) glBindTextureUnit(LFB_FLAT_COLORS_UNIT, frame.scene.flat_colors_view());
     const std::vector<uint32_t> sizes = class_sizes();
@@ -204,7 +195,7 @@ class LinearizedFragmentBuffer final : public Technique {
     for (GLuint unit : {LFB_OFFSETS_UNIT, LFB_LENGTHS_UNIT, LFB_FLAT_COLORS_UNIT, LFB_FINAL_CURSORS_UNIT})
       glBindTextureUnit(unit, 0);
     glBindImageTexture(LFB_NODES_IMAGE_UNIT, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32UI);
-    fail_on_mismatched_ranges();
+    check_ranges();
   }
 
   TechniqueCounters counters() const override {
@@ -215,7 +206,7 @@ class LinearizedFragmentBuffer final : public Technique {
                         4 + (class_capacity_ > 0 ? classes_.bytes_allocated() : 0) + flat_table_bytes_;
     c.extra.push_back({"node_bytes", double(node_bytes())});
     // Which paths fill=auto and scan=auto took on this device.
-    c.extra.push_back({"framebuffer_fetch_fill", fetch_cursors_ ? 1.0 : 0.0});
+    c.extra.push_back({"framebuffer_fetch_fill", cursors_.by_framebuffer_fetch() ? 1.0 : 0.0});
     c.extra.push_back({"host_scan", host_scan_ ? 1.0 : 0.0});
     c.extra.push_back({"uint64_keys", flat_ && key64_ ? 1.0 : 0.0});
     c.fragments_stored = fragments_;
@@ -228,36 +219,22 @@ class LinearizedFragmentBuffer final : public Technique {
   ShaderDefines fill_defines(bool flat) const {
     ShaderDefines defines;
     if (flat) defines.push_back({"LFB_FLAT_COLOR", "1"});
-    if (fetch_cursors_) defines.push_back({"LFB_FETCH_CURSOR", "1"});
+    if (cursors_.by_framebuffer_fetch()) defines.push_back({"LFB_FETCH_CURSOR", "1"});
     if (flat && key64_) defines.push_back({"LFB_KEY64", "1"});
     return defines;
-  }
-
-  // Every pixel's cursor starts at its offset: a copy into the cursor
-  // buffer (fill=atomic) or, through the pixel unpack buffer, into the
-  // R32UI target the fill reads and writes (fill=framebuffer_fetch).
-  void start_cursors() {
-    if (!fetch_cursors_) {
-      glCopyNamedBufferSubData(offsets_.id(), cursors_.id(), 0, 0, GLsizeiptr(uint64_t(width_) * uint64_t(height_) * 4));
-      return;
-    }
-    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, offsets_.id());
-    glTextureSubImage2D(cursor_target_.id(), 0, 0, 0, width_, height_, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
   }
 
   void fill(const Frame& frame) {
     auto fill = frame.clock.stage("fill");
     glBindImageTexture(LFB_NODES_IMAGE_UNIT, nodes_view_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32UI);
     if (flat_ && key64_) bind_storage_buffers({{LFB_KEYS_BINDING, &nodes_}});
-    if (!fetch_cursors_)
-      glBindImageTexture(LFB_CURSORS_IMAGE_UNIT, cursors_view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    cursors_.bind_image(LFB_CURSORS_IMAGE_UNIT);
     if (flat_ && fill_flat_.id() == 0) {
       fill_flat_ = build_geometry_program(kFillShader, fill_defines(true));
       set_uniform(fill_flat_.id(), LFB_WIDTH_LOCATION, width_);
     }
     flat_table_bytes_ = flat_ ? frame.scene.flat_colors_bytes() : 0;
-    draw_scene_pass(frame, flat_ ? fill_flat_ : fill_, framebuffer_);
+    draw_scene_pass(frame, flat_ ? fill_flat_ : fill_, cursors_.fill_framebuffer());
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   }
 
@@ -270,14 +247,11 @@ class LinearizedFragmentBuffer final : public Technique {
 
   // The resolve counted the pixels whose fill outgrew (or fell short of)
   // their counted range (resolve.frag, check_range): the image is wrong.
-  void fail_on_mismatched_ranges() const {
+  void check_ranges() const {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     GLuint mismatched = 0;
     glGetNamedBufferSubData(mismatched_.id(), 0, 4, &mismatched);
-    if (mismatched != 0)
-      throw std::runtime_error("linearized_fragment_buffer: in " + std::to_string(mismatched) +
-                               " pixels the fill produced another number of fragments than the counting pass counted (" +
-                               std::to_string(fragments_) + " in all); the image would be wrong");
+    fail_on_mismatched_ranges("linearized_fragment_buffer", mismatched, fragments_);
   }
 
   // The length classes of this frame (backwards memory allocation): one
@@ -303,7 +277,8 @@ class LinearizedFragmentBuffer final : public Technique {
       const bool blocks = size > block_ && (register_blocks_ || size > kLargestNetwork);
       Program built = build_program({{GL_VERTEX_SHADER, "algorithms/linked_list/tile.vert"},
                                      {GL_FRAGMENT_SHADER, "algorithms/linearized_fragment_buffer/resolve.frag"}},
-                                    linked_list::tile_defines(resolve_defines(size, blocks, block_, flat_, key64_, fetch_cursors_)));
+                                    linked_list::tile_defines(
+                                        resolve_defines(size, blocks, block_, flat_, key64_, cursors_.by_framebuffer_fetch())));
       it = programs_.emplace(std::make_pair(size, flat_), std::move(built)).first;
       set_uniform(it->second.id(), LFB_WIDTH_LOCATION, width_);
     }
@@ -319,7 +294,8 @@ class LinearizedFragmentBuffer final : public Technique {
 
   bool register_blocks_;
   uint32_t block_;
-  bool backwards_allocation_, flat_color_nodes_, fetch_cursors_, host_scan_, key64_;
+  bool backwards_allocation_, flat_color_nodes_, host_scan_, key64_;
+  SlotCursors cursors_;  // before fill_: fill_defines() asks it how the fill takes its slots
   bool flat_ = false;  // this frame stores flat-colour nodes
   uint64_t flat_table_bytes_ = 0;
   Program fill_, fill_flat_;
@@ -328,10 +304,9 @@ class LinearizedFragmentBuffer final : public Technique {
   linked_list::LengthClasses classes_;
   size_t class_capacity_ = 0;
   std::map<std::pair<uint32_t, bool>, Program> programs_;  // resolves by (array size, flat colours)
-  Buffer offsets_, lengths_, cursors_, mismatched_, nodes_;
-  Texture offsets_view_, lengths_view_, cursors_view_, nodes_view_, cursor_target_;
+  Buffer offsets_, lengths_, mismatched_, nodes_;
+  Texture offsets_view_, lengths_view_, nodes_view_;
   std::vector<uint32_t> host_lengths_;
-  Framebuffer framebuffer_;
   int width_ = 0, height_ = 0;
   uint32_t longest_ = 0;
   uint64_t fragments_ = 0;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "harness/core/passes.h"
 #include "harness/gl/check.h"
 #include "harness/gl/context.h"
 #include "harness/gl/shader_program.h"
@@ -65,6 +66,45 @@ std::string missing_slot_fill_feature(SlotFill fill) {
     return "fill=framebuffer_fetch needs GL_EXT_shader_framebuffer_fetch, which this device lacks (use fill=atomic or "
            "auto)";
   return "";
+}
+
+void SlotCursors::resize(int width, int height, const std::string& owner) {
+  width_ = width;
+  height_ = height;
+  const GLsizeiptr bytes = GLsizeiptr(width) * height * 4;
+  if (fetch_) {
+    target_ = make_texture_2d(GL_R32UI, width, height);
+    framebuffer_ = make_target_framebuffer({&target_}, owner + ": cursor target (R32UI)");
+  } else {
+    buffer_ = make_buffer(bytes);
+    view_ = make_buffer_texture(buffer_, GL_R32UI, 0, bytes);
+    framebuffer_ = make_attachmentless_framebuffer(width, height);
+  }
+  gl_check(owner + ": allocating the fill's cursors");
+}
+
+void SlotCursors::start(const Buffer& offsets) const {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
+  if (!fetch_) {
+    glCopyNamedBufferSubData(offsets.id(), buffer_.id(), 0, 0, GLsizeiptr(width_) * height_ * 4);
+    return;
+  }
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, offsets.id());
+  glTextureSubImage2D(target_.id(), 0, 0, 0, width_, height_, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+}
+
+void SlotCursors::bind_image(GLuint unit) const {
+  if (!fetch_) glBindImageTexture(unit, view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+}
+
+void SlotCursors::unbind_image(GLuint unit) { glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI); }
+
+void fail_on_mismatched_ranges(const std::string& technique, uint32_t mismatched, uint64_t counted_fragments) {
+  if (mismatched != 0)
+    throw std::runtime_error(technique + ": in " + std::to_string(mismatched) +
+                             " pixels the fill produced another number of fragments than the counting pass counted (" +
+                             std::to_string(counted_fragments) + " in all); the image would be wrong");
 }
 
 void offsets_from_counts(const std::vector<float>& counts, std::vector<uint32_t>& offsets, uint32_t most_per_pixel) {

@@ -64,6 +64,42 @@ bool fills_by_framebuffer_fetch(SlotFill fill);
 // "" when the current device can run `fill`, else why not (naming fill=).
 std::string missing_slot_fill_feature(SlotFill fill);
 
+// The per-pixel cursors a linearized fill takes its slots from: with
+// framebuffer fetch the R32UI colour target of the fill's framebuffer, else
+// a buffer the fill increments with image atomics. 4 bytes per pixel.
+class SlotCursors {
+ public:
+  explicit SlotCursors(SlotFill fill) : fetch_(fills_by_framebuffer_fetch(fill)) {}
+  bool by_framebuffer_fetch() const { return fetch_; }
+  // Storage for width x height; `owner` names the technique in GL errors.
+  void resize(int width, int height, const std::string& owner);
+  // Every cursor := its pixel's offset (the first width x height values of
+  // `offsets`, uints in pixel order).
+  void start(const Buffer& offsets) const;
+  // The framebuffer the fill draws into: the cursor target with framebuffer
+  // fetch, else one without attachments.
+  const Framebuffer& fill_framebuffer() const { return framebuffer_; }
+  // Binds the cursor buffer to image `unit` for the fill's atomics (nothing
+  // to bind with framebuffer fetch); unbind_image(unit) after the fill.
+  void bind_image(GLuint unit) const;
+  static void unbind_image(GLuint unit);
+  // Where each pixel's fill ended, for a texelFetch after the fill: the
+  // R32UI 2D target (framebuffer fetch) or an R32UI buffer texture.
+  GLuint final_cursors() const { return fetch_ ? target_.id() : view_.id(); }
+
+ private:
+  bool fetch_;
+  int width_ = 0, height_ = 0;
+  Buffer buffer_;
+  Texture view_, target_;
+  Framebuffer framebuffer_;
+};
+
+// Throws std::runtime_error when the pixels a linearized buffer's range
+// check counted (`mismatched`: the fill ended elsewhere than at the end of
+// the counted range) are not 0: the records, and the image, would be wrong.
+void fail_on_mismatched_ranges(const std::string& technique, uint32_t mismatched, uint64_t counted_fragments);
+
 // min(count, most_per_pixel) of every pixel, as uints.
 void lengths_from_counts(const std::vector<float>& counts, std::vector<uint32_t>& lengths,
                          uint32_t most_per_pixel = UINT32_MAX);
