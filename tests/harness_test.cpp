@@ -131,11 +131,17 @@ TEST(Harness, UnsupportedRunIsSkippedWithTheReasonAndTheSweepGoesOn) {
   EXPECT_EQ(harness.run(spec).status, RunStatus::ok);
 }
 
-TEST(Harness, DeviceWithoutInt64SkipsTheReference) {
+// The reference sorts by uvec2 keys (its README: a uint64 key sorted wrongly
+// on NVIDIA's driver), so it needs no 64-bit integers; a technique that
+// declares them is skipped with the reason on a device without them.
+TEST(Harness, DeviceWithoutInt64RunsTheReferenceAndSkipsWhatDeclaresInt64) {
   DeviceInfo weak = test::gl_context().device();
   weak.has_int64 = false;
   const auto& reference = builtin_techniques().reference();
-  const std::string reason = supports(reference, ParamSet(reference.params, {}, "t"), weak, SceneFacts{2, 1, true});
+  EXPECT_EQ(supports(reference, ParamSet(reference.params, {}, "t"), weak, SceneFacts{2, 1, true}), "");
+  TechniqueDescriptor needs_int64 = reference;
+  needs_int64.needs.int64 = true;
+  const std::string reason = supports(needs_int64, ParamSet(needs_int64.params, {}, "t"), weak, SceneFacts{2, 1, true});
   EXPECT_NE(reason.find("64-bit integers"), std::string::npos) << reason;
 }
 

@@ -179,7 +179,7 @@ void register_technique_reference(TechniqueRegistry& registry) {
       .params = {ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,
                                     "initial pool size per pixel; the pool grows on overflow")},
       .stages = {"clear", "fill", "compose"},
-      .needs = {.fp64 = true, .int64 = true},
+      .needs = {.fp64 = true},
       .exactness = Exactness::exact,
       .is_reference = true,
       .create = make_technique<Reference>,
