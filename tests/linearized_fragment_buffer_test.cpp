@@ -55,7 +55,7 @@ std::string describe(const RawParams& params) {
   return text;
 }
 
-TEST(LinearizedFragmentBufferPrefixSum, EqualsTheCpuSumOverThreeLevels) {
+TEST(LinearizedFragmentBufferPrefixSum, EqualsTheCpuSumOverThreeLevelsWithLengthsAndLongestList) {
   test::gl_context();
   // 1500 x 800 pixels + 1: 1172 blocks of 1024, then 2, then 1.
   const int width = 1500, height = 800;
@@ -68,9 +68,14 @@ TEST(LinearizedFragmentBufferPrefixSum, EqualsTheCpuSumOverThreeLevels) {
   glTextureSubImage2D(texture.id(), 0, 0, 0, width, height, GL_RED, GL_FLOAT, counts.data());
   lfb::PrefixSum sum;
   sum.resize(pixels);
-  EXPECT_EQ(sum.bytes_allocated(), (1172u + 2u + 1u) * 4u);
+  counts[pixels / 3] = 77.0f;  // the longest list, in a workgroup of its own
+  glTextureSubImage2D(texture.id(), 0, 0, 0, width, height, GL_RED, GL_FLOAT, counts.data());
+  EXPECT_EQ(sum.bytes_allocated(), (1172u + 2u + 1u) * 4u + 4u);
   Buffer offsets = make_buffer(GLsizeiptr((pixels + 1) * 4));
-  sum.scan_counts(texture, width, offsets);
+  Buffer lengths = make_buffer(GLsizeiptr(pixels * 4));
+  sum.scan_counts(texture, width, offsets, lengths);
+  const lfb::PrefixSum::Summary summary = sum.read_summary(offsets);
+  EXPECT_EQ(summary.longest, 77u);
   std::vector<uint32_t> gpu(pixels + 1);
   glGetNamedBufferSubData(offsets.id(), 0, GLsizeiptr(gpu.size() * 4), gpu.data());
   gl_check("reading the prefix sum back");
@@ -79,6 +84,10 @@ TEST(LinearizedFragmentBufferPrefixSum, EqualsTheCpuSumOverThreeLevels) {
     ASSERT_EQ(gpu[i], expected) << "offset " << i;
     if (i < pixels) expected += uint32_t(counts[i]);
   }
+  EXPECT_EQ(summary.total, expected);
+  std::vector<uint32_t> gpu_lengths(pixels);
+  glGetNamedBufferSubData(lengths.id(), 0, GLsizeiptr(gpu_lengths.size() * 4), gpu_lengths.data());
+  for (size_t i = 0; i < pixels; ++i) ASSERT_EQ(gpu_lengths[i], uint32_t(counts[i])) << "length " << i;
 }
 
 TEST(LinearizedFragmentBuffer, EveryOptionMatchesTheReferenceOnThirtyTwoQuadsWithExactMemory) {
@@ -96,12 +105,12 @@ TEST(LinearizedFragmentBuffer, EveryOptionMatchesTheReferenceOnThirtyTwoQuadsWit
     // each, with flat-colour nodes), 16 B per pixel (count, offset, length
     // and fill cursor, a buffer or the R32UI target of the framebuffer-fetch
     // fill), the overflow word and the total, the prefix sum's block totals
-    // (2305 values: 3 blocks, then 1) and one length class (every list is 32
-    // long: one full-screen draw).
+    // (2305 values: 3 blocks, then 1) and its longest-list word, and one
+    // length class (every list is 32 long: one full-screen draw).
     const uint64_t tiles = (w / 4) * (h / 4);
     const uint64_t nodes = flat_nodes(params) ? 8 * fragments + 64 * 16 : 24 * fragments;
     const uint64_t per_pixel = 16;
-    EXPECT_EQ(r.counters.bytes_allocated, nodes + per_pixel * pixels + 8 + (3 + 1) * 4 + (16 + 4 * tiles)) << what;
+    EXPECT_EQ(r.counters.bytes_allocated, nodes + per_pixel * pixels + 8 + (3 + 1 + 1) * 4 + (16 + 4 * tiles)) << what;
     EXPECT_EQ(find_figure(r.counters.extra, "node_bytes"), flat_nodes(params) ? 8.0 : 24.0) << what;
   }
 }

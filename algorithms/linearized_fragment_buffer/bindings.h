@@ -14,6 +14,8 @@
 #define LFB_MISMATCHED_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 6)  // the resolve's range check
 #define LFB_PREFIX_SUM_VALUES_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 0)
 #define LFB_PREFIX_SUM_SUMS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 1)
+#define LFB_PREFIX_SUM_LENGTHS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 3)  // PS_FROM_COUNTS: uint(count) per pixel
+#define LFB_PREFIX_SUM_LONGEST_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 4)  // PS_FROM_COUNTS: the largest count
 
 // The nodes on image unit 0, the fill's cursors on image unit 2; the offsets
 // on texture unit 1 and, in the resolve, the lengths on the unit where

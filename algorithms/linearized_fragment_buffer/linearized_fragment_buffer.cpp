@@ -162,13 +162,8 @@ class LinearizedFragmentBuffer final : public Technique {
       auto count = frame.clock.stage("count");
       flat_ = flat_color_nodes_ && frame.scene.flat_colors_view() != 0;
       pool_.set_record_bytes(node_bytes());
-      longest_ = list_lengths_.longest_list(frame);
-      if (host_scan_) prefix_sum_.scan_host_counts(list_lengths_.host_counts(), offsets_);
-      else prefix_sum_.scan_counts(list_lengths_.counts(), width_, offsets_);
-      // The total comes from the counts already read back, so the scan is
-      // not waited for here (the fill is queued behind it).
-      fragments_ = list_lengths_.total_fragments();
-      upload_lengths();
+      if (host_scan_) scan_on_host(frame);
+      else scan_on_device(frame);
       glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);  // the copy below reads the scan's writes
       pool_.before_fill(frame);
       pool_.set_exact(fragments_);
@@ -238,11 +233,31 @@ class LinearizedFragmentBuffer final : public Technique {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   }
 
-  // The lengths the resolve and the length classes read: the counting
-  // pass's counts, already on the host (whole numbers in float).
-  void upload_lengths() {
+  // The counts read back, then the lengths the resolve and the length
+  // classes read and the offsets, from the host (whole numbers in float).
+  void scan_on_host(const Frame& frame) {
+    longest_ = list_lengths_.longest_list(frame);
+    fragments_ = list_lengths_.total_fragments();
+    prefix_sum_.scan_host_counts(list_lengths_.host_counts(), offsets_);
     lengths_from_counts(list_lengths_.host_counts(), host_lengths_);
     glNamedBufferSubData(lengths_.id(), 0, GLsizeiptr(host_lengths_.size() * 4), host_lengths_.data());
+  }
+
+  // The counts stay on the device: the scan writes offsets and lengths and
+  // the host reads back two words (the total and the longest list); on a
+  // GPU reading the whole count target back took most of the stage.
+  void scan_on_device(const Frame& frame) {
+    list_lengths_.draw(frame);
+    prefix_sum_.scan_counts(list_lengths_.counts(), width_, offsets_, lengths_);
+    const lfb::PrefixSum::Summary summary = prefix_sum_.read_summary(offsets_);
+    longest_ = summary.longest;
+    fragments_ = summary.total;
+    // The 32-bit offsets wrap past 2^32 fragments: where that is possible,
+    // sum the counts on the host, which fails with a clear error.
+    if (uint64_t(longest_) * uint64_t(width_) * uint64_t(height_) > UINT32_MAX) {
+      list_lengths_.read_back();
+      offsets_from_counts(list_lengths_.host_counts(), host_offsets_check_);
+    }
   }
 
   // The resolve counted the pixels whose fill outgrew (or fell short of)
@@ -295,6 +310,7 @@ class LinearizedFragmentBuffer final : public Technique {
   bool register_blocks_;
   uint32_t block_;
   bool backwards_allocation_, flat_color_nodes_, host_scan_, key64_;
+  std::vector<uint32_t> host_offsets_check_;  // scan_on_device's 32-bit check
   SlotCursors cursors_;  // before fill_: fill_defines() asks it how the fill takes its slots
   bool flat_ = false;  // this frame stores flat-colour nodes
   uint64_t flat_table_bytes_ = 0;

@@ -7,7 +7,10 @@
 // adds the scanned block totals of the level above to every value.
 // PS_FROM_COUNTS: the level-0 values are read from the R32F per-pixel count
 // target of core/list_length_pass.h (pixel i at (i % width, i / width);
-// index width*height and beyond are 0) instead of ps_values.
+// index width*height and beyond are 0) instead of ps_values; that level
+// also writes each pixel's count as a uint (ps_lengths) and raises
+// ps_longest to the largest count, so that the host reads back two words
+// (the total and the longest list), not the whole count target.
 #include "algorithms/linearized_fragment_buffer/bindings.h"
 
 #define PS_THREADS 256u
@@ -21,6 +24,9 @@ layout(location = LFB_PREFIX_SUM_COUNT_LOCATION) uniform uint u_count;  // value
 layout(binding = LFB_PREFIX_SUM_COUNTS_UNIT) uniform sampler2D u_counts;
 layout(location = LFB_WIDTH_LOCATION) uniform int u_width;
 layout(location = LFB_PIXELS_LOCATION) uniform uint u_pixels;
+layout(std430, binding = LFB_PREFIX_SUM_LENGTHS_BINDING) writeonly buffer PrefixSumLengths { uint ps_lengths[]; };
+layout(std430, binding = LFB_PREFIX_SUM_LONGEST_BINDING) buffer PrefixSumLongest { uint ps_longest; };
+shared uint ps_group_longest;
 #endif
 
 uint value_at(uint i) {
@@ -37,14 +43,26 @@ shared uint ps_tree[PS_THREADS];
 
 void main() {
   const uint first = gl_WorkGroupID.x * PS_THREADS * PS_ITEMS + gl_LocalInvocationID.x * PS_ITEMS;
+  const uint t = gl_LocalInvocationID.x;
+#if defined(PS_FROM_COUNTS)
+  if (t == 0u) ps_group_longest = 0u;
+  barrier();
+#endif
   uint items[PS_ITEMS];
-  uint running = 0u;
+  uint running = 0u, longest = 0u;
   for (uint k = 0u; k < PS_ITEMS; ++k) {
     items[k] = running;  // exclusive within the invocation
-    running += value_at(first + k);
+    const uint value = value_at(first + k);
+    running += value;
+    longest = max(longest, value);
+#if defined(PS_FROM_COUNTS)
+    if (first + k < u_pixels) ps_lengths[first + k] = value;
+#endif
   }
-  const uint t = gl_LocalInvocationID.x;
   ps_tree[t] = running;
+#if defined(PS_FROM_COUNTS)
+  if (longest > 0u) atomicMax(ps_group_longest, longest);
+#endif
   barrier();
   // Up-sweep: node (t+1)*2d-1 sums its subtree.
   for (uint d = 1u; d < PS_THREADS; d <<= 1) {
@@ -72,6 +90,10 @@ void main() {
     if (first + k < u_count) ps_values[first + k] = before + items[k];
   }
   if (t == 0u) ps_sums[gl_WorkGroupID.x] = block_total;
+#if defined(PS_FROM_COUNTS)
+  // ps_group_longest is complete: every atomicMax came before the first barrier.
+  if (t == 0u && ps_group_longest > 0u) atomicMax(ps_longest, ps_group_longest);
+#endif
 }
 #elif defined(PS_ADD)
 void main() {

@@ -22,7 +22,8 @@ PrefixSum::PrefixSum()
     : scan_counts_(build_compute_program("algorithms/linearized_fragment_buffer/prefix_sum.comp",
                                          {{"PS_SCAN", "1"}, {"PS_FROM_COUNTS", "1"}})),
       scan_(build_compute_program("algorithms/linearized_fragment_buffer/prefix_sum.comp", {{"PS_SCAN", "1"}})),
-      add_(build_compute_program("algorithms/linearized_fragment_buffer/prefix_sum.comp", {{"PS_ADD", "1"}})) {}
+      add_(build_compute_program("algorithms/linearized_fragment_buffer/prefix_sum.comp", {{"PS_ADD", "1"}})),
+      longest_(make_buffer(4)) {}
 
 void PrefixSum::resize(uint64_t pixels) {
   pixels_ = pixels;
@@ -37,7 +38,7 @@ void PrefixSum::resize(uint64_t pixels) {
 }
 
 uint64_t PrefixSum::bytes_allocated() const {
-  uint64_t bytes = 0;
+  uint64_t bytes = 4;  // longest_
   for (uint64_t count : levels_) bytes += blocks_of(count) * 4;
   return bytes;
 }
@@ -50,7 +51,9 @@ void PrefixSum::dispatch(GLuint program, const Buffer& values, uint64_t count, c
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-void PrefixSum::scan_counts(const Texture& counts, int width, const Buffer& offsets) {
+void PrefixSum::scan_counts(const Texture& counts, int width, const Buffer& offsets, const Buffer& lengths) {
+  fill_buffer_u32(longest_, 0);
+  bind_storage_buffers({{LFB_PREFIX_SUM_LENGTHS_BINDING, &lengths}, {LFB_PREFIX_SUM_LONGEST_BINDING, &longest_}});
   set_uniform(scan_counts_.id(), LFB_WIDTH_LOCATION, width);
   set_uniform(scan_counts_.id(), LFB_PIXELS_LOCATION, GLuint(pixels_));
   glBindTextureUnit(LFB_PREFIX_SUM_COUNTS_UNIT, counts.id());
@@ -66,6 +69,15 @@ void PrefixSum::scan_counts(const Texture& counts, int width, const Buffer& offs
     dispatch(add_.id(), k == 0 ? offsets : sums_[k - 1], levels_[k], sums_[k], (levels_[k] + kAddGroup - 1) / kAddGroup);
   }
   gl_check("prefix sum of the per-pixel fragment counts");
+}
+
+PrefixSum::Summary PrefixSum::read_summary(const Buffer& offsets) const {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  GLuint total = 0, longest = 0;
+  glGetNamedBufferSubData(offsets.id(), GLintptr(pixels_ * 4), 4, &total);
+  glGetNamedBufferSubData(longest_.id(), 0, 4, &longest);
+  gl_check("reading the prefix sum's total and longest list");
+  return {total, longest};
 }
 
 void PrefixSum::scan_host_counts(const std::vector<float>& counts, const Buffer& offsets) {

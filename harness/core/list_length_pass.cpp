@@ -31,7 +31,7 @@ void ListLengthPass::resize(int width, int height) {
   gl_check("allocating the list-length counters");
 }
 
-uint32_t ListLengthPass::longest_list(const Frame& frame) {
+void ListLengthPass::draw(const Frame& frame) {
   const float zero = 0.0f;
   glClearTexImage(counts_.id(), 0, GL_RED, GL_FLOAT, &zero);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
@@ -45,8 +45,17 @@ uint32_t ListLengthPass::longest_list(const Frame& frame) {
   glBlendFunci(0, GL_ONE, GL_ONE);
   frame.scene.draw();
   glDisable(GL_BLEND);
-  glGetTextureImage(counts_.id(), 0, GL_RED, GL_FLOAT, GLsizei(readback_.size() * sizeof(float)), readback_.data());
   gl_check("list-length counting pass");
+}
+
+uint32_t ListLengthPass::longest_list(const Frame& frame) {
+  draw(frame);
+  return read_back();
+}
+
+uint32_t ListLengthPass::read_back() {
+  glGetTextureImage(counts_.id(), 0, GL_RED, GL_FLOAT, GLsizei(readback_.size() * sizeof(float)), readback_.data());
+  gl_check("reading the list lengths back");
   float longest = 0.0f;
   total_ = 0;
   for (const float count : readback_) {

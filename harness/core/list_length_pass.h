@@ -19,15 +19,21 @@ class ListLengthPass {
   ListLengthPass();
   // The per-pixel count target for this size.
   void resize(int width, int height);
-  // Draws frame.scene with the frame's camera and returns the longest
-  // per-pixel fragment list (0 for an empty view). Reads the counts back,
-  // so it waits for the pass: the caller needs the number before going on.
+  // Draws frame.scene with the frame's camera into counts() and does not
+  // wait for it: for a caller that reduces the counts on the device.
   // Leaves another framebuffer and program bound.
+  void draw(const Frame& frame);
+  // draw(), then read_back(): the longest per-pixel fragment list (0 for
+  // an empty view); it waits for the pass: the caller needs the number
+  // before going on.
   uint32_t longest_list(const Frame& frame);
-  // The fragments that pass counted, summed from the same read-back (exact:
-  // every count is a whole number below 2^24).
+  // Reads the last draw's counts back (host_counts, total_fragments) and
+  // returns the longest list.
+  uint32_t read_back();
+  // The fragments the last read-back counted, summed from it (exact: every
+  // count is a whole number below 2^24).
   uint64_t total_fragments() const { return total_; }
-  // The counts that pass read back, pixel i = x + y * width (rows from the
+  // The counts the last read-back read, pixel i = x + y * width (rows from the
   // bottom), whole numbers in float.
   const std::vector<float>& host_counts() const { return readback_; }
   // The R32F count target (4 bytes per pixel).
