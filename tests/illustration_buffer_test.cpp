@@ -9,8 +9,10 @@
 #include <cmath>
 #include <deque>
 #include <stdexcept>
+#include <tuple>
 
 #include "harness/core/complexity.h"
+#include "harness/gl/context.h"
 #include "tests/gl_fixture.h"
 #include "scenes/scene_library.h"
 #include "scenes/stacked_quads.h"
@@ -634,6 +636,19 @@ TEST(IllustrationBuffer, StorageOptionsThatDoNotGoTogetherAreErrorsNamingThem) {
     EXPECT_EQ(r.status, RunStatus::error) << named;
     EXPECT_NE(r.message.find(named), std::string::npos) << r.message;
     EXPECT_THROW(d.create(ParamSet(d.params, params, "technique 'illustration_buffer'")), std::invalid_argument) << named;
+  }
+}
+
+// storage=auto: linearized on a software rasterizer, linked on a GPU (the
+// counter says which ran); an explicit sort=dynamic or fill= decides it.
+TEST(IllustrationBuffer, AutoStorageFollowsTheDeviceUnlessSortOrFillNeedsOne) {
+  test::gl_context();
+  const double software = current_device_is_software() ? 1.0 : 0.0;
+  for (const auto& [params, linearized, what] : std::vector<std::tuple<RawParams, double, std::string>>{
+           {{}, software, "defaults"}, {{{"sort", "dynamic"}}, 0.0, "sort=dynamic"}, {{{"fill", "atomic"}}, 1.0, "fill=atomic"}}) {
+    const RunResult r = test::harness().run(test::one_frame("illustration_buffer", params, "quads", {}, 8));
+    ASSERT_EQ(r.status, RunStatus::ok) << what << ": " << r.message;
+    EXPECT_EQ(test::extra_counter(r, "linearized_storage"), linearized) << what;
   }
 }
 

@@ -2,6 +2,8 @@
 // technique itself is in technique.cpp; see README.md.
 #include "algorithms/illustration_buffer/settings.h"
 
+#include "harness/gl/context.h"
+
 namespace oit {
 namespace illustration_buffer {
 namespace {
@@ -17,8 +19,20 @@ const Choices<Modulation> kModulations{{Modulation::none, "none"},
                                        {Modulation::normal_variation, "normal_variation"}};
 const Choices<SortMethod> kSorts{{SortMethod::automatic, "auto"}, {SortMethod::array, "array"},
                                  {SortMethod::dynamic, "dynamic"}};
-const Choices<Storage> kStorages{{Storage::linked, "linked"}, {Storage::linearized, "linearized"}};
+const Choices<Storage> kStorages{
+    {Storage::automatic, "auto"}, {Storage::linked, "linked"}, {Storage::linearized, "linearized"}};
 const Choices<Profile> kProfiles{{Profile::none, "none"}, {Profile::exponential, "exponential"}, {Profile::power, "power"}};
+
+// storage=auto: what sort= or fill= asks for where one of them needs one
+// storage; else linearized on a software rasterizer and linked on a GPU. On
+// an H200 the counting pass's read-back of every pixel's count cost more
+// than the linked fill's global counter saves (README: storage).
+Storage resolved_storage(Storage storage, SortMethod sort, SlotFill fill) {
+  if (storage != Storage::automatic) return storage;
+  if (sort == SortMethod::dynamic) return Storage::linked;
+  if (fill != SlotFill::automatic) return Storage::linearized;
+  return current_device_is_software() ? Storage::linearized : Storage::linked;
+}
 
 }  // namespace
 
@@ -31,8 +45,8 @@ Settings settings_from(const ParamSet& p) {
   s.skip_converged = p.boolean("skip_converged");
   s.diffusion_tolerance = float(p.real("diffusion_tolerance"));
   s.sort = p.choice("sort", kSorts);
-  s.storage = p.choice("storage", kStorages);
   s.fill = p.choice("fill", kSlotFills);
+  s.storage = resolved_storage(p.choice("storage", kStorages), s.sort, s.fill);
   s.flat_color_records = p.boolean("flat_color_records");
   s.normal_variation_scale = float(p.real("normal_variation_scale"));
   s.lambda_alpha = float(p.real("lambda_alpha"));
@@ -99,12 +113,14 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
               "the buffers (pastyrik2016 Algorithm 2; storage=linked only); auto = dynamic when the lists are linked "
               "and the frame's longest has at most 4 fragments, else array; the same records either way"),
           illustration_buffer::kStorages.spec(
-              "storage", illustration_buffer::Storage::linearized,
+              "storage", illustration_buffer::Storage::automatic,
               "where the fill puts the records (the same records and image either way): linked = per-pixel "
               "linked lists in a pool sized from the previous frame (grown with a re-render on overflow; "
               "carnecky2013 Algorithm 1); linearized = a counting pass, "
               "then each pixel's contiguous range from the counts' prefix sum, exactly sized, filled in place "
-              "(Knowles et al. 2012): no list walk in the sort, no global counter in the fill"),
+              "(Knowles et al. 2012): no list walk in the sort, no global counter in the fill; auto = linked "
+              "with sort=dynamic, linearized with fill=atomic or framebuffer_fetch, else linearized on a "
+              "software rasterizer and linked on a GPU"),
           kSlotFills.spec(
               "fill", SlotFill::automatic,
               "storage=linearized: how a fragment takes its slot: atomic = an image atomic on its pixel's cursor; "

@@ -26,8 +26,9 @@ enum class Profile { none, exponential, power };  // eq. 10 / eq. 11
 // Where the fill puts the records: per-pixel linked lists in a pool sized
 // from the previous frame (carnecky2013 Algorithm 1), or a linearized
 // buffer (Knowles et al. 2012): a counting pass and each pixel's range
-// from the counts' prefix sum, exactly sized, filled in place.
-enum class Storage { linked, linearized };
+// from the counts' prefix sum, exactly sized, filled in place. automatic
+// is resolved by settings_from and never reaches the technique.
+enum class Storage { automatic, linked, linearized };
 
 struct Settings {
   NeighborSearch neighbors = NeighborSearch::triangle_index;
