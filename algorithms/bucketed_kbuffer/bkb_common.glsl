@@ -83,9 +83,11 @@ uint bkb_pack_normal(vec3 n) {
   uvec2 q = uvec2(round(clamp(n.xy * 0.5 + 0.5, 0.0, 1.0) * 32767.0));
   return BKB_NORMAL_WRITTEN | (n.z < 0.0 ? 0x40000000u : 0u) | (q.y << 15) | q.x;
 }
+// `precise`: one word unpacks to the same bits wherever it is unpacked
+// (no multiply-add fused at one call site and not at another).
 vec3 bkb_unpack_normal(uint word) {
-  vec2 xy = vec2(uvec2(word & 0x7fffu, (word >> 15) & 0x7fffu)) * (2.0 / 32767.0) - 1.0;
-  float z = sqrt(max(0.0, 1.0 - dot(xy, xy)));
+  precise vec2 xy = vec2(uvec2(word & 0x7fffu, (word >> 15) & 0x7fffu)) * (2.0 / 32767.0) - 1.0;
+  precise float z = sqrt(max(0.0, 1.0 - dot(xy, xy)));
   return vec3(xy, (word & 0x40000000u) != 0u ? -z : z);
 }
 
