@@ -5,8 +5,9 @@
 // workgroup, applied recursively to the workgroups' totals and added back,
 // so any number of pixels takes O(n) work in a few dispatches (two levels up
 // to 1M pixels, three up to 1G); the first level also writes the lengths
-// and the longest list, so the host reads back two words. On the host: a running sum over the counts
-// the counting pass has read back anyway, uploaded (README: scan).
+// and the longest list, so the host reads back two words. On the host: a
+// running sum over the counts the counting pass has read back anyway,
+// uploaded (README: scan).
 #include <cstdint>
 #include <vector>
 
