@@ -91,7 +91,7 @@ void main() {
   }
   if (t == 0u) ps_sums[gl_WorkGroupID.x] = block_total;
 #if defined(PS_FROM_COUNTS)
-  // ps_group_longest is complete: every atomicMax came before the first barrier.
+  // ps_group_longest is complete: every atomicMax came before the up-sweep's barriers.
   if (t == 0u && ps_group_longest > 0u) atomicMax(ps_longest, ps_group_longest);
 #endif
 }
