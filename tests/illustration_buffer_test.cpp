@@ -649,7 +649,9 @@ TEST(IllustrationBuffer, AutoStorageFollowsTheDeviceUnlessSortOrFillNeedsOne) {
   test::gl_context();
   const double software = current_device_is_software() ? 1.0 : 0.0;
   for (const auto& [params, linearized, what] : std::vector<std::tuple<RawParams, double, std::string>>{
-           {{}, software, "defaults"}, {{{"sort", "dynamic"}}, 0.0, "sort=dynamic"}, {{{"fill", "atomic"}}, 1.0, "fill=atomic"}}) {
+           {{}, software, "defaults"},
+           {{{"sort", "dynamic"}}, 0.0, "sort=dynamic"},
+           {{{"fill", "atomic"}}, 1.0, "fill=atomic"}}) {
     const RunResult r = test::harness().run(test::one_frame("illustration_buffer", params, "quads", {}, 8));
     ASSERT_EQ(r.status, RunStatus::ok) << what << ": " << r.message;
     EXPECT_EQ(test::extra_counter(r, "linearized_storage"), linearized) << what;
