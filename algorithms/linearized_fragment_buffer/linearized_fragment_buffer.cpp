@@ -256,7 +256,8 @@ class LinearizedFragmentBuffer final : public Technique {
     // sum the counts on the host, which fails with a clear error.
     if (uint64_t(longest_) * uint64_t(width_) * uint64_t(height_) > UINT32_MAX) {
       list_lengths_.read_back();
-      offsets_from_counts(list_lengths_.host_counts(), host_offsets_check_);
+      std::vector<uint32_t> offsets;
+      offsets_from_counts(list_lengths_.host_counts(), offsets);
     }
   }
 
@@ -310,7 +311,6 @@ class LinearizedFragmentBuffer final : public Technique {
   bool register_blocks_;
   uint32_t block_;
   bool backwards_allocation_, flat_color_nodes_, host_scan_, key64_;
-  std::vector<uint32_t> host_offsets_check_;  // scan_on_device's 32-bit check
   SlotCursors cursors_;  // before fill_: fill_defines() asks it how the fill takes its slots
   bool flat_ = false;  // this frame stores flat-colour nodes
   uint64_t flat_table_bytes_ = 0;
