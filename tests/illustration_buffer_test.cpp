@@ -430,6 +430,7 @@ namespace {
 // skip_converged diffuses only the pixels around fragments that changed in
 // the previous iteration; every skipped fragment would have recomputed its
 // own value, so the image is bitwise the one of all fragments every iteration.
+// (diffusion=steps: auto sweeps some of these scenes on a software rasterizer.)
 TEST(IllustrationBuffer, SkippingConvergedFragmentsGivesTheSameImage) {
   struct Case {
     const char* scene;
@@ -445,8 +446,10 @@ TEST(IllustrationBuffer, SkippingConvergedFragmentsGivesTheSameImage) {
       // alphas (the scene has more than one), but each links within its layer.
       {"stress_layers", {{"alpha_mode", "mixed"}, {"layers", "8"}}, {}, false}};
   for (const Case& c : cases) {
-    const std::vector<RunResult> runs = render_each("skip_converged", {"true", "false"}, c.params, c.scene,
-                                                    c.scene_params, 64, 64);
+    RawParams params = c.params;
+    params["diffusion"] = "steps";
+    const std::vector<RunResult> runs =
+        render_each("skip_converged", {"true", "false"}, params, c.scene, c.scene_params, 64, 64);
     const RunResult& fast = runs[0];
     const RunResult& full = runs[1];
     EXPECT_EQ(largest_difference(fast.image, full.image), 0.0) << c.scene;
@@ -467,19 +470,25 @@ TEST(IllustrationBuffer, ConvergedFullScreenLayersAreNeverDiffused) {
   // 20 steps updates a fragment; the image is plain blending, and the one
   // of every fragment every step.
   const int w = 32, h = 24;
-  const RunResult r = test::render_once("illustration_buffer", {}, "quads", {{"layers", "8"}}, w, h);
-  EXPECT_EQ(test::extra_counter(r, "fragment_updates"), 0.0);
-  EXPECT_EQ(test::work_saved(r, "fragment_updates_skipped"), 20.0 * 8 * w * h);
-  EXPECT_LT(r.error->max_abs, kFloatTolerance);
-  const RunResult full =
-      test::render_once("illustration_buffer", {{"skip_converged", "false"}}, "quads", {{"layers", "8"}}, w, h);
-  EXPECT_EQ(largest_difference(r.image, full.image), 0.0);
+  for (const char* diffusion : {"steps", "sweep"}) {
+    const RunResult r = test::render_once("illustration_buffer", {{"diffusion", diffusion}}, "quads", {{"layers", "8"}}, w, h);
+    EXPECT_EQ(test::extra_counter(r, "fragment_updates"), 0.0) << diffusion;
+    EXPECT_EQ(test::work_saved(r, "fragment_updates_skipped"), 20.0 * 8 * w * h) << diffusion;
+    EXPECT_LT(r.error->max_abs, kFloatTolerance) << diffusion;
+    const RunResult full = test::render_once("illustration_buffer", {{"diffusion", "steps"}, {"skip_converged", "false"}},
+                                             "quads", {{"layers", "8"}}, w, h);
+    EXPECT_EQ(largest_difference(r.image, full.image), 0.0) << diffusion;
+  }
+  // The sweeps see no seed in the init and run no round.
+  const RunResult swept = test::render_once("illustration_buffer", {{"diffusion", "sweep"}}, "quads", {{"layers", "8"}}, w, h);
+  EXPECT_EQ(test::extra_counter(swept, "sweep_rounds"), 0.0);
 }
 
 TEST(IllustrationBuffer, ADiffusionToleranceStaysWithinItsMeasuredError) {
   // Adaptive alpha on spheres keeps moving by float rounding for many
   // iterations; a tolerance stops the small moves (README: the measured error).
-  const RawParams base = {{"adaptive_alpha", "true"}, {"modulation", "halo"}, {"iterations", "50"}};
+  const RawParams base = {
+      {"adaptive_alpha", "true"}, {"modulation", "halo"}, {"iterations", "50"}, {"diffusion", "steps"}};
   RawParams loose = base, exact = base, full = base;
   loose["diffusion_tolerance"] = "0.0001";
   full["skip_converged"] = "false";
@@ -492,6 +501,75 @@ TEST(IllustrationBuffer, ADiffusionToleranceStaysWithinItsMeasuredError) {
               test::extra_counter(a, "fragment_updates"), test::extra_counter(b, "fragment_updates"));
   EXPECT_LT(error, 2e-3);  // measured 6.5e-4 (README)
   EXPECT_LT(test::extra_counter(a, "fragment_updates"), test::extra_counter(b, "fragment_updates"));
+}
+
+// diffusion=sweep: in-place sweeps along the rows until nothing moves, the
+// fixed point of eq. 9, which is the result of the `iterations` steps where
+// alpha cannot move and the steps carry beta and gamma from 1 to 0.
+TEST(IllustrationBuffer, SweepingToTheFixedPointGivesTheStepsImage) {
+  struct Case {
+    const char* scene;
+    RawParams scene_params, params;
+  };
+  const RawParams quads = {{"count", "64"}, {"size", "0.3"}};
+  const std::vector<Case> cases = {
+      {"torus", {}, {}},
+      {"spheres", {}, {}},
+      {"nested_spheres", {}, {{"modulation", "halo"}, {"lambda_gamma", "0.2"}}},
+      {"random_quads", quads, {{"neighbors", "heuristic"}}},
+      // In float, 1 - 0.1 nine times is 0.09999993 and ten times -7e-8: 9
+      // steps are the fewest after which a 10th step would add nothing.
+      {"random_quads", quads, {{"modulation", "silhouette"}, {"lambda_beta", "0.1"}, {"iterations", "9"}}}};
+  for (const Case& c : cases) {
+    RawParams steps = c.params, sweep = c.params;
+    steps["diffusion"] = "steps";
+    steps["skip_converged"] = "false";
+    sweep["diffusion"] = "sweep";
+    const RunResult a = test::render_once("illustration_buffer", steps, c.scene, c.scene_params, 64, 64);
+    const RunResult b = test::render_once("illustration_buffer", sweep, c.scene, c.scene_params, 64, 64);
+    ASSERT_EQ(b.status, RunStatus::ok) << c.scene << ": " << b.message;
+    EXPECT_EQ(largest_difference(a.image, b.image), 0.0) << c.scene;
+    EXPECT_EQ(test::extra_counter(b, "sweep_diffusion"), 1.0) << c.scene;
+    EXPECT_EQ(test::extra_counter(a, "sweep_diffusion"), 0.0) << c.scene;
+    const double rounds = test::extra_counter(b, "sweep_rounds");
+    std::printf("[ measured ] %s: %.0f sweep rounds\n", c.scene, rounds);
+    EXPECT_GE(rounds, 1.0) << c.scene;
+    // A round: four sweeps and a check, each over every fragment once.
+    EXPECT_EQ(test::extra_counter(b, "fragment_updates"), 5.0 * rounds * double(b.counters.fragments_stored)) << c.scene;
+  }
+}
+
+// Where the fixed point is not the steps' result, sweep is an error naming
+// why, and auto runs the steps.
+TEST(IllustrationBuffer, SweepingWhereTheFixedPointDiffersIsAnErrorAndAutoSteps) {
+  test::gl_context();
+  const double software = current_device_is_software() ? 1.0 : 0.0;
+  const RawParams quads = {{"count", "64"}, {"size", "0.3"}};
+  struct Case {
+    const char* scene;
+    RawParams scene_params, params;
+    std::string named;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"spheres", {}, {{"adaptive_alpha", "true"}}, "adaptive_alpha"},
+           // 8 steps leave 0 at distance 9, where the fixed point has 0.09999993.
+           {"random_quads", quads, {{"modulation", "silhouette"}, {"lambda_beta", "0.1"}, {"iterations", "8"}}, "iterations"},
+           {"stress_layers", {{"alpha_mode", "mixed"}, {"layers", "4"}}, {}, "one alpha"}}) {
+    RawParams sweep = c.params, automatic = c.params, steps = c.params;
+    sweep["diffusion"] = "sweep";
+    steps["diffusion"] = "steps";
+    const RunResult r = test::harness().run(test::one_frame("illustration_buffer", sweep, c.scene, c.scene_params, 32));
+    EXPECT_EQ(r.status, RunStatus::error) << c.named;
+    EXPECT_NE(r.message.find(c.named), std::string::npos) << r.message;
+    const RunResult a = test::render_once("illustration_buffer", automatic, c.scene, c.scene_params, 32, 32);
+    const RunResult b = test::render_once("illustration_buffer", steps, c.scene, c.scene_params, 32, 32);
+    ASSERT_EQ(a.status, RunStatus::ok) << c.named << ": " << a.message;
+    EXPECT_EQ(test::extra_counter(a, "sweep_diffusion"), 0.0) << c.named;
+    EXPECT_EQ(largest_difference(a.image, b.image), 0.0) << c.named;
+  }
+  // Where it is exact, auto sweeps on a software rasterizer and steps on a GPU.
+  const RunResult torus = test::render_once("illustration_buffer", {}, "torus", {}, 32, 32);
+  EXPECT_EQ(test::extra_counter(torus, "sweep_diffusion"), software);
 }
 
 TEST(IllustrationBuffer, OneIterationTimesInitialisationAndTheStepApart) {

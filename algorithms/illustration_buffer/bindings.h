@@ -27,6 +27,7 @@
 #define IB_PIXEL_UPDATES_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 12)
 #define IB_WORK_NEXT_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 13)  // stylize_diffuse.comp, IB_WORKLIST
 #define IB_SEEDS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 14)      // stylize_init.comp, IB_TRACK
+#define IB_SWEEP_CHANGED_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 15)  // stylize_init.comp (IB_SEED_FLAG), stylize_diffuse.comp (IB_CHECK)
 
 // Texture units of the read-only buffer-texture views. The per-fragment
 // passes' (views.glsl) and the listed diffusion steps' (stylize_diffuse.comp):
@@ -67,5 +68,6 @@
 #define IB_NEXT_STEP_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 16)  // worklist.glsl
 #define IB_TOLERANCE_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 17)  // stylize_diffuse.comp, IB_WORKLIST
 #define IB_NORMAL_VARIATION_SCALE_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 18)  // fill.frag, IB_NORMAL_VARIATION
+#define IB_SWEEP_DIRECTION_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 19)  // stylize_diffuse.comp, IB_SWEEP
 
 #endif

@@ -21,6 +21,8 @@ const Choices<SortMethod> kSorts{{SortMethod::automatic, "auto"}, {SortMethod::a
                                  {SortMethod::dynamic, "dynamic"}};
 const Choices<Storage> kStorages{
     {Storage::automatic, "auto"}, {Storage::linked, "linked"}, {Storage::linearized, "linearized"}};
+const Choices<Diffusion> kDiffusions{
+    {Diffusion::automatic, "auto"}, {Diffusion::steps, "steps"}, {Diffusion::sweep, "sweep"}};
 const Choices<Profile> kProfiles{{Profile::none, "none"}, {Profile::exponential, "exponential"}, {Profile::power, "power"}};
 
 // storage=auto: what sort= or fill= asks for where one of them needs one
@@ -36,6 +38,18 @@ Storage resolved_storage(Storage storage, SortMethod sort, SlotFill fill) {
 
 }  // namespace
 
+bool Settings::sweep_reaches_steps() const {
+  // The value after n steps from 1 is 1 - lambda - ... - lambda (n times, in
+  // float, as the shader computes it); a field is carried to its end when
+  // step iterations + 1 would be at or below 0, the unfixed fields' start.
+  const auto reaches = [&](float lambda) {
+    float value = 1.0f;
+    for (int step = 0; step <= iterations && value > 0.0f; ++step) value -= lambda;
+    return value <= 0.0f;
+  };
+  return (!uses_beta() || reaches(lambda_beta)) && (!uses_gamma() || reaches(lambda_gamma));
+}
+
 Settings settings_from(const ParamSet& p) {
   Settings s;
   s.neighbors = p.choice("neighbors", kNeighborSearches);
@@ -44,6 +58,9 @@ Settings settings_from(const ParamSet& p) {
   s.iterations = int(p.integer("iterations"));
   s.skip_converged = p.boolean("skip_converged");
   s.diffusion_tolerance = float(p.real("diffusion_tolerance"));
+  const Diffusion diffusion = p.choice("diffusion", kDiffusions);
+  s.diffusion = diffusion == Diffusion::sweep ? Diffusion::sweep : Diffusion::steps;
+  s.sweep_where_exact = diffusion == Diffusion::automatic && current_device_is_software();
   s.sort = p.choice("sort", kSorts);
   s.fill = p.choice("fill", kSlotFills);
   s.storage = resolved_storage(p.choice("storage", kStorages), s.sort, s.fill);
@@ -93,6 +110,12 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
           ParamSpec::real("diffusion_tolerance", 0.0, 0.0, 1.0,
                           "skip_converged: a fragment whose fields move by at most this keeps its value and does not "
                           "wake its neighbours (0: the same image as every fragment every iteration)"),
+          illustration_buffer::kDiffusions.spec(
+              "diffusion", illustration_buffer::Diffusion::automatic,
+              "steps = `iterations` synchronous steps of eq. 8-9 (skip_converged applies); sweep = in-place "
+              "sweeps along rows and columns until no field moves, the same result where alpha cannot move "
+              "(eq. 4, one alpha in the scene) and `iterations` steps carry beta and gamma to 0 (an error "
+              "otherwise); auto = sweep on the frames where it is exact on a software rasterizer, else steps"),
           ParamSpec::real("lambda_alpha", 1.0, 0.0, 1.0,
                           "diffusion coefficient of alpha (eq. 8, normalised Laplacian)"),
           ParamSpec::real("lambda_beta", 0.05, 0.0, 1.0, "decrement per step of the silhouette field (eq. 9)"),
@@ -153,10 +176,15 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
                         {"neighbors", {"heuristic_merge", "heuristic", "triangle_index"}},
                         {"storage", {"linked", "linearized"}}},
       // Approximate (the default): exact (float blend) only with modulation=none.
-      .adaptive_switches = {{"skip_converged",
+      .adaptive_switches = {{"diffusion_sweep",
+                              "sweeps the fields in place to the fixed point instead of `iterations` steps where that "
+                              "gives the same image (diffusion=auto; on a software rasterizer)",
+                              {{"diffusion", "auto"}},
+                              {{"diffusion", "steps"}}},
+                             {"skip_converged",
                               "diffuses only the pixels around fragments that changed in the previous iteration",
-                              {{"skip_converged", "true"}},
-                              {{"skip_converged", "false"}}},
+                              {{"skip_converged", "true"}, {"diffusion", "steps"}},
+                              {{"skip_converged", "false"}, {"diffusion", "steps"}}},
                              {"flat_color_records",
                               "stores no colour in the fill record on unlit scenes and fetches each fragment's flat "
                               "colour by triangle id in the sort",

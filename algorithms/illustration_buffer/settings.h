@@ -29,6 +29,13 @@ enum class Profile { none, exponential, power };  // eq. 10 / eq. 11
 // from the counts' prefix sum, exactly sized, filled in place. automatic
 // is resolved by settings_from and never reaches the technique.
 enum class Storage { automatic, linked, linearized };
+// How the diffusion reaches its result: `iterations` synchronous steps of
+// eq. 8-9, or in-place sweeps along the image lines until nothing moves (the
+// fixed point, which equals the steps' result when alpha cannot move and
+// `iterations` steps carry beta and gamma to 0: sweep_reaches_steps). auto
+// (resolved by settings_from): sweeps where exact on a software
+// rasterizer, steps on a GPU.
+enum class Diffusion { automatic, steps, sweep };
 
 struct Settings {
   NeighborSearch neighbors = NeighborSearch::triangle_index;
@@ -37,6 +44,8 @@ struct Settings {
   int iterations = 20;
   bool skip_converged = true;       // diffuse only the pixels whose neighbourhood changed
   float diffusion_tolerance = 0.0f; // a fragment moving by at most this keeps its value
+  Diffusion diffusion = Diffusion::steps;  // never automatic here (settings_from resolves it)
+  bool sweep_where_exact = false;           // diffusion=auto on this device: sweep the frames where it is exact
   float lambda_alpha = 1.0f, lambda_beta = 0.05f, lambda_gamma = 0.1f;
   Profile profile = Profile::none;
   float exponential_p = 3.0f, power_p = 0.3f;
@@ -66,6 +75,12 @@ struct Settings {
   // fill leaves them out and the sort stores the triangle's vertices instead.
   bool records_surface() const { return (diffused() && heuristic()) || purely_local(); }
   bool stores_triangle_vertices() const { return diffused() && !heuristic(); }
+  // Whether `iterations` steps of eq. 9 take every value of 1 down to 0 or
+  // below for each field used, so that the steps' result is the fixed point
+  // wherever alpha cannot move (Diffusion).
+  bool sweep_reaches_steps() const;
+  // Whether the sweeps may run at all (some frame may still need the steps: one_alpha).
+  bool may_sweep() const { return diffused() && (diffusion == Diffusion::sweep || sweep_where_exact); }
 };
 
 Settings settings_from(const ParamSet& params);

@@ -10,11 +10,13 @@
 //     neighbours give exactly alpha (stylize_init relies on it);
 //  u <- max(u, max(u_neighbours) - lambda_u), u in {beta, gamma}  (eq. 9)
 //     unless the fragment's u is fixed by a boundary condition.
-// Two variants: plain (skip_converged=false), one invocation per sorted
-// fragment; IB_WORKLIST (every step with skip_converged): one invocation per
-// queued pixel, which updates the pixel's fragments, and a fragment that
-// moved by more than u_tolerance queues the pixels around it for the next
-// step (worklist.glsl). The first step's pixels are queued by stylize_init.
+// Variants of diffusion=steps: plain (skip_converged=false), one invocation
+// per sorted fragment; IB_WORKLIST (every step with skip_converged): one
+// invocation per queued pixel, which updates the pixel's fragments, and a
+// fragment that moved by more than u_tolerance queues the pixels around it
+// for the next step (worklist.glsl). The first step's pixels are queued by
+// stylize_init. Of diffusion=sweep: IB_SWEEP, in place along the rows, and
+// IB_CHECK, whether any fragment would still move (below).
 // With skip_converged a move of at most u_tolerance is not applied (the
 // fragment keeps its value), so a fragment that is not queued has its value
 // in both field ranges.
@@ -80,6 +82,60 @@ void main() {
     if (changed) ib_enqueue_around(pixel);
   }
 }
+#elif defined(IB_SWEEP) || defined(IB_CHECK)
+// diffusion=sweep runs only where alpha cannot move (every fragment starts
+// with the scene's one alpha, eq. 4, and eq. 8 of equal values is exactly
+// alpha): so only beta and gamma are read and raised, which spares llvmpipe
+// the gathers of the neighbours' alphas.
+
+// Beta and gamma of fragment s after one step of eq. 9 from `field`.
+vec2 raised(uint s, vec4 field) {
+  const uvec4 links = ib_sorted_links(s);
+  vec2 most = vec2(0.0);
+  for (int d = 0; d < 4; ++d)
+    if (links[d] < IB_OFF_IMAGE) most = max(most, texelFetch(ib_fields_view, int(links[d])).yz);
+  const uint flags = ib_flags(field);
+  return vec2((flags & IB_FIXED_BETA) != 0u ? field.y : max(field.y, most.x - u_lambda_beta),
+              (flags & IB_FIXED_GAMMA) != 0u ? field.z : max(field.z, most.y - u_lambda_gamma));
+}
+
+#if defined(IB_SWEEP)
+// In place, one invocation per image row, the rows in the order of
+// u_direction.y and each walked in the order of u_direction.x. Lane k of a
+// SIMD group starts k pixels late, so that the row before its own (lane
+// k - 1, or the group before) has updated a pixel when it reads it: a pass
+// carries values along any path that goes only in its two directions (a
+// raster-order chamfer pass). Values read from other workgroups may be
+// old; that only slows the convergence (the fields only rise).
+layout(location = IB_SWEEP_DIRECTION_LOCATION) uniform ivec2 u_direction;
+
+void main() {
+  const uint width = uint(u_width), height = uint(u_height), index = gl_GlobalInvocationID.x;
+  if (index >= height) return;
+  const uint y = u_direction.y > 0 ? index : height - 1u - index, lag = index % 8u;
+  for (uint t = 0u; t < width + 7u; ++t) {
+    if (t < lag || t - lag >= width) continue;
+    const uint x = u_direction.x > 0 ? t - lag : width - 1u - (t - lag);
+    const uint pixel = y * width + x, first = ib_pixel_first(pixel), end = first + ib_pixel_count(pixel);
+    for (uint s = first; s < end; ++s) {
+      const vec4 field = texelFetch(ib_fields_view, int(s));
+      const vec2 next = raised(s, field);
+      if (next != field.yz) ib_fields_out[s].yz = next;
+    }
+  }
+}
+#else
+// The convergence check: one invocation per fragment; 1 when a step would
+// move a field (the sweeps have not reached the fixed point yet).
+layout(std430, binding = IB_SWEEP_CHANGED_BINDING) writeonly buffer IbSweepChanged { uint ib_sweep_changed; };
+
+void main() {
+  const uint s = ib_fragment_index();
+  if (s >= u_fragments) return;
+  const vec4 field = texelFetch(ib_fields_view, int(s));
+  if (raised(s, field) != field.yz) ib_sweep_changed = 1u;
+}
+#endif
 #else
 void main() {
   const uint s = ib_fragment_index();

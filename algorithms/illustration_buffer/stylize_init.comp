@@ -34,6 +34,12 @@
 #ifdef IB_TRACK
 layout(std430, binding = IB_SEEDS_BINDING) writeonly buffer IbSeeds { uint ib_seeds[]; };
 #endif
+#ifdef IB_SEED_FLAG
+// diffusion=sweep: 1 when some fragment starts with beta or gamma of 1;
+// without one nothing can move (alpha cannot either where the sweeps run),
+// and the sweeps are skipped.
+layout(std430, binding = IB_SWEEP_CHANGED_BINDING) writeonly buffer IbSeeded { uint ib_seeded; };
+#endif
 
 layout(location = IB_ADAPTIVE_LOCATION) uniform bool u_adaptive;
 layout(location = IB_USE_BETA_LOCATION) uniform bool u_use_beta;
@@ -96,5 +102,8 @@ void main() {
   ib_fields_out[s] = vec4(alpha, beta, gamma, float(flags));
 #ifdef IB_TRACK
   if (beta == 1.0 || gamma == 1.0 || alpha_differs(alpha, links, pixel)) ib_seeds[pixel] = 1u;
+#endif
+#ifdef IB_SEED_FLAG
+  if (beta == 1.0 || gamma == 1.0) ib_seeded = 1u;
 #endif
 }

@@ -53,7 +53,10 @@ uint64_t bytes_per_fragment(const Settings& s) {
                   (s.measure_accuracy ? kTruthBytes : 0));
 }
 
-bool tracks_convergence(const Settings& s) { return s.diffused() && s.skip_converged; }
+// The steps of skip_converged (worklist.glsl); the sweeps need no tracking.
+bool tracks_convergence(const Settings& s) {
+  return s.diffused() && s.skip_converged && s.diffusion == Diffusion::steps;
+}
 
 // Per pixel: head and count; with storage=linearized the counting pass's
 // R32F count, the fill's offset and its cursor; plus (when the diffusion
@@ -73,6 +76,11 @@ void check_combination(const Settings& s) {
   if (!s.linearized() && s.fill != SlotFill::automatic)
     throw std::invalid_argument("illustration_buffer: fill=atomic or fill=framebuffer_fetch chooses how "
                                 "storage=linearized takes its slots; with storage=linked leave fill=auto");
+  if (s.diffused() && s.diffusion == Diffusion::sweep && (s.adaptive_alpha || !s.sweep_reaches_steps()))
+    throw std::invalid_argument(
+        "illustration_buffer: diffusion=sweep gives the fixed point, which equals the steps' result only with eq. 4 "
+        "(adaptive_alpha=false) and when `iterations` steps take beta and gamma from 1 to 0 (iterations + 1 >= "
+        "1 / lambda_beta, 1 / lambda_gamma); use diffusion=steps or auto");
   if (const std::string missing = missing_device_feature(s); !missing.empty())
     throw std::runtime_error("illustration_buffer: " + missing);
 }
@@ -135,27 +143,35 @@ class IllustrationBuffer final : public Technique {
     // stylize_inits_[1] also queues fragments whose alpha differs from a
     // neighbour's (stylize_init.comp, IB_ALPHA_SEEDS): for scenes of more
     // than one alpha, or eq. 5.
-    for (int alpha_seeds = 0; alpha_seeds < (track ? 2 : 1); ++alpha_seeds) {
+    // stylize_init_: no queue (the steps without skip_converged, and the sweeps).
+    for (Program* init : {&stylize_init_, &stylize_inits_[0], &stylize_inits_[1]}) {
+      const bool tracked = init != &stylize_init_, alpha_seeds = init == &stylize_inits_[1];
+      if (tracked ? !track : track && !s_.may_sweep()) continue;
       ShaderDefines defines;
-      if (track) defines.push_back({"IB_TRACK", "1"});
+      if (tracked) defines.push_back({"IB_TRACK", "1"});
       if (alpha_seeds) defines.push_back({"IB_ALPHA_SEEDS", "1"});
-      Program& init = stylize_inits_[alpha_seeds];
-      init = build_compute_program("algorithms/illustration_buffer/stylize_init.comp", defines);
-      set_uniform(init.id(), IB_ADAPTIVE_LOCATION, int(s_.adaptive_alpha));
-      set_uniform(init.id(), IB_USE_BETA_LOCATION, int(s_.uses_beta()));
-      set_uniform(init.id(), IB_USE_GAMMA_LOCATION, int(s_.uses_gamma()));
+      if (!tracked && s_.may_sweep()) defines.push_back({"IB_SEED_FLAG", "1"});
+      *init = build_compute_program("algorithms/illustration_buffer/stylize_init.comp", defines);
+      set_uniform(init->id(), IB_ADAPTIVE_LOCATION, int(s_.adaptive_alpha));
+      set_uniform(init->id(), IB_USE_BETA_LOCATION, int(s_.uses_beta()));
+      set_uniform(init->id(), IB_USE_GAMMA_LOCATION, int(s_.uses_gamma()));
     }
     if (track) {
       seed_queue_ = build_compute_program("algorithms/illustration_buffer/stylize_seed_queue.comp");
       diffuse_listed_ =
           build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp", {{"IB_WORKLIST", "1"}});
-    } else {
+    } else if (s_.diffusion == Diffusion::steps) {
       stylize_diffuse_ = build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp");
     }
-    for (const Program* p : {&stylize_diffuse_, &diffuse_listed_}) {
+    if (s_.may_sweep()) {
+      diffuse_sweep_ = build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp", {{"IB_SWEEP", "1"}});
+      sweep_check_ = build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp", {{"IB_CHECK", "1"}});
+      sweep_changed_ = make_buffer(4);
+    }
+    for (const Program* p : {&stylize_diffuse_, &diffuse_listed_, &diffuse_sweep_, &sweep_check_}) {
       if (!*p) continue;
-      if (track) set_uniform(p->id(), IB_TOLERANCE_LOCATION, s_.diffusion_tolerance);
-      set_uniform(p->id(), IB_LAMBDA_ALPHA_LOCATION, s_.lambda_alpha);
+      if (p == &diffuse_listed_) set_uniform(p->id(), IB_TOLERANCE_LOCATION, s_.diffusion_tolerance);
+      if (uniform_active(p->id(), "u_lambda_alpha")) set_uniform(p->id(), IB_LAMBDA_ALPHA_LOCATION, s_.lambda_alpha);
       set_uniform(p->id(), IB_LAMBDA_BETA_LOCATION, s_.lambda_beta);
       set_uniform(p->id(), IB_LAMBDA_GAMMA_LOCATION, s_.lambda_gamma);
     }
@@ -213,8 +229,9 @@ class IllustrationBuffer final : public Technique {
     auto stage = frame.clock.stage("compose");
     if (modulated()) {
       // The last range written: the init writes the second range, iteration i
-      // reads the range i wrote before; so even counts end in the second range.
-      const GLintptr last = s_.iterations % 2 == 0 ? second_range : 0;
+      // reads the range i wrote before, so even counts end in the second
+      // range; the sweeps work in place on the second range.
+      const GLintptr last = s_.iterations % 2 == 0 || swept_ ? second_range : 0;
       bind_fields(last, last == 0 ? second_range : 0);
     }
     frame.bind_target();
@@ -233,7 +250,7 @@ class IllustrationBuffer final : public Technique {
     const uint64_t per_fragment = bytes_per_fragment(s_);
     c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * bytes_per_pixel(s_) + pool_.capacity() * per_fragment +
                         kCounterBytes + triangle_rows_ * 16 + flat_table_bytes_ +
-                        (tracks_convergence(s_) ? 3 * kWorklistHeaderBytes : 0);
+                        (tracks_convergence(s_) ? 3 * kWorklistHeaderBytes : 0) + (s_.may_sweep() ? 4 : 0);
     c.fragments_stored = stored_;
     c.fragments_dropped = dropped_;
     c.passes = passes_;
@@ -243,13 +260,15 @@ class IllustrationBuffer final : public Technique {
                {"framebuffer_fetch_fill", fetches_cursors(s_) ? 1.0 : 0.0},
                {"flat_color_records", flat_ ? 1.0 : 0.0},
                {"neighbor_passes", modulated() ? 1.0 : 0.0},
-               {"stylize_passes", modulated() ? double(1 + s_.iterations) : 0.0},
-               {"dynamic_sort", sorted_dynamically_ ? 1.0 : 0.0, Combine::max}};
+               {"stylize_passes", !modulated() ? 0.0 : swept_ ? double(1 + 5 * sweep_rounds_) : double(1 + s_.iterations)},
+               {"dynamic_sort", sorted_dynamically_ ? 1.0 : 0.0, Combine::max},
+               {"sweep_diffusion", swept_ ? 1.0 : 0.0, Combine::max}};
     if (modulated() && s_.neighbors == NeighborSearch::triangle_index)
       c.extra.push_back({"isolated_triangles", double(isolated_triangles_), Combine::max});
     if (modulated()) append_neighbor_statistics(c);
     work_saved(c);
-    if (tracks_convergence(s_)) append_diffusion_work(c);
+    if (swept_) append_sweep_work(c);
+    else if (tracks_convergence(s_)) append_diffusion_work(c);
     return c;
   }
 
@@ -368,14 +387,19 @@ class IllustrationBuffer final : public Technique {
         run_per_pixel();
       }
     }
-    const bool track = tracks_convergence(s_);
+    swept_ = sweeps_this_frame(frame.scene);
+    const bool track = tracks_convergence(s_) && !swept_;
     {
       auto stage = frame.clock.stage("stylize_init");
       if (track) start_worklists();
       const bool alpha_seeds = track && (s_.adaptive_alpha || !one_alpha(frame.scene));
+      if (!track && s_.may_sweep()) {  // stylize_init_ raises the seed flag (IB_SEED_FLAG)
+        fill_buffer_u32(sweep_changed_, 0);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_SWEEP_CHANGED_BINDING, sweep_changed_.id());
+      }
       // Ranges of fragData (dead after the sort) hold the two field buffers.
       bind_fields(0, second_range);
-      run_per_fragment(stylize_inits_[alpha_seeds ? 1 : 0].id());
+      run_per_fragment(track ? stylize_inits_[alpha_seeds ? 1 : 0].id() : stylize_init_.id());
       if (track) {
         glUseProgram(seed_queue_.id());
         glBindTextureUnit(IB_SEEDS_UNIT, seeds_view_.id());
@@ -389,11 +413,53 @@ class IllustrationBuffer final : public Technique {
       }
     }
     auto stage = frame.clock.stage("diffuse");
+    if (swept_) return sweep_to_fixed_point(second_range);
     for (int i = 0; i < s_.iterations; ++i) {
       i % 2 == 0 ? bind_fields(second_range, 0) : bind_fields(0, second_range);
       if (track) run_queued(uint32_t(i + 1));
       else run_per_fragment(stylize_diffuse_.id());
     }
+  }
+
+  // Whether this frame's diffusion sweeps (Diffusion): alpha cannot move
+  // when eq. 4 gives every fragment the scene's one alpha.
+  bool sweeps_this_frame(const SceneGpu& scene) {
+    if (!s_.may_sweep()) return false;
+    const bool exact = !s_.adaptive_alpha && s_.sweep_reaches_steps() && one_alpha(scene);
+    if (!exact && s_.diffusion == Diffusion::sweep)
+      throw std::runtime_error("illustration_buffer: diffusion=sweep needs one alpha in the scene (alpha would diffuse "
+                               "and the sweeps' fixed point would not be the steps' result); use diffusion=steps or auto");
+    return exact;
+  }
+
+  // Sweeps in place over the field range at `range` (the init's values):
+  // none when the init found no seed (nothing can move); else a round is
+  // four raster-order passes, one per diagonal quadrant, then a check;
+  // rounds until the check finds nothing that would move. The fields
+  // only rise towards the fixed point of eq. 9, so any order of updates
+  // ends there (README: Diffusion); a round is at least one step, so
+  // `iterations` rounds always suffice.
+  void sweep_to_fixed_point(GLintptr range) {
+    bind_fields(range, range);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_SWEEP_CHANGED_BINDING, sweep_changed_.id());
+    sweep_rounds_ = 0;
+    GLuint changed = 0;  // here: whether the init found a seed
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(sweep_changed_.id(), 0, sizeof(changed), &changed);
+    while (changed != 0 && sweep_rounds_ < uint64_t(s_.iterations)) {
+      glUseProgram(diffuse_sweep_.id());
+      for (const auto [dx, dy] : {std::pair{1, 1}, {-1, -1}, {1, -1}, {-1, 1}}) {
+        set_uniform(diffuse_sweep_.id(), IB_SWEEP_DIRECTION_LOCATION, glm::ivec2(dx, dy));
+        glDispatchCompute(GLuint(height_ + 63) / 64, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+      }
+      fill_buffer_u32(sweep_changed_, 0);
+      run_per_fragment(sweep_check_.id());
+      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+      glGetNamedBufferSubData(sweep_changed_.id(), 0, sizeof(changed), &changed);
+      ++sweep_rounds_;
+    }
+    gl_check("illustration_buffer: the diffusion's sweeps");
   }
 
   // The sorted records and ranges as the later passes read them (views.glsl).
@@ -443,8 +509,8 @@ class IllustrationBuffer final : public Technique {
 
   std::vector<GLuint> programs() const {
     std::vector<GLuint> all = {fill_.id(), compose_.id()};
-    for (const Program* p : {&fill_flat_, &neighbors_, &stylize_inits_[0], &stylize_inits_[1], &seed_queue_,
-                             &stylize_diffuse_, &diffuse_listed_})
+    for (const Program* p : {&fill_flat_, &neighbors_, &stylize_init_, &stylize_inits_[0], &stylize_inits_[1],
+                             &seed_queue_, &stylize_diffuse_, &diffuse_listed_, &diffuse_sweep_, &sweep_check_})
       if (*p) all.push_back(p->id());
     for (const auto& [size, program] : sorts_) all.push_back(program.id());
     return all;
@@ -573,19 +639,25 @@ class IllustrationBuffer final : public Technique {
 
   void append_neighbor_statistics(TechniqueCounters& c) const;
   void append_diffusion_work(TechniqueCounters& c) const;
+  void append_sweep_work(TechniqueCounters& c) const;
   void work_saved(TechniqueCounters& c) const;
   // The last frame's per-pixel ranges and sorted records (read back).
   void read_lists(std::vector<uint32_t>& first, std::vector<uint32_t>& count, std::vector<SortedRecord>& sorted) const;
 
   Settings s_;
   // fill_flat_: flat_color_records, for unlit scenes (no colour in the record).
-  Program fill_, fill_flat_, compose_, neighbors_, stylize_inits_[2], seed_queue_, stylize_diffuse_, diffuse_listed_;
+  // stylize_inits_: with skip_converged's queue ([1]: also alpha seeds); diffuse_sweep_: diffusion=sweep.
+  Program fill_, fill_flat_, compose_, neighbors_, stylize_init_, stylize_inits_[2], seed_queue_, stylize_diffuse_,
+      diffuse_listed_, diffuse_sweep_, sweep_check_;
   bool flat_ = false;  // this frame's records hold no colour
   uint64_t flat_table_bytes_ = 0;
   std::map<std::pair<uint32_t, bool>, Program> sorts_;  // by local array size (0: the dynamic sort), flat colours
   bool sorted_dynamically_ = false;    // the last frame's sort
   Buffer counters_, head_, count_, next_, data_, data2_, data3_, truth_, triangles_;
   Buffer stamps_, worklists_[3], pixel_updates_, seeds_;  // skip_converged (worklist.glsl)
+  Buffer sweep_changed_;  // diffusion=sweep: 1 when the init found a seed, then when the check found a move
+  bool swept_ = false;                                     // the last frame's diffusion swept
+  uint64_t sweep_rounds_ = 0;
   Texture worklist_views_[3], seeds_view_, head_view_, count_view_;
   Texture fragment_view_, search_view_, shade_view_, triangles_view_, fields_view_[2];  // read-only views (views.glsl)
   Framebuffer no_attachments_;
@@ -679,6 +751,18 @@ void IllustrationBuffer::append_diffusion_work(TechniqueCounters& c) const {
   const uint64_t all = stored_ * uint64_t(s_.iterations);
   c.extra.push_back({"fragment_updates", double(updates)});
   c.work_saved.push_back({"fragment_updates_skipped", double(all - std::min<uint64_t>(updates, all))});
+}
+
+// sweep_rounds: rounds of four sweeps and a check the last frame ran (the
+// last check found nothing to move, unless `iterations` rounds ran out);
+// fragment_updates: the fragment updates they computed (every fragment once
+// a sweep or check);
+// fragment_updates_skipped: what `iterations` steps would have computed beyond.
+void IllustrationBuffer::append_sweep_work(TechniqueCounters& c) const {
+  const uint64_t updates = 5 * sweep_rounds_ * stored_, all = stored_ * uint64_t(s_.iterations);
+  c.extra.push_back({"sweep_rounds", double(sweep_rounds_), Combine::max});
+  c.extra.push_back({"fragment_updates", double(updates)});
+  c.work_saved.push_back({"fragment_updates_skipped", double(all - std::min(updates, all))});
 }
 
 // Neighbour links of each pixel's front fragment (the nearest of its sorted
