@@ -170,38 +170,45 @@ class TiledTechnique : public testing::TestWithParam<std::string> {};
 TEST_P(TiledTechnique, RendersTheUntiledImageInForcedTiles) {
   const std::string id = GetParam();
   const TechniqueDescriptor& descriptor = builtin_techniques().get(id);
-  for (const TiledCase& c : {TiledCase{"quads", {{"layers", "8"}, {"objects", "3"}}},
-                             TiledCase{"spheres", {}}, TiledCase{"torus", {}}}) {
-    const std::string what = id + " on " + c.scene;
-    RunSpec untiled_spec = spec_of(id, c);
-    // Four diffusion iterations (a halo of 6 pixels) still carry values
-    // across every tile border, in windows small enough to tile 96x80.
-    if (id == "illustration_buffer") untiled_spec.params = {{"iterations", "4"}};
-    const RunResult untiled = test::harness().run(untiled_spec);
-    ASSERT_EQ(untiled.status, RunStatus::ok) << what << ": " << untiled.message;
-    ASSERT_EQ(untiled.tiles, 1) << what;
-    // A budget of a fifth of the whole frame's storage (a half with a
-    // halo, whose windows overlap): tile borders cut through every object
-    // of these scenes.
-    RunSpec tiled_spec = untiled_spec;
-    const uint64_t whole = test::harness().tile_plan(untiled_spec).need.total;
-    tiled_spec.memory_budget = std::max<uint64_t>(whole / (descriptor.tile_halo ? 2 : 5), 1);
-    const RunResult tiled = test::harness().run(tiled_spec);
-    ASSERT_EQ(tiled.status, RunStatus::ok) << what << ": " << tiled.message;
-    EXPECT_GE(tiled.tiles, descriptor.tile_halo ? 2 : 5) << what;
-    // bucketed_kbuffer reconstructs positions through the tile's inverse
-    // projection: float rounding moves its curvatures by ~1e-6 and its
-    // stylised colours by far less than the RGBA8 step it stores them in.
-    const double tolerance = id == "bucketed_kbuffer" ? 1.0 / 255.0 : 1e-5;
-    const ImageError difference = compare_images(tiled.image, untiled.image);
-    EXPECT_LE(difference.max_abs, tolerance) << what << " with " << tiled.tiles << " tiles";
-    ASSERT_TRUE(tiled.error.has_value()) << what;
-    if (descriptor.exactness == Exactness::exact && id != "bucketed_kbuffer") {
-      EXPECT_LE(tiled.error->max_abs, descriptor.exact_tolerance) << what;
-    }
-    // Per-pixel techniques store each fragment once, tiled or not.
-    if (!descriptor.tile_halo) {
-      EXPECT_EQ(tiled.counters.fragments_stored, untiled.counters.fragments_stored) << what;
+  // Four diffusion iterations (a halo of 6 pixels) still carry values
+  // across every tile border, in windows small enough to tile 96x80; as
+  // steps, and swept to the fixed point (lambdas of 0.25: 4 steps reach 0).
+  std::vector<RawParams> variants = {{}};
+  if (id == "illustration_buffer")
+    variants = {{{"iterations", "4"}, {"diffusion", "steps"}},
+                {{"iterations", "4"}, {"diffusion", "sweep"}, {"lambda_beta", "0.25"}, {"lambda_gamma", "0.25"}}};
+  for (const RawParams& params : variants) {
+    for (const TiledCase& c : {TiledCase{"quads", {{"layers", "8"}, {"objects", "3"}}},
+                               TiledCase{"spheres", {}}, TiledCase{"torus", {}}}) {
+      const std::string what = id + " on " + c.scene + (params.empty() ? "" : " " + params.at("diffusion"));
+      RunSpec untiled_spec = spec_of(id, c);
+      if (!params.empty()) untiled_spec.params = params;
+      const RunResult untiled = test::harness().run(untiled_spec);
+      ASSERT_EQ(untiled.status, RunStatus::ok) << what << ": " << untiled.message;
+      ASSERT_EQ(untiled.tiles, 1) << what;
+      // A budget of a fifth of the whole frame's storage (a half with a
+      // halo, whose windows overlap): tile borders cut through every object
+      // of these scenes.
+      RunSpec tiled_spec = untiled_spec;
+      const uint64_t whole = test::harness().tile_plan(untiled_spec).need.total;
+      tiled_spec.memory_budget = std::max<uint64_t>(whole / (descriptor.tile_halo ? 2 : 5), 1);
+      const RunResult tiled = test::harness().run(tiled_spec);
+      ASSERT_EQ(tiled.status, RunStatus::ok) << what << ": " << tiled.message;
+      EXPECT_GE(tiled.tiles, descriptor.tile_halo ? 2 : 5) << what;
+      // bucketed_kbuffer reconstructs positions through the tile's inverse
+      // projection: float rounding moves its curvatures by ~1e-6 and its
+      // stylised colours by far less than the RGBA8 step it stores them in.
+      const double tolerance = id == "bucketed_kbuffer" ? 1.0 / 255.0 : 1e-5;
+      const ImageError difference = compare_images(tiled.image, untiled.image);
+      EXPECT_LE(difference.max_abs, tolerance) << what << " with " << tiled.tiles << " tiles";
+      ASSERT_TRUE(tiled.error.has_value()) << what;
+      if (descriptor.exactness == Exactness::exact && id != "bucketed_kbuffer") {
+        EXPECT_LE(tiled.error->max_abs, descriptor.exact_tolerance) << what;
+      }
+      // Per-pixel techniques store each fragment once, tiled or not.
+      if (!descriptor.tile_halo) {
+        EXPECT_EQ(tiled.counters.fragments_stored, untiled.counters.fragments_stored) << what;
+      }
     }
   }
 }
