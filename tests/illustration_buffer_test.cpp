@@ -554,7 +554,9 @@ TEST(IllustrationBuffer, SweepingWhereTheFixedPointDiffersIsAnErrorAndAutoSteps)
            {"spheres", {}, {{"adaptive_alpha", "true"}}, "adaptive_alpha"},
            // 8 steps leave 0 at distance 9, where the fixed point has 0.09999993.
            {"random_quads", quads, {{"modulation", "silhouette"}, {"lambda_beta", "0.1"}, {"iterations", "8"}}, "iterations"},
-           {"stress_layers", {{"alpha_mode", "mixed"}, {"layers", "4"}}, {}, "one alpha"}}) {
+           {"stress_layers", {{"alpha_mode", "mixed"}, {"layers", "4"}}, {}, "one alpha"},
+           // A tolerance asks for the steps that stop small moves.
+           {"torus", {}, {{"diffusion_tolerance", "0.01"}}, "diffusion_tolerance"}}) {
     RawParams sweep = c.params, automatic = c.params, steps = c.params;
     sweep["diffusion"] = "sweep";
     steps["diffusion"] = "steps";

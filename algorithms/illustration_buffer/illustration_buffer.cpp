@@ -60,7 +60,9 @@ Settings settings_from(const ParamSet& p) {
   s.diffusion_tolerance = float(p.real("diffusion_tolerance"));
   const Diffusion diffusion = p.choice("diffusion", kDiffusions);
   s.diffusion = diffusion == Diffusion::sweep ? Diffusion::sweep : Diffusion::steps;
-  s.sweep_where_exact = diffusion == Diffusion::automatic && current_device_is_software();
+  // A tolerance asks for the steps that stop small moves; the sweeps are exact.
+  s.sweep_where_exact =
+      diffusion == Diffusion::automatic && s.diffusion_tolerance == 0.0f && current_device_is_software();
   s.sort = p.choice("sort", kSorts);
   s.fill = p.choice("fill", kSlotFills);
   s.storage = resolved_storage(p.choice("storage", kStorages), s.sort, s.fill);
@@ -108,14 +110,16 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
                              "diffuse only the pixels around fragments that changed in the previous iteration (the "
                              "others would recompute their value; exact with diffusion_tolerance 0)"),
           ParamSpec::real("diffusion_tolerance", 0.0, 0.0, 1.0,
-                          "skip_converged: a fragment whose fields move by at most this keeps its value and does not "
-                          "wake its neighbours (0: the same image as every fragment every iteration)"),
+                          "skip_converged (diffusion=steps; auto steps when this is above 0): a fragment whose fields "
+                          "move by at most this keeps its value and does not wake its neighbours (0: the same image "
+                          "as every fragment every iteration)"),
           illustration_buffer::kDiffusions.spec(
               "diffusion", illustration_buffer::Diffusion::automatic,
               "steps = `iterations` synchronous steps of eq. 8-9 (skip_converged applies); sweep = in-place "
               "sweeps along rows and columns until no field moves, the same result where alpha cannot move "
               "(eq. 4, one alpha in the scene) and `iterations` steps carry beta and gamma to 0 (an error "
-              "otherwise); auto = sweep on the frames where it is exact on a software rasterizer, else steps"),
+              "otherwise, and with a diffusion_tolerance); auto = sweep on the frames where it is exact on a "
+              "software rasterizer and diffusion_tolerance is 0, else steps"),
           ParamSpec::real("lambda_alpha", 1.0, 0.0, 1.0,
                           "diffusion coefficient of alpha (eq. 8, normalised Laplacian)"),
           ParamSpec::real("lambda_beta", 0.05, 0.0, 1.0, "decrement per step of the silhouette field (eq. 9)"),

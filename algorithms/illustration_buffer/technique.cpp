@@ -81,6 +81,9 @@ void check_combination(const Settings& s) {
         "illustration_buffer: diffusion=sweep gives the fixed point, which equals the steps' result only with eq. 4 "
         "(adaptive_alpha=false) and when `iterations` steps take beta and gamma from 1 to 0 (iterations + 1 >= "
         "1 / lambda_beta, 1 / lambda_gamma); use diffusion=steps or auto");
+  if (s.diffused() && s.diffusion == Diffusion::sweep && s.diffusion_tolerance > 0.0f)
+    throw std::invalid_argument("illustration_buffer: diffusion_tolerance stops small moves of diffusion=steps; "
+                                "diffusion=sweep is exact: leave the tolerance at 0 or use diffusion=steps");
   if (const std::string missing = missing_device_feature(s); !missing.empty())
     throw std::runtime_error("illustration_buffer: " + missing);
 }
