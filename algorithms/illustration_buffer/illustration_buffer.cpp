@@ -116,7 +116,7 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
           illustration_buffer::kDiffusions.spec(
               "diffusion", illustration_buffer::Diffusion::automatic,
               "steps = `iterations` synchronous steps of eq. 8-9 (skip_converged applies); sweep = in-place "
-              "sweeps along rows and columns until no field moves, the same result where alpha cannot move "
+              "raster-order sweeps in the four diagonal directions until no field moves, the same result where alpha cannot move "
               "(eq. 4, one alpha in the scene) and `iterations` steps carry beta and gamma to 0 (an error "
               "otherwise, and with a diffusion_tolerance); auto = sweep on the frames where it is exact on a "
               "software rasterizer and diffusion_tolerance is 0, else steps"),
