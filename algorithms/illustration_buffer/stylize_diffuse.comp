@@ -29,23 +29,28 @@ layout(location = IB_LAMBDA_ALPHA_LOCATION) uniform float u_lambda_alpha;
 layout(location = IB_LAMBDA_BETA_LOCATION) uniform float u_lambda_beta;
 layout(location = IB_LAMBDA_GAMMA_LOCATION) uniform float u_lambda_gamma;
 
+// Eq. 9: beta and gamma of a fragment with fields `field` whose linked
+// neighbours' largest beta and gamma are `most`.
+vec2 raised(vec4 field, vec2 most) {
+  const uint flags = ib_flags(field);
+  return vec2((flags & IB_FIXED_BETA) != 0u ? field.y : max(field.y, most.x - u_lambda_beta),
+              (flags & IB_FIXED_GAMMA) != 0u ? field.z : max(field.z, most.y - u_lambda_gamma));
+}
+
 // The fields of fragment s after one iteration.
 vec4 diffused(uint s, vec4 field) {
   const uvec4 links = ib_sorted_links(s);
-  float alpha_difference = 0.0, neighbors = 0.0, beta_max = 0.0, gamma_max = 0.0;
+  float alpha_difference = 0.0, neighbors = 0.0;
+  vec2 most = vec2(0.0);
   for (int d = 0; d < 4; ++d) {
     if (links[d] >= IB_OFF_IMAGE) continue;
     const vec4 other = texelFetch(ib_fields_view, int(links[d]));
     alpha_difference += other.x - field.x;
     neighbors += 1.0;
-    beta_max = max(beta_max, other.y);
-    gamma_max = max(gamma_max, other.z);
+    most = max(most, other.yz);
   }
-  const uint flags = ib_flags(field);
   const float alpha = neighbors > 0.0 ? field.x + u_lambda_alpha * (alpha_difference / neighbors) : field.x;
-  const float beta = (flags & IB_FIXED_BETA) != 0u ? field.y : max(field.y, beta_max - u_lambda_beta);
-  const float gamma = (flags & IB_FIXED_GAMMA) != 0u ? field.z : max(field.z, gamma_max - u_lambda_gamma);
-  return vec4(alpha, beta, gamma, field.w);
+  return vec4(alpha, raised(field, most), field.w);
 }
 
 #if defined(IB_WORKLIST)
@@ -94,9 +99,7 @@ vec2 raised(uint s, vec4 field) {
   vec2 most = vec2(0.0);
   for (int d = 0; d < 4; ++d)
     if (links[d] < IB_OFF_IMAGE) most = max(most, texelFetch(ib_fields_view, int(links[d])).yz);
-  const uint flags = ib_flags(field);
-  return vec2((flags & IB_FIXED_BETA) != 0u ? field.y : max(field.y, most.x - u_lambda_beta),
-              (flags & IB_FIXED_GAMMA) != 0u ? field.z : max(field.z, most.y - u_lambda_gamma));
+  return raised(field, most);
 }
 
 #if defined(IB_SWEEP)
