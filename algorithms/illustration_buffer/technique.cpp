@@ -140,16 +140,25 @@ class IllustrationBuffer final : public Technique {
       set_uniform(neighbors_.id(), IB_WEIGHT_Z_LOCATION, s_.weight_z);
       set_uniform(neighbors_.id(), IB_WEIGHT_N_LOCATION, s_.weight_n);
     }
+    build_stylize_programs();
+    set_uniform(compose_.id(), IB_PROFILE_LOCATION, int(s_.profile));
+    set_uniform(compose_.id(), IB_PROFILE_P_LOCATION, s_.profile == Profile::power ? s_.power_p : s_.exponential_p);
+  }
+
+  // The programs of the stylize stages (modulated modes): the init and the
+  // diffusion's, for the steps and the sweeps this technique may run.
+  void build_stylize_programs() {
     // With skip_converged the init queues the first step's pixels and every
     // step is a listed one; without, every step updates every fragment.
     const bool track = tracks_convergence(s_);
     // stylize_inits_[1] also queues fragments whose alpha differs from a
     // neighbour's (stylize_init.comp, IB_ALPHA_SEEDS): for scenes of more
-    // than one alpha, or eq. 5.
-    // stylize_init_: no queue (the steps without skip_converged, and the sweeps).
+    // than one alpha, or eq. 5. stylize_init_ queues nothing: for the steps
+    // without skip_converged, and for the sweeps (it raises their seed flag).
+    const bool plain_init = !track || s_.may_sweep();
     for (Program* init : {&stylize_init_, &stylize_inits_[0], &stylize_inits_[1]}) {
       const bool tracked = init != &stylize_init_, alpha_seeds = init == &stylize_inits_[1];
-      if (tracked ? !track : track && !s_.may_sweep()) continue;
+      if (tracked ? !track : !plain_init) continue;
       ShaderDefines defines;
       if (tracked) defines.push_back({"IB_TRACK", "1"});
       if (alpha_seeds) defines.push_back({"IB_ALPHA_SEEDS", "1"});
@@ -178,8 +187,6 @@ class IllustrationBuffer final : public Technique {
       set_uniform(p->id(), IB_LAMBDA_BETA_LOCATION, s_.lambda_beta);
       set_uniform(p->id(), IB_LAMBDA_GAMMA_LOCATION, s_.lambda_gamma);
     }
-    set_uniform(compose_.id(), IB_PROFILE_LOCATION, int(s_.profile));
-    set_uniform(compose_.id(), IB_PROFILE_P_LOCATION, s_.profile == Profile::power ? s_.power_p : s_.exponential_p);
   }
 
   void resize(int width, int height) override {
