@@ -382,6 +382,22 @@ void require_text_line(const std::string& path, std::string_view line, const std
       fail(path, at + ": byte " + std::to_string(static_cast<unsigned char>(c)) + " in a text header");
 }
 
+// OpenMesh reads the header as a stream of words, not of lines: a
+// declaration missing a word takes the next line's first word (a property
+// without a name is named "end_header", and the header parser then loops
+// forever looking for its end; found by the fuzzer), and an extra word is
+// read as the next keyword. So each declaration must be exactly its words.
+std::string_view required_word(const std::string& path, Tokens& tokens, const std::string& at, const char* what) {
+  const std::string_view word = tokens.next();
+  if (word.empty()) fail(path, at + ": " + what + " is missing");
+  return word;
+}
+
+void require_line_end(const std::string& path, Tokens& tokens, const std::string& at) {
+  if (const std::string_view extra = tokens.next(); !extra.empty())
+    fail(path, at + ": unexpected " + shown(extra) + " after the declaration");
+}
+
 // "format <ascii|binary_little_endian|binary_big_endian> 1.0".
 void read_ply_format(const std::string& path, Tokens& tokens, const std::string& at, PlyHeader& header) {
   const std::string_view format = tokens.next();
@@ -391,6 +407,7 @@ void read_ply_format(const std::string& path, Tokens& tokens, const std::string&
   else fail(path, at + ": unknown format " + shown(format));
   if (const std::string_view version = tokens.next(); version != "1.0")
     fail(path, at + ": format version " + shown(version) + " is not 1.0");
+  require_line_end(path, tokens, at);
 }
 
 // "property <type> <name>" or "property list <count type> <type> <name>"
@@ -407,7 +424,8 @@ void read_ply_property(const std::string& path, Tokens& tokens, const std::strin
     type = tokens.next();
   }
   if (!ply_type(type, property.type)) fail(path, at + ": unknown property type " + shown(type));
-  property.name = std::string(tokens.next());
+  property.name = std::string(required_word(path, tokens, at, "the property name"));
+  require_line_end(path, tokens, at);
   PlyElement& element = header.elements.back();
   // OpenMesh walks the lists it knows (face vertex indices and texture
   // coordinates); any other list it would read as one value and lose its
@@ -438,14 +456,16 @@ PlyHeader read_ply_header(const std::string& path, TextLines& lines) {
       have_format = true;
     } else if (keyword == "element") {
       PlyElement element;
-      element.name = std::string(tokens.next());
+      element.name = std::string(required_word(path, tokens, at, "the element name"));
       element.count = require_unsigned(path, tokens.next(), at + ": element count");
+      require_line_end(path, tokens, at);
       for (const auto& e : header.elements)
         if (e.name == element.name) fail(path, at + ": element '" + element.name + "' is declared twice");
       header.elements.push_back(element);
     } else if (keyword == "property") {
       read_ply_property(path, tokens, at, header);
     } else if (keyword == "end_header") {
+      require_line_end(path, tokens, at);
       ended = true;
     }
     // comment, obj_info and free text lines are ignored, as OpenMesh does.

@@ -132,6 +132,16 @@ TEST(MalformedFiles, MeshFilesAreRejectedNamingFileAndProblem) {
   expect_rejected("truncated_binary.ply", binary_ply("uchar int", kPlyBinaryVertices + "\x03" + raw(int32_t(0))),
                   "face 0");
   expect_rejected("bad_format.ply", "ply\nformat xml 1.0\nend_header\n", "unknown format");
+  // OpenMesh reads the header word by word: a property without a name took
+  // "end_header" as its name and OpenMesh's header parser then looped
+  // forever (a fuzzer finding); a word too many would be its next keyword.
+  const std::string vertex_xyz = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n";
+  expect_rejected("unnamed_property.ply", vertex_xyz + "property float\nend_header\n0 0 0\n1 0 0\n0 1 0\n",
+                  "header line 6: the property name is missing");
+  expect_rejected("unnamed_element.ply", "ply\nformat ascii 1.0\nelement\nend_header\n",
+                  "header line 3: the element name is missing");
+  expect_rejected("extra_word.ply", vertex_xyz + "property float z w\nend_header\n", "unexpected 'w'");
+  expect_rejected("extra_after_end.ply", vertex_xyz + "property float z\nend_header 0\n0 0 0\n", "unexpected '0'");
   // STL
   expect_rejected("truncated.stl", binary_stl(1000, stl_facet({0, 0, 0, 1, 0, 0, 0, 1, 0})), "1000 facets");
   expect_rejected("huge.stl", binary_stl(4000000000u, stl_facet({0, 0, 0, 1, 0, 0, 0, 1, 0})), "4000000000 facets");
