@@ -382,11 +382,15 @@ void require_text_line(const std::string& path, std::string_view line, const std
       fail(path, at + ": byte " + std::to_string(static_cast<unsigned char>(c)) + " in a text header");
 }
 
-// OpenMesh reads the header as a stream of words, not of lines: a
-// declaration missing a word takes the next line's first word (a property
-// without a name is named "end_header", and the header parser then loops
-// forever looking for its end; found by the fuzzer), and an extra word is
-// read as the next keyword. So each declaration must be exactly its words.
+// OpenMesh reads the header as a stream of words, not of lines: it takes
+// the three words after "ply" as the format line whatever they are, reads
+// any other unknown word as the next keyword, and a declaration missing a
+// word takes the next line's first word (a property without a name is named
+// "end_header"). A word that does not parse as the number it expects (a
+// format version "ply") stops the stream, and its header parser then loops
+// forever looking for end_header (both found by the fuzzer). So the format
+// line comes second, each declaration is exactly its words, and no other
+// line holds a keyword OpenMesh would act on.
 std::string_view required_word(const std::string& path, Tokens& tokens, const std::string& at, const char* what) {
   const std::string_view word = tokens.next();
   if (word.empty()) fail(path, at + ": " + what + " is missing");
@@ -451,7 +455,8 @@ PlyHeader read_ply_header(const std::string& path, TextLines& lines) {
     const std::string_view keyword = tokens.next();
     if (line_number == 1) {
       if (line != "ply") fail(path, "does not start with 'ply'");
-    } else if (keyword == "format") {
+    } else if (line_number == 2 || keyword == "format") {
+      if (keyword != "format" || have_format) fail(path, at + ": the format line must be line 2, once");
       read_ply_format(path, tokens, at, header);
       have_format = true;
     } else if (keyword == "element") {
@@ -467,8 +472,13 @@ PlyHeader read_ply_header(const std::string& path, TextLines& lines) {
     } else if (keyword == "end_header") {
       require_line_end(path, tokens, at);
       ended = true;
+    } else if (keyword != "comment") {
+      // obj_info and free text (Blender writes a "Created by ..." line):
+      // OpenMesh reads each word as a keyword, so none may be one it acts on.
+      for (std::string_view word = tokens.next(); !word.empty(); word = tokens.next())
+        if (word == "element" || word == "property" || word == "end_header")
+          fail(path, at + ": the keyword " + shown(word) + " inside a " + shown(keyword) + " line");
     }
-    // comment, obj_info and free text lines are ignored, as OpenMesh does.
   }
   if (!ended) fail(path, "the PLY header has no end_header line");
   if (!have_format) fail(path, "the PLY header has no format line");

@@ -142,6 +142,15 @@ TEST(MalformedFiles, MeshFilesAreRejectedNamingFileAndProblem) {
                   "header line 3: the element name is missing");
   expect_rejected("extra_word.ply", vertex_xyz + "property float z w\nend_header\n", "unexpected 'w'");
   expect_rejected("extra_after_end.ply", vertex_xyz + "property float z\nend_header 0\n0 0 0\n", "unexpected '0'");
+  // It takes the three words after "ply" as the format line: a version that
+  // is no number stopped its stream and its header parser looped forever.
+  expect_rejected("format_not_second.ply", "ply\nfot ascii ply\nformat ascii 1.0\nend_header\n",
+                  "header line 2: the format line must be line 2");
+  // Free text is read word by word too (Blender's "Created by" line is fine).
+  expect_rejected("keyword_in_text.ply", vertex_xyz + "property float z\nelerty list property float x\nend_header\n",
+                  "the keyword 'property' inside a 'elerty' line");
+  expect_rejected("obj_info_keyword.ply", vertex_xyz + "property float z\nobj_info element\nend_header\n",
+                  "the keyword 'element' inside a 'obj_info' line");
   // STL
   expect_rejected("truncated.stl", binary_stl(1000, stl_facet({0, 0, 0, 1, 0, 0, 0, 1, 0})), "1000 facets");
   expect_rejected("huge.stl", binary_stl(4000000000u, stl_facet({0, 0, 0, 1, 0, 0, 0, 1, 0})), "4000000000 facets");
