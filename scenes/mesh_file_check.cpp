@@ -481,7 +481,6 @@ PlyHeader read_ply_header(const std::string& path, TextLines& lines) {
     }
   }
   if (!ended) fail(path, "the PLY header has no end_header line");
-  if (!have_format) fail(path, "the PLY header has no format line");
   return header;
 }
 
