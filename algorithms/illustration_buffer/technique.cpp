@@ -76,12 +76,16 @@ void check_combination(const Settings& s) {
   if (!s.linearized() && s.fill != SlotFill::automatic)
     throw std::invalid_argument("illustration_buffer: fill=atomic or fill=framebuffer_fetch chooses how "
                                 "storage=linearized takes its slots; with storage=linked leave fill=auto");
-  if (s.diffused() && s.diffusion == Diffusion::sweep && (s.adaptive_alpha || !s.sweep_reaches_steps()))
+  const bool sweep = s.diffused() && s.diffusion == Diffusion::sweep;
+  if (sweep && s.adaptive_alpha)
+    throw std::invalid_argument("illustration_buffer: diffusion=sweep leaves alpha as it starts, which eq. 8 would "
+                                "diffuse with adaptive_alpha=true; use diffusion=steps or auto");
+  if (sweep && !s.sweep_reaches_steps())
     throw std::invalid_argument(
-        "illustration_buffer: diffusion=sweep gives the fixed point, which equals the steps' result only with eq. 4 "
-        "(adaptive_alpha=false) and when `iterations` steps take beta and gamma from 1 to 0 (iterations + 1 >= "
-        "1 / lambda_beta, 1 / lambda_gamma); use diffusion=steps or auto");
-  if (s.diffused() && s.diffusion == Diffusion::sweep && s.diffusion_tolerance > 0.0f)
+        "illustration_buffer: diffusion=sweep gives the fixed point, which equals the steps' result only when "
+        "`iterations` steps take beta and gamma from 1 to 0 (iterations + 1 >= 1 / lambda_beta, 1 / lambda_gamma); "
+        "use diffusion=steps or auto");
+  if (sweep && s.diffusion_tolerance > 0.0f)
     throw std::invalid_argument("illustration_buffer: diffusion_tolerance stops small moves of diffusion=steps; "
                                 "diffusion=sweep is exact: leave the tolerance at 0 or use diffusion=steps");
   if (const std::string missing = missing_device_feature(s); !missing.empty())
@@ -666,8 +670,8 @@ class IllustrationBuffer final : public Technique {
   Buffer counters_, head_, count_, next_, data_, data2_, data3_, truth_, triangles_;
   Buffer stamps_, worklists_[3], pixel_updates_, seeds_;  // skip_converged (worklist.glsl)
   Buffer sweep_changed_;  // diffusion=sweep: 1 when the init found a seed, then when the check found a move
-  bool swept_ = false;                                     // the last frame's diffusion swept
-  uint64_t sweep_rounds_ = 0;
+  bool swept_ = false;        // the last frame's diffusion swept
+  uint64_t sweep_rounds_ = 0;  // and its rounds
   Texture worklist_views_[3], seeds_view_, head_view_, count_view_;
   Texture fragment_view_, search_view_, shade_view_, triangles_view_, fields_view_[2];  // read-only views (views.glsl)
   Framebuffer no_attachments_;
