@@ -65,18 +65,23 @@ TEST(IllustrationBuffer, WithoutModulationEveryNeighbourModeMatchesTheReference)
 
 TEST(IllustrationBuffer, FullScreenQuadsLinkEveryInteriorPairInBothModes) {
   // Every layer covers the image: each fragment has a neighbour in every
-  // in-image direction, so the link counts are exact and nothing is a silhouette.
-  const int w = 24, h = 20, layers = 8;
-  for (const std::string& search : kSearches) {
-    const RunResult r = test::render_once("illustration_buffer", {{"neighbors", search}}, "quads",
-                                          {{"layers", std::to_string(layers)}}, w, h);
-    EXPECT_EQ(test::extra_counter(r, "links_left"), double(layers * (w - 1) * h)) << search;
-    EXPECT_EQ(test::extra_counter(r, "links_right"), double(layers * (w - 1) * h)) << search;
-    EXPECT_EQ(test::extra_counter(r, "links_down"), double(layers * w * (h - 1))) << search;
-    EXPECT_EQ(test::extra_counter(r, "links_up"), double(layers * w * (h - 1))) << search;
-    EXPECT_EQ(test::extra_counter(r, "silhouette_fragments"), 0.0) << search;
-    // No silhouettes, no halos, a constant alpha field: the image is plain blending.
-    EXPECT_LT(r.error->max_abs, kFloatTolerance) << search;
+  // in-image direction, so the link counts are exact and nothing is a
+  // silhouette. 1, 2, 3 and 8 layers: the triangle-index search's groups of
+  // 1, 2 and 4 fragments, a group the list does not fill, and two groups.
+  const int w = 24, h = 20;
+  for (const int layers : {1, 2, 3, 8}) {
+    for (const std::string& search : kSearches) {
+      const std::string what = search + ", " + std::to_string(layers) + " layers";
+      const RunResult r = test::render_once("illustration_buffer", {{"neighbors", search}}, "quads",
+                                            {{"layers", std::to_string(layers)}}, w, h);
+      EXPECT_EQ(test::extra_counter(r, "links_left"), double(layers * (w - 1) * h)) << what;
+      EXPECT_EQ(test::extra_counter(r, "links_right"), double(layers * (w - 1) * h)) << what;
+      EXPECT_EQ(test::extra_counter(r, "links_down"), double(layers * w * (h - 1))) << what;
+      EXPECT_EQ(test::extra_counter(r, "links_up"), double(layers * w * (h - 1))) << what;
+      EXPECT_EQ(test::extra_counter(r, "silhouette_fragments"), 0.0) << what;
+      // No silhouettes, no halos, a constant alpha field: the image is plain blending.
+      EXPECT_LT(r.error->max_abs, kFloatTolerance) << what;
+    }
   }
 }
 
@@ -260,6 +265,19 @@ TEST(IllustrationBuffer, DiffusionChangesTheImageOnlyWithIterations) {
   EXPECT_GT(largest_difference(a.image, b.image), 1e-3);
   // lambda_alpha = 0 and lambda_gamma = 1 make every iteration the identity.
   EXPECT_LT(largest_difference(a.image, c.image), 1e-6);
+}
+
+TEST(IllustrationBuffer, ProfilesFollowEquationsTenAndEleven) {
+  // Eq. 11 with p = 1 is the identity: the image without a profile. With
+  // p = 0.3, and eq. 10, the fields strictly between 0 and 1 that the
+  // diffusion leaves around the torus's silhouettes are remapped.
+  const auto render = [](const RawParams& profile) {
+    return test::render_once("illustration_buffer", profile, "torus", {}, 48, 48).image;
+  };
+  const auto plain = render({{"profile", "none"}});
+  EXPECT_LT(largest_difference(plain, render({{"profile", "power"}, {"power_p", "1"}})), 1e-6);
+  EXPECT_GT(largest_difference(plain, render({{"profile", "power"}, {"power_p", "0.3"}})), 1e-3);
+  EXPECT_GT(largest_difference(plain, render({{"profile", "exponential"}})), 1e-3);
 }
 
 TEST(IllustrationBuffer, TooSmallPoolGrowsAndGivesTheSameImage) {

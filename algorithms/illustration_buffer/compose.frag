@@ -19,18 +19,20 @@ layout(location = 0) out vec4 out_color;
 
 #ifdef IB_MODULATE
 #include "algorithms/illustration_buffer/fields.glsl"
-// 0: none, 1: exponential (eq. 10), 2: power (eq. 11).
-layout(location = IB_PROFILE_LOCATION) uniform int u_profile;
+// IB_PROFILE 0: none, 1: exponential (eq. 10), 2: power (eq. 11). A define,
+// not a uniform: llvmpipe evaluates the exp and pow of a branch no lane takes.
 layout(location = IB_PROFILE_P_LOCATION) uniform float u_profile_p;
 
 float profile(float u) {
   u = clamp(u, 0.0, 1.0);
-  if (u_profile == 1) {
-    const float floor_value = exp(-u_profile_p);
-    return (exp(-u_profile_p * (1.0 - u) * (1.0 - u)) - floor_value) / (1.0 - floor_value);
-  }
-  if (u_profile == 2) return pow(u, u_profile_p);
+#if IB_PROFILE == 1
+  const float floor_value = exp(-u_profile_p);
+  return (exp(-u_profile_p * (1.0 - u) * (1.0 - u)) - floor_value) / (1.0 - floor_value);
+#elif IB_PROFILE == 2
+  return pow(u, u_profile_p);
+#else
   return u;
+#endif
 }
 #endif
 

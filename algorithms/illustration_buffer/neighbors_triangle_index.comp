@@ -7,9 +7,10 @@
 // the triangle's vertex indices in each record's geometry, sort.comp).
 //
 // One invocation per pixel, not per fragment: the pixel's fragments are
-// taken four at a time, their vertex indices held in registers, and each
-// adjacent list is read once per group, every candidate tested against the
-// four; a group stops reading a list when all four found theirs. Each
+// taken IB_GROUP (at most four) at a time, their vertex indices held in
+// registers, and each adjacent list is read once per group, every candidate
+// tested against the group's; a group stops reading a list when all of its
+// fragments found theirs. Each
 // fragment still gets the first match in list order, so the links are those
 // of a scan per fragment. On llvmpipe the SIMD lanes are then neighbouring
 // pixels, and each gather of candidates serves four tests per lane, where a
@@ -22,7 +23,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 #include "algorithms/illustration_buffer/views.glsl"
 
-#define IB_GROUP 4
+// IB_GROUP (the host's define): 4, or 1 or 2 for frames whose lists are
+// all that short (technique.cpp, triangle_search_program).
 
 // This group's fragments (their triangles' vertex indices) and their links.
 uvec3 mine[IB_GROUP];

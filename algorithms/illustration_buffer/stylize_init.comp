@@ -1,7 +1,7 @@
 #version 450 core
 // Initial and boundary conditions (carnecky2013 sections 5.2-5.3), one
 // invocation per sorted fragment:
-//  alpha = s (eq. 4) or 1 - (1 - s)^(1/n) (eq. 5, u_adaptive), s = the
+//  alpha = s (eq. 4) or 1 - (1 - s)^(1/n) (eq. 5, IB_ADAPTIVE), s = the
 //          fragment's own alpha, n = its pixel's fragment count;
 //  fewer than 4 neighbours (adjacent pixels outside the image do not count
 //          as missing) -> silhouette: beta = 1, fixed;
@@ -41,7 +41,6 @@ layout(std430, binding = IB_SEEDS_BINDING) writeonly buffer IbSeeds { uint ib_se
 layout(std430, binding = IB_SWEEP_CHANGED_BINDING) writeonly buffer IbSeeded { uint ib_seeded; };
 #endif
 
-layout(location = IB_ADAPTIVE_LOCATION) uniform bool u_adaptive;
 layout(location = IB_USE_BETA_LOCATION) uniform bool u_use_beta;
 layout(location = IB_USE_GAMMA_LOCATION) uniform bool u_use_gamma;
 
@@ -53,9 +52,14 @@ int compare_layer(uint layer, uint link, uint adjacent) {
   return other < layer ? -1 : (other > layer ? 1 : 0);
 }
 
-// The initial alpha (eq. 4, or eq. 5 with u_adaptive) of a fragment of
-// alpha s in a pixel of n fragments.
-float initial_alpha(float s, uint n) { return u_adaptive ? 1.0 - pow(1.0 - s, 1.0 / float(n)) : s; }
+// The initial alpha (eq. 4, or eq. 5 with IB_ADAPTIVE) of a fragment of
+// alpha s in a pixel of n fragments. A define, not a uniform: llvmpipe
+// would evaluate the pow for every fragment.
+#ifdef IB_ADAPTIVE
+float initial_alpha(float s, uint n) { return 1.0 - pow(1.0 - s, 1.0 / float(n)); }
+#else
+float initial_alpha(float s, uint n) { return s; }
+#endif
 
 #ifdef IB_ALPHA_SEEDS
 // Whether a linked neighbour starts with another alpha (IB_TRACK, above).

@@ -7,6 +7,7 @@
 #include <bit>
 #include <limits>
 #include <map>
+#include <tuple>
 #include <optional>
 #include <stdexcept>
 
@@ -35,6 +36,7 @@ constexpr GLsizeiptr kWorklistHeaderBytes = 16;
 // The smallest sort array compiled (lists of up to 4, e.g. the torus's, with
 // storage=linearized, where the dynamic sort is not offered).
 constexpr uint32_t kSmallestArray = 4;
+constexpr uint32_t kLargestSearchGroup = 4;  // triangle_search_program
 // sort=auto takes the dynamic sort up to this longest list: faster there on
 // llvmpipe (README, Sort variants), the array's ranks beyond.
 constexpr uint32_t kLongestDynamicList = 4;
@@ -132,20 +134,19 @@ class IllustrationBuffer final : public Technique {
         set_uniform(fill->id(), IB_NORMAL_VARIATION_SCALE_LOCATION, s_.normal_variation_scale);
     }
     compose_ = build_fullscreen_program("algorithms/illustration_buffer/compose.frag",
-                                        modulated()          ? ShaderDefines{{"IB_MODULATE", "1"}}
+                                        modulated()          ? ShaderDefines{{"IB_MODULATE", "1"},
+                                                                             {"IB_PROFILE", std::to_string(int(s_.profile))}}
                                         : s_.purely_local() ? ShaderDefines{{"IB_LOCAL_OPACITY", "1"}}
                                                              : ShaderDefines{});
     if (!modulated()) return;
-    neighbors_ = s_.heuristic() ? build_compute_program("algorithms/illustration_buffer/neighbors.comp",
-                                                        {{"IB_HEURISTIC", "1"},
-                                                         {"IB_MERGE", s_.neighbors == NeighborSearch::heuristic_merge ? "1" : "0"}})
-                                : build_compute_program("algorithms/illustration_buffer/neighbors_triangle_index.comp");
-    if (s_.heuristic()) {
+    if (s_.heuristic()) {  // neighbors=triangle_index: triangle_search_program, per frame
+      neighbors_ = build_compute_program(
+          "algorithms/illustration_buffer/neighbors.comp",
+          {{"IB_HEURISTIC", "1"}, {"IB_MERGE", s_.neighbors == NeighborSearch::heuristic_merge ? "1" : "0"}});
       set_uniform(neighbors_.id(), IB_WEIGHT_Z_LOCATION, s_.weight_z);
       set_uniform(neighbors_.id(), IB_WEIGHT_N_LOCATION, s_.weight_n);
     }
     build_stylize_programs();
-    set_uniform(compose_.id(), IB_PROFILE_LOCATION, int(s_.profile));
     set_uniform(compose_.id(), IB_PROFILE_P_LOCATION, s_.profile == Profile::power ? s_.power_p : s_.exponential_p);
   }
 
@@ -167,8 +168,8 @@ class IllustrationBuffer final : public Technique {
       if (tracked) defines.push_back({"IB_TRACK", "1"});
       if (alpha_seeds) defines.push_back({"IB_ALPHA_SEEDS", "1"});
       if (!tracked && s_.may_sweep()) defines.push_back({"IB_SEED_FLAG", "1"});
+      if (s_.adaptive_alpha) defines.push_back({"IB_ADAPTIVE", "1"});
       *init = build_compute_program("algorithms/illustration_buffer/stylize_init.comp", defines);
-      set_uniform(init->id(), IB_ADAPTIVE_LOCATION, int(s_.adaptive_alpha));
       set_uniform(init->id(), IB_USE_BETA_LOCATION, int(s_.uses_beta()));
       set_uniform(init->id(), IB_USE_GAMMA_LOCATION, int(s_.uses_gamma()));
     }
@@ -239,7 +240,7 @@ class IllustrationBuffer final : public Technique {
     }
     bind_sorted_views();
     const GLintptr second_range = second_field_range();
-    if (modulated()) stylize(frame, second_range);
+    if (modulated()) stylize(frame, second_range, longest);
     auto stage = frame.clock.stage("compose");
     if (modulated()) {
       // The last range written: the init writes the second range, iteration i
@@ -390,14 +391,14 @@ class IllustrationBuffer final : public Technique {
 
   // Neighbour search, then the fields' initial and boundary conditions
   // (stylize_init) and the `iterations` steps of eq. 8-9 (diffuse).
-  void stylize(const Frame& frame, GLintptr second_range) {
+  void stylize(const Frame& frame, GLintptr second_range, uint32_t longest) {
     {
       auto stage = frame.clock.stage("neighbors");
       if (s_.heuristic()) {
         prepare_scene_data(frame.scene);
         run_per_fragment(neighbors_.id());
       } else {
-        glUseProgram(neighbors_.id());
+        glUseProgram(triangle_search_program(longest));
         run_per_pixel();
       }
     }
@@ -462,7 +463,7 @@ class IllustrationBuffer final : public Technique {
     glGetNamedBufferSubData(sweep_changed_.id(), 0, sizeof(changed), &changed);
     while (changed != 0 && sweep_rounds_ < uint64_t(s_.iterations)) {
       glUseProgram(diffuse_sweep_.id());
-      for (const auto [dx, dy] : {std::pair{1, 1}, {-1, -1}, {1, -1}, {-1, 1}}) {
+      for (const auto& [dx, dy] : {std::pair{1, 1}, {-1, -1}, {1, -1}, {-1, 1}}) {
         set_uniform(diffuse_sweep_.id(), IB_SWEEP_DIRECTION_LOCATION, glm::ivec2(dx, dy));
         glDispatchCompute(GLuint(height_ + 63) / 64, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -526,29 +527,51 @@ class IllustrationBuffer final : public Technique {
     for (const Program* p : {&fill_flat_, &neighbors_, &stylize_init_, &stylize_inits_[0], &stylize_inits_[1],
                              &seed_queue_, &stylize_diffuse_, &diffuse_listed_, &diffuse_sweep_, &sweep_check_})
       if (*p) all.push_back(p->id());
-    for (const auto& [size, program] : sorts_) all.push_back(program.id());
+    for (const auto& [variant, program] : sorts_) all.push_back(program.id());
+    for (const auto& [group, program] : triangle_searches_) all.push_back(program.id());
     return all;
   }
 
   // The sort's local array: the frame's longest list rounded up to a power
   // of two (a few programs serve every frame), at most max_per_pixel. The
-  // dynamic sort has no array: one program (keyed 0).
+  // dynamic sort has no array: one program (keyed 0). Frames with a list
+  // longer than the array get the variant that keeps the nearest ones.
   GLuint sort_program(uint32_t longest) {
     const bool dynamic = s_.sort == SortMethod::dynamic ||
                          (s_.sort == SortMethod::automatic && !s_.linearized() && longest <= kLongestDynamicList);
     sorted_dynamically_ = dynamic;
     const uint32_t size =
         dynamic ? 0 : std::min(s_.max_per_pixel, std::max(kSmallestArray, std::bit_ceil(std::max<uint32_t>(longest, 1))));
-    auto it = sorts_.find({size, flat_});
+    const bool truncates = !dynamic && longest > size;
+    auto it = sorts_.find({size, flat_, truncates});
     if (it == sorts_.end()) {
       ShaderDefines defines = storage_defines(s_);
       if (flat_) defines.push_back({"IB_FLAT_COLOR", "1"});
+      if (truncates) defines.push_back({"IB_TRUNCATES", "1"});
       defines.push_back(dynamic ? ShaderDefine{"IB_DYNAMIC", "1"} : ShaderDefine{"IB_ARRAY", std::to_string(size)});
       if (s_.stores_triangle_vertices()) defines.push_back({"IB_TRIANGLE_VERTICES", "1"});
       if (s_.records_surface()) defines.push_back({"IB_SURFACE", "1"});
-      it = sorts_.emplace(std::make_pair(size, flat_), build_compute_program("algorithms/illustration_buffer/sort.comp", defines)).first;
+      it = sorts_.emplace(SortVariant{size, flat_, truncates}, build_compute_program("algorithms/illustration_buffer/sort.comp", defines)).first;
       set_size(it->second.id(), width_, height_);
       if (dynamic) set_uniform(it->second.id(), IB_MAX_PER_PIXEL_LOCATION, s_.max_per_pixel);
+    }
+    return it->second.id();
+  }
+
+  // neighbors=triangle_index takes a pixel's fragments IB_GROUP at a time:
+  // 4, or the frame's longest kept list rounded up to a power of two where
+  // that is shorter (llvmpipe runs the tests of fragments no list has: on
+  // the torus's lists of 2, a group of 4 made the search 4.4 ms, not 3.4).
+  GLuint triangle_search_program(uint32_t longest) {
+    const uint32_t kept = std::max<uint32_t>(std::min(longest, s_.max_per_pixel), 1);
+    const uint32_t group = std::min(kLargestSearchGroup, std::bit_ceil(kept));
+    auto it = triangle_searches_.find(group);
+    if (it == triangle_searches_.end()) {
+      it = triangle_searches_
+               .emplace(group, build_compute_program("algorithms/illustration_buffer/neighbors_triangle_index.comp",
+                                                     {{"IB_GROUP", std::to_string(group)}}))
+               .first;
+      set_size(it->second.id(), width_, height_);
     }
     return it->second.id();
   }
@@ -665,7 +688,10 @@ class IllustrationBuffer final : public Technique {
       diffuse_listed_, diffuse_sweep_, sweep_check_;
   bool flat_ = false;  // this frame's records hold no colour
   uint64_t flat_table_bytes_ = 0;
-  std::map<std::pair<uint32_t, bool>, Program> sorts_;  // by local array size (0: the dynamic sort), flat colours
+  // By local array size (0: the dynamic sort), flat colours, and whether a list is longer than the array.
+  using SortVariant = std::tuple<uint32_t, bool, bool>;
+  std::map<SortVariant, Program> sorts_;
+  std::map<uint32_t, Program> triangle_searches_;  // by IB_GROUP (triangle_search_program)
   bool sorted_dynamically_ = false;    // the last frame's sort
   Buffer counters_, head_, count_, next_, data_, data2_, data3_, truth_, triangles_;
   Buffer stamps_, worklists_[3], pixel_updates_, seeds_;  // skip_converged (worklist.glsl)
