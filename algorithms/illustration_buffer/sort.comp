@@ -154,14 +154,14 @@ uint sort_list(uint head) {
 // 4.0 ms.
 #if defined(IB_LINEARIZED) && IB_ARRAY <= 4
 #define IB_GATHER_KEYS(start, length)
-#define IB_ITEM(k) sort_key(start + (k)).xyz
+#define IB_ITEM(k) sort_key(start + (k)).xyz  // `start`: sort_whole_list's
 #else
-#define IB_GATHER_KEYS(start, length)         \
-  uvec3 items[IB_ARRAY];                      \
+#define IB_GATHER_KEYS(start, length)              \
+  uvec3 items[IB_ARRAY];                           \
   for (uint k = 0u, node = start; k < length; ++k) { \
-    const uvec4 taken = sort_key(node);       \
-    items[k] = taken.xyz;                     \
-    node = IB_FOLLOW(node, taken);            \
+    const uvec4 taken = sort_key(node);            \
+    items[k] = taken.xyz;                          \
+    node = IB_FOLLOW(node, taken);                 \
   }
 #define IB_ITEM(k) items[k]
 #endif

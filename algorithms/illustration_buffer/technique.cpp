@@ -7,9 +7,9 @@
 #include <bit>
 #include <limits>
 #include <map>
-#include <tuple>
 #include <optional>
 #include <stdexcept>
+#include <tuple>
 
 #include "algorithms/illustration_buffer/accuracy.h"
 #include "algorithms/illustration_buffer/bindings.h"
