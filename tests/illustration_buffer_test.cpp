@@ -657,7 +657,8 @@ TEST(IllustrationBuffer, DynamicSortGivesTheArraySortsImage) {
 // storage=linearized (a counting pass, each pixel's contiguous range from
 // the prefix sum, filled in place) must give the records of the linked lists:
 // the same image, counts and links, with both ways of taking a slot, also
-// with truncated lists; exactly sized, so never a re-grow.
+// with truncated lists; exactly sized, so never a re-grow. Its sort and
+// search run over the covered pixels only, the linked lists' over all.
 TEST(IllustrationBuffer, LinearizedStorageGivesTheLinkedListsRecords) {
   struct Case {
     const char* scene;
@@ -689,6 +690,15 @@ TEST(IllustrationBuffer, LinearizedStorageGivesTheLinkedListsRecords) {
       EXPECT_EQ(r.counters.fragments_dropped, l.counters.fragments_dropped) << what;
       EXPECT_LT(r.counters.bytes_allocated, l.counters.bytes_allocated) << what;
       EXPECT_EQ(test::work_saved(r, "fragments_not_sorted"), test::work_saved(l, "fragments_not_sorted")) << what;
+      // The sort and the search ran over the covered pixels only (the
+      // torus leaves its hole empty, the full-screen quads nothing).
+      EXPECT_EQ(test::work_saved(l, "empty_pixels_not_dispatched"), 0.0) << what;
+      const double empty = test::work_saved(r, "empty_pixels_not_dispatched");
+      if (std::string(c.scene) == "torus") {
+        EXPECT_GT(empty, 0.0) << what;
+      } else if (std::string(c.scene) == "quads") {
+        EXPECT_EQ(empty, 0.0) << what;
+      }
       for (const char* counter : {"lists_truncated", "links_left", "links_right", "links_down", "links_up",
                                   "link_checksum", "silhouette_fragments", "fragment_updates"}) {
         const bool counted = find_figure(l.counters.extra, counter).has_value();

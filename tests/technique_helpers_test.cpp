@@ -1,7 +1,8 @@
 // The helpers harness/core gives every technique, checked on their own:
 // Frame::near_far for both kinds of projection, make_technique for
 // constructors with and without parameters, and SlotsPerPixel's k (fixed,
-// or counted and capped with k=auto) with the figures it reports.
+// or counted and capped with k=auto) with the figures it reports, and
+// SlotCursors' check of a linearized fill's ranges on the host.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -119,6 +120,36 @@ TEST_F(SlotsPerPixelTest, AutoIsCappedByTheMemoryCap) {
   EXPECT_EQ(figure(figures, "longest_list"), 3.0);
   EXPECT_EQ(figure(figures, "k_cap"), 1.0);
   EXPECT_EQ(figure(figures, "k_capped"), 1.0);
+}
+
+// A pixel whose cursor did not end at the end of its range is counted, with
+// either way of taking slots (both exist on llvmpipe). The cursors start at
+// the values they are given: the offsets (as before a fill), then each
+// pixel's end (as after a fill that matched the counts), then the ends with
+// one empty pixel given a fragment the counting missed.
+TEST(TechniqueHelpers, SlotCursorsCountThePixelsWhoseFillEndedElsewhere) {
+  test::gl_context();
+  const std::vector<float> counts = {0, 2, 1, 0, 3, 0, 0, 1};  // 4 x 2 pixels
+  std::vector<uint32_t> offsets;
+  offsets_from_counts(counts, offsets);
+  std::vector<uint32_t> ends(offsets.begin() + 1, offsets.end());
+  std::vector<uint32_t> one_more = ends;
+  one_more[3] += 1;
+  const Buffer starts_buffer = make_buffer(GLsizeiptr(offsets.size() * 4), offsets.data(), 0);
+  const Buffer ends_buffer = make_buffer(GLsizeiptr(ends.size() * 4), ends.data(), 0);
+  const Buffer one_more_buffer = make_buffer(GLsizeiptr(one_more.size() * 4), one_more.data(), 0);
+  for (const SlotFill fill : {SlotFill::atomic, SlotFill::framebuffer_fetch}) {
+    ASSERT_EQ(missing_slot_fill_feature(fill), "");
+    SlotCursors cursors(fill);
+    cursors.resize(4, 2, "test");
+    cursors.start(starts_buffer);
+    EXPECT_EQ(cursors.count_mismatched(offsets), 4u) << "the four pixels with fragments, before any fill";
+    cursors.start(ends_buffer);
+    EXPECT_EQ(cursors.count_mismatched(offsets), 0u);
+    cursors.start(one_more_buffer);
+    EXPECT_EQ(cursors.count_mismatched(offsets), 1u);
+    EXPECT_THROW(cursors.count_mismatched(std::vector<uint32_t>(3, 0u)), std::logic_error);
+  }
 }
 
 }  // namespace

@@ -38,11 +38,12 @@
 #define IB_HEAD_UNIT 4
 #define IB_COUNT_UNIT 5
 #define IB_SEEDS_UNIT 6  // stylize_seed_queue.comp
+#define IB_LISTED_PIXELS_UNIT 7  // pixel_dispatch.glsl (IB_LISTED): sort.comp, neighbors_triangle_index.comp
 // The sort's (sort.comp), a program of its own: fill records and the triangle table.
 #define IB_FRAGMENT_UNIT 0
 #define IB_SORT_TRIANGLES_UNIT 1  // neighbors=triangle_index
 #define IB_OFFSETS_UNIT 2          // storage=linearized: the fill's per-pixel ranges
-#define IB_FINAL_CURSORS_UNIT 3    // storage=linearized: where each pixel's fill ended
+// 3: free
 #define IB_FLAT_COLORS_UNIT 4      // flat_color_records: the scene's colour per stable triangle id
 // Image units (fill.frag; the cursors with storage=linearized and fill=atomic).
 #define IB_CURSORS_IMAGE_UNIT 0
@@ -57,7 +58,7 @@
 #define IB_WEIGHT_Z_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 5)       // neighbors.comp, IB_HEURISTIC
 #define IB_WEIGHT_N_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 6)
 #define IB_INVERSE_RADIUS_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 7)
-// + 8: free (adaptive_alpha is stylize_init.comp's IB_ADAPTIVE define)
+#define IB_LISTED_PIXELS_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 8)  // pixel_dispatch.glsl, IB_LISTED
 #define IB_USE_BETA_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 9)  // stylize_init.comp
 #define IB_USE_GAMMA_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 10)
 #define IB_LAMBDA_ALPHA_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 11)  // stylize_diffuse.comp

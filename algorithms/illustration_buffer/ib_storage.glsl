@@ -43,15 +43,12 @@ layout(std430, binding = IB_DATA3_BINDING) buffer IbFragData3 { IbSortedShade ib
 // longest: the longest list. dropped / truncated: fragments beyond
 // max_per_pixel and the lists that had any. allocated: the sort's range
 // allocator (storage=linked; the host counts all of these for linearized).
-// mismatched: storage=linearized, pixels whose fill did not end at the end of
-// their counted range (sort.comp).
 layout(std430, binding = IB_COUNTERS_BINDING) coherent buffer IbCounters {
   uint ib_produced;
   uint ib_longest;
   uint ib_dropped;
   uint ib_truncated;
   uint ib_allocated;
-  uint ib_mismatched;
 };
 
 layout(location = IB_WIDTH_LOCATION) uniform int u_width;

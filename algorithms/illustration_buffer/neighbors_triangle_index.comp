@@ -19,9 +19,9 @@
 // on 32 layers (neighbours 97-101 against 114-137 ms) and no slower than the
 // dispatch per fragment on the torus's lists of 1-4 (eight was ~1.5x slower
 // there: unrolled tests for fragments a short list does not have).
-layout(local_size_x = 8, local_size_y = 8) in;
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 #include "algorithms/illustration_buffer/views.glsl"
+#include "algorithms/illustration_buffer/pixel_dispatch.glsl"
 
 // IB_GROUP (the host's define): 4, or 1 or 2 for frames whose lists are
 // all that short (technique.cpp, triangle_search_program).
@@ -61,9 +61,9 @@ void search(int x, int y, int d, uint pending) {
 }
 
 void main() {
-  if (gl_GlobalInvocationID.x >= uint(u_width) || gl_GlobalInvocationID.y >= uint(u_height)) return;
-  const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
-  const uint pixel = uint(y) * uint(u_width) + uint(x);
+  uint pixel;
+  if (!ib_invocation_pixel(pixel)) return;
+  const int x = int(pixel % uint(u_width)), y = int(pixel / uint(u_width));
   const uint first = ib_pixel_first(pixel), count = ib_pixel_count(pixel);
   for (uint group = first; group < first + count; group += uint(IB_GROUP)) {
     const uint size = min(first + count - group, uint(IB_GROUP));

@@ -21,16 +21,17 @@
 // IB_LINEARIZED (storage=linearized): the pixel's fill records are the
 // contiguous range [offset[p], offset[p+1]) (fill.frag), read in order with
 // no list walk, and the sorted range is the one the host computed from the
-// kept lengths (ib_head, ib_count): no atomic. Every pixel also checks that
-// its fill ended at the end of its counted range (the host fails the frame
-// when one did not: the counting pass and the fill disagreed).
+// kept lengths (ib_head, ib_count): no atomic. The dispatch is over the
+// pixels that hold a fragment (pixel_dispatch.glsl, IB_LISTED), and the host
+// checks that every pixel's fill ended at the end of its counted range
+// (SlotCursors::count_mismatched: the counting pass and the fill disagreed).
 //
 // The list is walked by ONE flat loop: each iteration either takes the next
 // node or moves the pending node's insertion hole one step nearer. Mesa 22.3
 // llvmpipe miscompiled nested loops following `next` pointers (only the head
 // was visited), so nothing here nests a list walk.
-layout(local_size_x = 8, local_size_y = 8) in;
 #include "algorithms/illustration_buffer/ib_storage.glsl"
+#include "algorithms/illustration_buffer/pixel_dispatch.glsl"
 
 // fragData (3 RGBA32UI texels per IbFragment) read as a buffer texture:
 // gathers on llvmpipe, where SSBO loads at per-invocation addresses run
@@ -46,13 +47,6 @@ layout(binding = IB_SORT_TRIANGLES_UNIT) uniform usamplerBuffer ib_triangle_rows
 
 #ifdef IB_LINEARIZED
 layout(binding = IB_OFFSETS_UNIT) uniform usamplerBuffer ib_offsets;  // W*H + 1 values
-#ifdef IB_FETCH_CURSOR
-layout(binding = IB_FINAL_CURSORS_UNIT) uniform usampler2D ib_final_cursors;  // the fill's R32UI target
-uint final_cursor(uint pixel) { return texelFetch(ib_final_cursors, ivec2(gl_GlobalInvocationID.xy), 0).x; }
-#else
-layout(binding = IB_FINAL_CURSORS_UNIT) uniform usamplerBuffer ib_final_cursors;
-uint final_cursor(uint pixel) { return texelFetch(ib_final_cursors, int(pixel)).x; }
-#endif
 // The fill record after `node` in the pixel's list (`taken`: sort_key(node)).
 #define IB_FOLLOW(node, taken) ((node) + 1u)
 #else
@@ -217,12 +211,11 @@ void keep_nearest(uint start, uint length, uint pixel) {
 #endif
 
 void main() {
-  if (gl_GlobalInvocationID.x >= uint(u_width) || gl_GlobalInvocationID.y >= uint(u_height)) return;
-  const uint pixel = gl_GlobalInvocationID.y * uint(u_width) + gl_GlobalInvocationID.x;
+  uint pixel;
+  if (!ib_invocation_pixel(pixel)) return;
 #ifdef IB_LINEARIZED
   const uint start = texelFetch(ib_offsets, int(pixel)).x;
   const uint length = texelFetch(ib_offsets, int(pixel) + 1).x - start;
-  if (final_cursor(pixel) != start + length) atomicAdd(ib_mismatched, 1u);
 #else
   const uint start = ib_head[pixel];
   const uint length = ib_count[pixel];

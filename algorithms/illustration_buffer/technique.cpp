@@ -30,7 +30,7 @@ constexpr GLsizeiptr kFragmentBytes = 48, kNextBytes = 4, kTruthBytes = 16, kFie
 constexpr GLsizeiptr kSearchBytes = 32, kShadeBytes = 32;
 // The largest per-record buffer (fragData; it also holds both field ranges) bounds the pool.
 constexpr GLsizeiptr kLargestRecordBytes = std::max({kFragmentBytes, kSearchBytes, kShadeBytes, 2 * kFieldBytes});
-constexpr GLsizeiptr kCounterBytes = 24;  // produced, longest, dropped, truncated, allocated, mismatched
+constexpr GLsizeiptr kCounterBytes = 20;  // produced, longest, dropped, truncated, allocated
 // A worklist (worklist.glsl): indirect-dispatch arguments and count, then one entry per pixel.
 constexpr GLsizeiptr kWorklistHeaderBytes = 16;
 // The smallest sort array compiled (lists of up to 4, e.g. the torus's, with
@@ -61,10 +61,11 @@ bool tracks_convergence(const Settings& s) {
 }
 
 // Per pixel: head and count; with storage=linearized the counting pass's
-// R32F count, the fill's offset and its cursor; plus (when the diffusion
+// R32F count, the fill's offset and its cursor, and an entry in the list of
+// covered pixels (pixel_dispatch.glsl); plus (when the diffusion
 // skips converged fragments) a stamp, an entry in each of three worklists,
 // an update count and a seed mark (stylize_seed_queue.comp).
-uint64_t bytes_per_pixel(const Settings& s) { return 8 + (s.linearized() ? 12 : 0) + (tracks_convergence(s) ? 24 : 0); }
+uint64_t bytes_per_pixel(const Settings& s) { return 8 + (s.linearized() ? 16 : 0) + (tracks_convergence(s) ? 24 : 0); }
 
 // storage=linearized taking its slots by framebuffer fetch (fill, resolved on this device).
 bool fetches_cursors(const Settings& s) { return s.linearized() && fills_by_framebuffer_fetch(s.fill); }
@@ -100,6 +101,12 @@ ShaderDefines storage_defines(const Settings& s) {
   if (s.linearized()) defines.push_back({"IB_LINEARIZED", "1"});
   if (fetches_cursors(s)) defines.push_back({"IB_FETCH_CURSOR", "1"});
   return defines;
+}
+
+// The per-pixel passes' dispatch (pixel_dispatch.glsl): with
+// storage=linearized over the covered pixels the host lists.
+ShaderDefines per_pixel_defines(const Settings& s) {
+  return s.linearized() ? ShaderDefines{{"IB_LISTED", "1"}} : ShaderDefines{};
 }
 
 ShaderDefines fill_defines(const Settings& s, bool flat) {
@@ -228,15 +235,15 @@ class IllustrationBuffer final : public Technique {
       glUseProgram(sort);
       glBindTextureUnit(IB_FRAGMENT_UNIT, fragment_view_.id());
       if (flat_) glBindTextureUnit(IB_FLAT_COLORS_UNIT, frame.scene.flat_colors_view());
-      if (s_.linearized()) {
-        glBindTextureUnit(IB_OFFSETS_UNIT, offsets_view_.id());
-        glBindTextureUnit(IB_FINAL_CURSORS_UNIT, cursors_->final_cursors());
-      }
+      if (s_.linearized()) glBindTextureUnit(IB_OFFSETS_UNIT, offsets_view_.id());
       if (s_.stores_triangle_vertices()) {
         prepare_scene_data(frame.scene);
         glBindTextureUnit(IB_SORT_TRIANGLES_UNIT, triangles_view_.id());
       }
-      run_per_pixel();
+      run_per_covered_pixel(sort);
+      // The dispatch left out the empty pixels: the host checks every range.
+      if (s_.linearized())
+        fail_on_mismatched_ranges("illustration_buffer", cursors_->count_mismatched(host_offsets_), produced_);
     }
     bind_sorted_views();
     const GLintptr second_range = second_field_range();
@@ -254,10 +261,9 @@ class IllustrationBuffer final : public Technique {
     frame.set_shared_uniforms(compose_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     for (GLuint unit : {IB_SEARCH_UNIT, IB_FIELDS_UNIT, IB_SHADE_UNIT, IB_WORK_UNIT, IB_HEAD_UNIT, IB_COUNT_UNIT,
-                        IB_FRAGMENT_UNIT, IB_SORT_TRIANGLES_UNIT, IB_OFFSETS_UNIT, IB_FINAL_CURSORS_UNIT,
-                        IB_FLAT_COLORS_UNIT, IB_SEEDS_UNIT})
+                        IB_FRAGMENT_UNIT, IB_SORT_TRIANGLES_UNIT, IB_OFFSETS_UNIT, IB_FLAT_COLORS_UNIT,
+                        IB_SEEDS_UNIT, IB_LISTED_PIXELS_UNIT})
       glBindTextureUnit(unit, 0);
-    if (s_.linearized()) check_ranges();
   }
 
   TechniqueCounters counters() const override {
@@ -368,6 +374,11 @@ class IllustrationBuffer final : public Technique {
       glCopyNamedBufferSubData(offsets_.id(), head_.id(), 0, 0, pixel_bytes);
     }
     dropped_ = produced_ - stored_;
+    covered_pixels_.clear();
+    for (uint32_t p = 0; p < host_lengths_.size(); ++p)
+      if (host_lengths_[p] > 0) covered_pixels_.push_back(p);
+    if (!covered_pixels_.empty())
+      glNamedBufferSubData(covered_.id(), 0, GLsizeiptr(covered_pixels_.size() * 4), covered_pixels_.data());
   }
 
   void resize_linearized(int width, int height) {
@@ -375,18 +386,10 @@ class IllustrationBuffer final : public Technique {
     list_lengths_->resize(width, height);
     offsets_ = make_buffer((pixels + 1) * 4);
     offsets_view_ = make_buffer_texture(offsets_, GL_R32UI, 0, (pixels + 1) * 4);
+    covered_ = make_buffer(pixels * 4);
+    covered_view_ = make_buffer_texture(covered_, GL_R32UI, 0, pixels * 4);
     cursors_->resize(width, height, "illustration_buffer");
     gl_check("allocating the illustration buffer's linearized ranges");
-  }
-
-  // The sort counted the pixels whose fill did not end at the end of their
-  // counted range (sort.comp): the records would be wrong.
-  void check_ranges() const {
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    GLuint mismatched = 0;
-    glGetNamedBufferSubData(counters_.id(), 5 * sizeof(GLuint), sizeof(GLuint), &mismatched);
-    gl_check("illustration_buffer: reading back the range check");
-    fail_on_mismatched_ranges("illustration_buffer", mismatched, produced_);
   }
 
   // Neighbour search, then the fields' initial and boundary conditions
@@ -398,8 +401,9 @@ class IllustrationBuffer final : public Technique {
         prepare_scene_data(frame.scene);
         run_per_fragment(neighbors_.id());
       } else {
-        glUseProgram(triangle_search_program(longest));
-        run_per_pixel();
+        const GLuint search = triangle_search_program(longest);
+        glUseProgram(search);
+        run_per_covered_pixel(search);
       }
     }
     swept_ = sweeps_this_frame(frame.scene);
@@ -546,6 +550,7 @@ class IllustrationBuffer final : public Technique {
     auto it = sorts_.find({size, flat_, truncates});
     if (it == sorts_.end()) {
       ShaderDefines defines = storage_defines(s_);
+      for (const ShaderDefine& define : per_pixel_defines(s_)) defines.push_back(define);
       if (flat_) defines.push_back({"IB_FLAT_COLOR", "1"});
       if (truncates) defines.push_back({"IB_TRUNCATES", "1"});
       defines.push_back(dynamic ? ShaderDefine{"IB_DYNAMIC", "1"} : ShaderDefine{"IB_ARRAY", std::to_string(size)});
@@ -569,11 +574,17 @@ class IllustrationBuffer final : public Technique {
     if (it == triangle_searches_.end()) {
       it = triangle_searches_
                .emplace(group, build_compute_program("algorithms/illustration_buffer/neighbors_triangle_index.comp",
-                                                     {{"IB_GROUP", std::to_string(group)}}))
+                                                     search_defines(group)))
                .first;
       set_size(it->second.id(), width_, height_);
     }
     return it->second.id();
+  }
+
+  ShaderDefines search_defines(uint32_t group) const {
+    ShaderDefines defines = per_pixel_defines(s_);
+    defines.push_back({"IB_GROUP", std::to_string(group)});
+    return defines;
   }
 
   void run_per_fragment(GLuint program) const {
@@ -587,8 +598,18 @@ class IllustrationBuffer final : public Technique {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   }
 
-  // The bound program once per pixel, in 8x8 workgroups (sort.comp,
-  // neighbors_triangle_index.comp).
+  // The bound `program` (built with per_pixel_defines) once per pixel, or
+  // with storage=linearized once per covered pixel (pixel_dispatch.glsl).
+  void run_per_covered_pixel(GLuint program) const {
+    if (!s_.linearized()) return run_per_pixel();
+    glBindTextureUnit(IB_LISTED_PIXELS_UNIT, covered_view_.id());
+    set_uniform(program, IB_LISTED_PIXELS_LOCATION, GLuint(covered_pixels_.size()));
+    const uint64_t groups = (covered_pixels_.size() + 63) / 64, x = std::min<uint64_t>(groups, 65535);
+    if (groups > 0) glDispatchCompute(GLuint(x), GLuint((groups + x - 1) / x), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  }
+
+  // The bound program once per pixel, in 8x8 workgroups (stylize_seed_queue.comp).
   void run_per_pixel() const {
     glDispatchCompute(GLuint(width_ + 7) / 8, GLuint(height_ + 7) / 8, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -705,9 +726,10 @@ class IllustrationBuffer final : public Technique {
   // values) and cursors (a buffer, or the R32UI target with framebuffer fetch).
   std::optional<ListLengthPass> list_lengths_;
   std::optional<SlotCursors> cursors_;
-  Buffer offsets_;
-  Texture offsets_view_;
-  std::vector<uint32_t> host_offsets_, host_sorted_offsets_, host_lengths_;
+  Buffer offsets_, covered_;
+  Texture offsets_view_, covered_view_;
+  // covered_pixels_: the pixels holding a fragment, in raster order (covered_, pixel_dispatch.glsl).
+  std::vector<uint32_t> host_offsets_, host_sorted_offsets_, host_lengths_, covered_pixels_;
   // SceneGpu::serial of the scene prepare_scene_data() and one_alpha() last saw (0: none).
   uint64_t prepared_scene_ = 0, one_alpha_scene_ = 0;
   bool one_alpha_ = false;
@@ -774,6 +796,9 @@ void IllustrationBuffer::work_saved(TechniqueCounters& c) const {
   const uint64_t single = uint64_t(std::count(count.begin(), count.end(), 1u));
   const uint64_t walked = s_.max_per_pixel == 1 ? truncated_lists_ : 0;
   c.work_saved = {{"passes_skipped", skipped}, {"fragments_not_sorted", double(single - walked)}};
+  // storage=linearized: the empty pixels the sort and the search were not dispatched over.
+  const uint64_t empty = s_.linearized() ? count.size() - covered_pixels_.size() : 0;
+  c.work_saved.push_back({"empty_pixels_not_dispatched", double(empty)});
 }
 
 // fragment_updates: fragments the diffusion recomputed (skip_converged);

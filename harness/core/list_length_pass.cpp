@@ -103,6 +103,25 @@ void SlotCursors::start(const Buffer& offsets) const {
   glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
 }
 
+uint32_t SlotCursors::count_mismatched(const std::vector<uint32_t>& offsets) const {
+  const size_t pixels = size_t(width_) * size_t(height_);
+  if (offsets.size() != pixels + 1)
+    throw std::logic_error("SlotCursors::count_mismatched: " + std::to_string(offsets.size()) + " offsets for " +
+                           std::to_string(pixels) + " pixels");
+  ends_.resize(pixels);
+  const GLsizei bytes = GLsizei(pixels * sizeof(uint32_t));
+  if (fetch_) {
+    glGetTextureImage(target_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, bytes, ends_.data());
+  } else {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(buffer_.id(), 0, bytes, ends_.data());
+  }
+  gl_check("reading the fill's final cursors back");
+  uint32_t mismatched = 0;
+  for (size_t p = 0; p < pixels; ++p) mismatched += ends_[p] != offsets[p + 1] ? 1 : 0;
+  return mismatched;
+}
+
 void SlotCursors::bind_image(GLuint unit) const {
   if (!fetch_) glBindImageTexture(unit, view_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
 }

@@ -92,10 +92,16 @@ class SlotCursors {
   // Where each pixel's fill ended, for a texelFetch after the fill: the
   // R32UI 2D target (framebuffer fetch) or an R32UI buffer texture.
   GLuint final_cursors() const { return fetch_ ? target_.id() : view_.id(); }
+  // The pixels whose fill did not end at the end of their range (cursor !=
+  // offsets[p + 1], `offsets` the W*H + 1 values start() was given), read
+  // back on the host: a check of every pixel for passes that do not visit
+  // them all (4 bytes per pixel read back).
+  uint32_t count_mismatched(const std::vector<uint32_t>& offsets) const;
 
  private:
   bool fetch_;
   int width_ = 0, height_ = 0;
+  mutable std::vector<uint32_t> ends_;  // count_mismatched's read-back
   Buffer buffer_;
   Texture view_, target_;
   Framebuffer framebuffer_;
