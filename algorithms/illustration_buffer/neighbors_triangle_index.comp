@@ -6,7 +6,8 @@
 // triangle shares a vertex index with the fragment's own (the sort stored
 // the triangle's vertex indices in each record's geometry, sort.comp).
 //
-// One invocation per pixel, not per fragment: the pixel's fragments are
+// One invocation per pixel (per covered pixel with storage=linearized:
+// pixel_dispatch.glsl), not per fragment: the pixel's fragments are
 // taken IB_GROUP (at most four) at a time, their vertex indices held in
 // registers, and each adjacent list is read once per group, every candidate
 // tested against the group's; a group stops reading a list when all of its

@@ -1,5 +1,6 @@
 #version 450 core
-// Sort (carnecky2013 section 4.3): one invocation per pixel gathers its list
+// Sort (carnecky2013 section 4.3): one invocation per pixel (per covered
+// pixel with storage=linearized, pixel_dispatch.glsl) gathers its list
 // into a local array ordered by (view depth, stable triangle id), reserves a
 // contiguous range of fragData2/fragData3 with one atomic add (the range's
 // first index and length replace pixelHead and pixelCount) and copies the
