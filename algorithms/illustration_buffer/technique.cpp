@@ -590,7 +590,13 @@ class IllustrationBuffer final : public Technique {
   void run_per_fragment(GLuint program) const {
     glUseProgram(program);
     set_uniform(program, IB_FRAGMENTS_LOCATION, GLuint(stored_));
-    const uint64_t groups = (stored_ + 63) / 64;
+    dispatch_in_groups_of_64(stored_);
+  }
+
+  // `invocations` in workgroups of 64, two-dimensional beyond 65535 groups
+  // (per_fragment.glsl, pixel_dispatch.glsl flatten the index back).
+  static void dispatch_in_groups_of_64(uint64_t invocations) {
+    const uint64_t groups = (invocations + 63) / 64;
     if (groups > 0) {
       const uint64_t x = std::min<uint64_t>(groups, 65535);
       glDispatchCompute(GLuint(x), GLuint((groups + x - 1) / x), 1);
@@ -604,9 +610,7 @@ class IllustrationBuffer final : public Technique {
     if (!s_.linearized()) return run_per_pixel();
     glBindTextureUnit(IB_LISTED_PIXELS_UNIT, covered_view_.id());
     set_uniform(program, IB_LISTED_PIXELS_LOCATION, GLuint(covered_pixels_.size()));
-    const uint64_t groups = (covered_pixels_.size() + 63) / 64, x = std::min<uint64_t>(groups, 65535);
-    if (groups > 0) glDispatchCompute(GLuint(x), GLuint((groups + x - 1) / x), 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    dispatch_in_groups_of_64(covered_pixels_.size());
   }
 
   // The bound program once per pixel, in 8x8 workgroups (stylize_seed_queue.comp).
