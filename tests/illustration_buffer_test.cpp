@@ -655,11 +655,15 @@ TEST(IllustrationBuffer, DynamicSortGivesTheArraySortsImage) {
 }
 
 // storage=linearized (a counting pass, each pixel's contiguous range from
-// the prefix sum, filled in place) must give the records of the linked lists:
-// the same image, counts and links, with both ways of taking a slot, also
-// with truncated lists; exactly sized, so never a re-grow. Its sort and
-// search run over the covered pixels only, the linked lists' over all.
-TEST(IllustrationBuffer, LinearizedStorageGivesTheLinkedListsRecords) {
+// the prefix sum, filled in place) and storage=arrays (no counting pass:
+// per-pixel arrays, filled again with more slots when a list is longer)
+// must give the records of the linked lists: the same image, counts and
+// links, with both ways of taking a slot, also with truncated lists.
+// linearized is exactly sized, so never re-grows; arrays start with
+// initial_nodes_per_pixel = 8 slots, so the 12 quad layers grow them once.
+// Their sort and search run over the covered pixels only, the linked
+// lists' over all.
+TEST(IllustrationBuffer, LinearizedAndArrayStorageGiveTheLinkedListsRecords) {
   struct Case {
     const char* scene;
     RawParams scene_params, params;
@@ -674,36 +678,47 @@ TEST(IllustrationBuffer, LinearizedStorageGivesTheLinkedListsRecords) {
     RawParams linked = c.params;
     linked["storage"] = "linked";
     const RunResult l = test::render_once("illustration_buffer", linked, c.scene, c.scene_params, 48, 40);
-    for (const char* fill : {"auto", "atomic"}) {
-      RawParams linearized = c.params;
-      linearized["storage"] = "linearized";
-      linearized["fill"] = fill;
-      const RunResult r = test::render_once("illustration_buffer", linearized, c.scene, c.scene_params, 48, 40);
-      const std::string what = std::string(c.scene) + " fill=" + fill;
-      ASSERT_EQ(r.status, RunStatus::ok) << what << ": " << r.message;
-      EXPECT_EQ(largest_difference(l.image, r.image), 0.0) << what;
-      EXPECT_EQ(test::extra_counter(r, "linearized_storage"), 1.0) << what;
-      if (std::string(fill) == "atomic") EXPECT_EQ(test::extra_counter(r, "framebuffer_fetch_fill"), 0.0) << what;
-      EXPECT_EQ(r.counters.overflow_retries, 0u) << what;
-      EXPECT_EQ(r.counters.passes, 2u) << what;  // the counting pass and the fill
-      EXPECT_EQ(r.counters.fragments_stored, l.counters.fragments_stored) << what;
-      EXPECT_EQ(r.counters.fragments_dropped, l.counters.fragments_dropped) << what;
-      EXPECT_LT(r.counters.bytes_allocated, l.counters.bytes_allocated) << what;
-      EXPECT_EQ(test::work_saved(r, "fragments_not_sorted"), test::work_saved(l, "fragments_not_sorted")) << what;
-      // The sort and the search ran over the covered pixels only (the
-      // torus leaves its hole empty, the full-screen quads nothing).
-      EXPECT_EQ(test::work_saved(l, "empty_pixels_not_dispatched"), 0.0) << what;
-      const double empty = test::work_saved(r, "empty_pixels_not_dispatched");
-      if (std::string(c.scene) == "torus") {
-        EXPECT_GT(empty, 0.0) << what;
-      } else if (std::string(c.scene) == "quads") {
-        EXPECT_EQ(empty, 0.0) << what;
-      }
-      for (const char* counter : {"lists_truncated", "links_left", "links_right", "links_down", "links_up",
-                                  "link_checksum", "silhouette_fragments", "fragment_updates"}) {
-        const bool counted = find_figure(l.counters.extra, counter).has_value();
-        EXPECT_EQ(find_figure(r.counters.extra, counter).has_value(), counted) << what << " " << counter;
-        if (counted) EXPECT_EQ(test::extra_counter(r, counter), test::extra_counter(l, counter)) << what << " " << counter;
+    for (const char* storage : {"linearized", "arrays"}) {
+      for (const char* fill : {"auto", "atomic"}) {
+        RawParams ranged = c.params;
+        ranged["storage"] = storage;
+        ranged["fill"] = fill;
+        const RunResult r = test::render_once("illustration_buffer", ranged, c.scene, c.scene_params, 48, 40);
+        const std::string what = std::string(c.scene) + " storage=" + storage + " fill=" + fill;
+        ASSERT_EQ(r.status, RunStatus::ok) << what << ": " << r.message;
+        EXPECT_EQ(largest_difference(l.image, r.image), 0.0) << what;
+        const bool arrays = std::string(storage) == "arrays";
+        EXPECT_EQ(test::extra_counter(r, "linearized_storage"), arrays ? 0.0 : 1.0) << what;
+        EXPECT_EQ(test::extra_counter(r, "array_storage"), arrays ? 1.0 : 0.0) << what;
+        if (std::string(fill) == "atomic") EXPECT_EQ(test::extra_counter(r, "framebuffer_fetch_fill"), 0.0) << what;
+        if (arrays) {
+          const uint64_t regrown = r.max_depth_complexity > 8 ? 1 : 0;
+          EXPECT_EQ(r.counters.overflow_retries, regrown) << what;
+          EXPECT_EQ(r.counters.passes, 1 + regrown) << what;  // the fill, again after a regrowth
+        } else {
+          EXPECT_EQ(r.counters.overflow_retries, 0u) << what;
+          EXPECT_EQ(r.counters.passes, 2u) << what;  // the counting pass and the fill
+          EXPECT_LT(r.counters.bytes_allocated, l.counters.bytes_allocated) << what;
+        }
+        EXPECT_EQ(r.counters.fragments_stored, l.counters.fragments_stored) << what;
+        EXPECT_EQ(r.counters.fragments_dropped, l.counters.fragments_dropped) << what;
+        EXPECT_EQ(test::work_saved(r, "fragments_not_sorted"), test::work_saved(l, "fragments_not_sorted")) << what;
+        // The sort and the search ran over the covered pixels only (the
+        // torus leaves its hole empty, the full-screen quads nothing).
+        EXPECT_EQ(test::work_saved(l, "empty_pixels_not_dispatched"), 0.0) << what;
+        const double empty = test::work_saved(r, "empty_pixels_not_dispatched");
+        if (std::string(c.scene) == "torus") {
+          EXPECT_GT(empty, 0.0) << what;
+        } else if (std::string(c.scene) == "quads") {
+          EXPECT_EQ(empty, 0.0) << what;
+        }
+        for (const char* counter : {"lists_truncated", "links_left", "links_right", "links_down", "links_up",
+                                    "link_checksum", "silhouette_fragments", "fragment_updates"}) {
+          const bool counted = find_figure(l.counters.extra, counter).has_value();
+          EXPECT_EQ(find_figure(r.counters.extra, counter).has_value(), counted) << what << " " << counter;
+          if (counted)
+            EXPECT_EQ(test::extra_counter(r, counter), test::extra_counter(l, counter)) << what << " " << counter;
+        }
       }
     }
   }
@@ -743,6 +758,7 @@ TEST(IllustrationBuffer, StorageOptionsThatDoNotGoTogetherAreErrorsNamingThem) {
   const TechniqueDescriptor& d = builtin_techniques().get("illustration_buffer");
   for (const auto& [params, named] : std::vector<std::pair<RawParams, std::string>>{
            {{{"storage", "linearized"}, {"sort", "dynamic"}}, "sort=dynamic"},
+           {{{"storage", "arrays"}, {"sort", "dynamic"}}, "sort=dynamic"},
            {{{"storage", "linked"}, {"fill", "atomic"}}, "fill=atomic"}}) {
     const RunResult r = test::harness().run(test::one_frame("illustration_buffer", params, "quads", {}, 8));
     EXPECT_EQ(r.status, RunStatus::error) << named;

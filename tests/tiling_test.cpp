@@ -176,11 +176,15 @@ TEST_P(TiledTechnique, RendersTheUntiledImageInForcedTiles) {
   std::vector<RawParams> variants = {{}};
   if (id == "illustration_buffer")
     variants = {{{"iterations", "4"}, {"diffusion", "steps"}},
-                {{"iterations", "4"}, {"diffusion", "sweep"}, {"lambda_beta", "0.25"}, {"lambda_gamma", "0.25"}}};
+                {{"iterations", "4"}, {"diffusion", "sweep"}, {"lambda_beta", "0.25"}, {"lambda_gamma", "0.25"}},
+                // Per-pixel arrays: each tile sizes its slots from its own last fill.
+                {{"iterations", "4"}, {"diffusion", "sweep"}, {"lambda_beta", "0.25"}, {"lambda_gamma", "0.25"},
+                 {"storage", "arrays"}}};
   for (const RawParams& params : variants) {
     for (const TiledCase& c : {TiledCase{"quads", {{"layers", "8"}, {"objects", "3"}}},
                                TiledCase{"spheres", {}}, TiledCase{"torus", {}}}) {
-      const std::string what = id + " on " + c.scene + (params.empty() ? "" : " " + params.at("diffusion"));
+      std::string what = id + " on " + c.scene + (params.empty() ? "" : " " + params.at("diffusion"));
+      if (params.count("storage") != 0) what += " storage=" + params.at("storage");
       RunSpec untiled_spec = spec_of(id, c);
       if (!params.empty()) untiled_spec.params = params;
       const RunResult untiled = test::harness().run(untiled_spec);

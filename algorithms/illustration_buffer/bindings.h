@@ -42,10 +42,10 @@
 // The sort's (sort.comp), a program of its own: fill records and the triangle table.
 #define IB_FRAGMENT_UNIT 0
 #define IB_SORT_TRIANGLES_UNIT 1  // neighbors=triangle_index
-#define IB_OFFSETS_UNIT 2          // storage=linearized: the fill's per-pixel ranges
+#define IB_OFFSETS_UNIT 2          // storage=linearized: the fill's per-pixel ranges; arrays: the fill's counts
 // 3: free
 #define IB_FLAT_COLORS_UNIT 4      // flat_color_records: the scene's colour per stable triangle id
-// Image units (fill.frag; the cursors with storage=linearized and fill=atomic).
+// Image units (fill.frag; the cursors with storage=linearized or arrays and fill=atomic).
 #define IB_CURSORS_IMAGE_UNIT 0
 
 // Uniform locations. u_width / u_height are declared by ib_storage.glsl for
@@ -64,7 +64,7 @@
 #define IB_LAMBDA_ALPHA_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 11)  // stylize_diffuse.comp
 #define IB_LAMBDA_BETA_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 12)
 #define IB_LAMBDA_GAMMA_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 13)
-// + 14: free (the profile is compose.frag's IB_PROFILE define)
+#define IB_SLOTS_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 14)  // fill.frag, sort.comp (IB_ARRAYS): slots per pixel
 #define IB_PROFILE_P_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 15)  // compose.frag, IB_MODULATE
 #define IB_NEXT_STEP_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 16)  // worklist.glsl
 #define IB_TOLERANCE_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 17)  // stylize_diffuse.comp, IB_WORKLIST

@@ -8,11 +8,16 @@
 // object and triangle id. The list length is counted even when the pool is
 // full, so the host learns how many records it needs (overflow -> grow and
 // render again) and how long the longest list is.
-// IB_LINEARIZED (storage=linearized): the host already knows every count
-// (the counting pass); pixel p owns records [offset[p], offset[p+1]) and a
-// fragment takes the next of them from its pixel's cursor, which started at
-// the offset: an image atomic, or (IB_FETCH_CURSOR) the pixel's R32UI colour
-// read and incremented in primitive order. No list, no global counter.
+// IB_RANGED (storage=linearized or arrays): a fragment takes the next record
+// of its pixel's range from the pixel's cursor: an image atomic, or
+// (IB_FETCH_CURSOR) the pixel's R32UI colour read and incremented in
+// primitive order. No list, no global counter. linearized: the host already
+// knows every count (the counting pass); pixel p owns records
+// [offset[p], offset[p+1]) and its cursor starts at the offset. IB_ARRAYS
+// (storage=arrays): pixel p owns the u_slots records from p * u_slots, its
+// cursor starts at 0 and ends at its count (read back by the host); a
+// fragment beyond the slots is not stored but still counted, and the host
+// fills the frame again with more slots.
 #include "shaders/shading.glsl"
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 
@@ -35,18 +40,34 @@ vec3 to_eye() { return u_projection[2][3] == 0.0 ? vec3(0.0, 0.0, 1.0) : normali
 
 #if defined(IB_FETCH_CURSOR)
 layout(location = 0) inout uint ib_cursor;
-#elif defined(IB_LINEARIZED)
+#elif defined(IB_RANGED)
 layout(binding = IB_CURSORS_IMAGE_UNIT, r32ui) uniform uimageBuffer ib_cursors;
 #endif
+#if defined(IB_ARRAYS)
+layout(location = IB_SLOTS_LOCATION) uniform uint u_slots;
+#endif
 
-// The record this fragment fills, or IB_NIL when the pool is full (storage=linked).
-uint take_record(uint pixel) {
+#if defined(IB_RANGED)
+// The pixel's cursor, advanced: this fragment's place in its pixel's range.
+uint take_slot(uint pixel) {
 #if defined(IB_FETCH_CURSOR)
   const uint slot = ib_cursor;
   ib_cursor = slot + 1u;
   return slot;
-#elif defined(IB_LINEARIZED)
+#else
   return imageAtomicAdd(ib_cursors, int(pixel), 1u);
+#endif
+}
+#endif
+
+// The record this fragment fills, or IB_NIL when the pool is full (storage=linked) or
+// the pixel's slots are (arrays).
+uint take_record(uint pixel) {
+#if defined(IB_ARRAYS)
+  const uint slot = take_slot(pixel);
+  return slot < u_slots ? pixel * u_slots + slot : IB_NIL;
+#elif defined(IB_RANGED)
+  return take_slot(pixel);
 #else
   const uint position = atomicAdd(ib_count[pixel], 1u);
   OIT_ATOMIC_RAISE(ib_longest, position + 1u);
@@ -63,7 +84,7 @@ uint take_record(uint pixel) {
 
 // The fill's list link of record `index`: the pixel's old head (storage=linked).
 uint link_record(uint pixel, uint index) {
-#if defined(IB_LINEARIZED)
+#if defined(IB_RANGED)
   return IB_NIL;  // the records of a pixel are contiguous
 #else
   return atomicExchange(ib_head[pixel], index);

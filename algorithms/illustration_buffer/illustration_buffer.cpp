@@ -20,7 +20,7 @@ const Choices<Modulation> kModulations{{Modulation::none, "none"},
 const Choices<SortMethod> kSorts{{SortMethod::automatic, "auto"}, {SortMethod::array, "array"},
                                  {SortMethod::dynamic, "dynamic"}};
 const Choices<Storage> kStorages{
-    {Storage::automatic, "auto"}, {Storage::linked, "linked"}, {Storage::linearized, "linearized"}};
+    {Storage::automatic, "auto"}, {Storage::linked, "linked"}, {Storage::linearized, "linearized"}, {Storage::arrays, "arrays"}};
 const Choices<Diffusion> kDiffusions{
     {Diffusion::automatic, "auto"}, {Diffusion::steps, "steps"}, {Diffusion::sweep, "sweep"}};
 const Choices<Profile> kProfiles{{Profile::none, "none"}, {Profile::exponential, "exponential"}, {Profile::power, "power"}};
@@ -145,12 +145,14 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
               "linked lists in a pool sized from the previous frame (grown with a re-render on overflow; "
               "carnecky2013 Algorithm 1); linearized = a counting pass, "
               "then each pixel's contiguous range from the counts' prefix sum, exactly sized, filled in place "
-              "(Knowles et al. 2012): no list walk in the sort, no global counter in the fill; auto = linked "
-              "with sort=dynamic, linearized with fill=atomic or framebuffer_fetch, else linearized on a "
-              "software rasterizer and linked on a GPU"),
+              "(Knowles et al. 2012): no list walk in the sort, no global counter in the fill; arrays = no "
+              "counting pass: per-pixel arrays of as many slots as the previous frame's longest list (first frame: "
+              "initial_nodes_per_pixel), each fragment at its pixel's next slot, a longer list caught by its "
+              "cursor and filled again with more slots; auto = linked with sort=dynamic, linearized with "
+              "fill=atomic or framebuffer_fetch, else linearized on a software rasterizer and linked on a GPU"),
           kSlotFills.spec(
               "fill", SlotFill::automatic,
-              "storage=linearized: how a fragment takes its slot: atomic = an image atomic on its pixel's cursor; "
+              "storage=linearized or arrays: how a fragment takes its slot: atomic = an image atomic on its pixel's cursor; "
               "framebuffer_fetch = the cursor is the pixel's R32UI colour, read and incremented in primitive order "
               "(GL_EXT_shader_framebuffer_fetch); auto = framebuffer_fetch where the device has it"),
           ParamSpec::boolean("flat_color_records", true,
@@ -163,8 +165,9 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
           ParamSpec::integer("max_per_pixel", 64, 1, 1024,
                              "sort array size; longer lists keep their nearest max_per_pixel fragments (counted)"),
           ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,
-                             "storage=linked: first frame's pool per pixel; it grows (with a re-render) on overflow "
-                             "(storage=linearized sizes the pool exactly from its counting pass)"),
+                             "storage=linked: first frame's pool per pixel; arrays: first frame's slots per pixel; either "
+                             "grows (with a re-render) on overflow (storage=linearized sizes the pool exactly from its "
+                             "counting pass)"),
           ParamSpec::boolean("measure_accuracy", false,
                              "record surface id and (u, v) per fragment and report neighbor_precision/recall "
                              "(16 B per fragment more; computed after the timed frames)"),
@@ -178,7 +181,7 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
       // searches change the links (heuristic and heuristic_merge find the same ones).
       .quality_sweep = {{"diffusion_tolerance", {"0.01", "0.001", "0"}},
                         {"neighbors", {"heuristic_merge", "heuristic", "triangle_index"}},
-                        {"storage", {"linked", "linearized"}}},
+                        {"storage", {"linked", "linearized", "arrays"}}},
       // Approximate (the default): exact (float blend) only with modulation=none.
       .adaptive_switches = {{"diffusion_sweep",
                               "sweeps the fields in place to the fixed point instead of `iterations` steps where that "

@@ -26,9 +26,12 @@ enum class Profile { none, exponential, power };  // eq. 10 / eq. 11
 // Where the fill puts the records: per-pixel linked lists in a pool sized
 // from the previous frame (carnecky2013 Algorithm 1), or a linearized
 // buffer (Knowles et al. 2012): a counting pass and each pixel's range
-// from the counts' prefix sum, exactly sized, filled in place. automatic
-// is resolved by settings_from and never reaches the technique.
-enum class Storage { automatic, linked, linearized };
+// from the counts' prefix sum, exactly sized, filled in place; or
+// fixed-size per-pixel arrays of as many slots as the previous frame's
+// longest list (no counting pass; a longer list is caught by its cursor and
+// the fill runs again with more slots). automatic is resolved by
+// settings_from and never reaches the technique.
+enum class Storage { automatic, linked, linearized, arrays };
 // How the diffusion reaches its result: `iterations` synchronous steps of
 // eq. 8-9, or in-place sweeps along the image lines until nothing moves (the
 // fixed point, which equals the steps' result when alpha cannot move and
@@ -55,13 +58,18 @@ struct Settings {
   uint64_t initial_nodes_per_pixel = 8;
   SortMethod sort = SortMethod::automatic;
   Storage storage = Storage::linearized;
-  SlotFill fill = SlotFill::automatic;  // storage=linearized (list_length_pass.h)
+  SlotFill fill = SlotFill::automatic;  // storage=linearized or arrays (list_length_pass.h)
   bool flat_color_records = true;  // unlit scenes: no colour in the fill record
   float normal_variation_scale = 10.0f;
   bool measure_accuracy = false;
   double accuracy_footprints = 1.5;
 
   bool linearized() const { return storage == Storage::linearized; }
+  bool arrays() const { return storage == Storage::arrays; }
+  // Whether each pixel's fill records are contiguous and the host knows
+  // every pixel's count before the sort (linearized: from the counting pass;
+  // arrays: the fill's cursors, read back).
+  bool ranged() const { return linearized() || arrays(); }
   bool heuristic() const { return neighbors != NeighborSearch::triangle_index; }
   // The modes that search neighbours and diffuse fields (carnecky2013 section 5).
   bool diffused() const { return uses_beta() || uses_gamma(); }

@@ -19,13 +19,16 @@
 // nodes are copied as above. Equal keys keep list order in both variants,
 // so the records are the same.
 //
-// IB_LINEARIZED (storage=linearized): the pixel's fill records are the
-// contiguous range [offset[p], offset[p+1]) (fill.frag), read in order with
-// no list walk, and the sorted range is the one the host computed from the
-// kept lengths (ib_head, ib_count): no atomic. The dispatch is over the
-// pixels that hold a fragment (pixel_dispatch.glsl, IB_LISTED), and the host
-// checks that every pixel's fill ended at the end of its counted range
-// (SlotCursors::count_mismatched: the counting pass and the fill disagreed).
+// IB_RANGED (storage=linearized or arrays): the pixel's fill records are
+// contiguous (fill.frag), read in order with no list walk, and the sorted
+// range is the one the host computed from the kept lengths (ib_head,
+// ib_count): no atomic. The dispatch is over the pixels that hold a fragment
+// (pixel_dispatch.glsl, IB_LISTED). linearized: the range
+// [offset[p], offset[p+1]), and the host checks that every pixel's fill
+// ended at the end of its counted range (SlotCursors::count_mismatched: the
+// counting pass and the fill disagreed). IB_ARRAYS: the first count[p] of
+// the u_slots records from p * u_slots, count[p] the fill's final cursor
+// (the host filled again until every list fit).
 //
 // The list is walked by ONE flat loop: each iteration either takes the next
 // node or moves the pending node's insertion hole one step nearer. Mesa 22.3
@@ -46,8 +49,13 @@ layout(binding = IB_FRAGMENT_UNIT) uniform usamplerBuffer ib_fragment_view;
 layout(binding = IB_SORT_TRIANGLES_UNIT) uniform usamplerBuffer ib_triangle_rows;
 #endif
 
-#ifdef IB_LINEARIZED
+#if defined(IB_ARRAYS)
+layout(binding = IB_OFFSETS_UNIT) uniform usamplerBuffer ib_fill_counts;  // W*H values
+layout(location = IB_SLOTS_LOCATION) uniform uint u_slots;
+#elif defined(IB_RANGED)
 layout(binding = IB_OFFSETS_UNIT) uniform usamplerBuffer ib_offsets;  // W*H + 1 values
+#endif
+#ifdef IB_RANGED
 // The fill record after `node` in the pixel's list (`taken`: sort_key(node)).
 #define IB_FOLLOW(node, taken) ((node) + 1u)
 #else
@@ -56,7 +64,7 @@ layout(binding = IB_OFFSETS_UNIT) uniform usamplerBuffer ib_offsets;  // W*H + 1
 
 // The first index of the pixel's sorted range of `kept` records.
 uint sorted_range(uint pixel, uint kept) {
-#ifdef IB_LINEARIZED
+#ifdef IB_RANGED
   return ib_head[pixel];  // the prefix sum of the kept lengths (host)
 #else
   const uint first = kept == 0u ? 0u : atomicAdd(ib_allocated, kept);
@@ -144,10 +152,10 @@ uint sort_list(uint head) {
 // is a loop counter, the same in all lanes, so llvmpipe reads the array as
 // vectors, where the insertion of keep_nearest moves a per-lane hole (a
 // gather and a scatter per step): about 3x faster at 32 layers. Short
-// contiguous lists (storage=linearized, arrays of at most 4) re-read the
+// contiguous lists (storage=linearized or arrays; local arrays of at most 4) re-read the
 // keys instead, which on the torus's lists of 2 took the sort from 4.6 to
 // 4.0 ms.
-#if defined(IB_LINEARIZED) && IB_ARRAY <= 4
+#if defined(IB_RANGED) && IB_ARRAY <= 4
 #define IB_GATHER_KEYS(start, length)
 #define IB_ITEM(k) sort_key(start + (k)).xyz  // `start`: sort_whole_list's
 #else
@@ -214,7 +222,10 @@ void keep_nearest(uint start, uint length, uint pixel) {
 void main() {
   uint pixel;
   if (!ib_invocation_pixel(pixel)) return;
-#ifdef IB_LINEARIZED
+#if defined(IB_ARRAYS)
+  const uint start = pixel * u_slots;
+  const uint length = texelFetch(ib_fill_counts, int(pixel)).x;
+#elif defined(IB_RANGED)
   const uint start = texelFetch(ib_offsets, int(pixel)).x;
   const uint length = texelFetch(ib_offsets, int(pixel) + 1).x - start;
 #else

@@ -34,7 +34,7 @@ constexpr GLsizeiptr kCounterBytes = 20;  // produced, longest, dropped, truncat
 // A worklist (worklist.glsl): indirect-dispatch arguments and count, then one entry per pixel.
 constexpr GLsizeiptr kWorklistHeaderBytes = 16;
 // The smallest sort array compiled (lists of up to 4, e.g. the torus's, with
-// storage=linearized, where the dynamic sort is not offered).
+// storage=linearized or arrays, where the dynamic sort is not offered).
 constexpr uint32_t kSmallestArray = 4;
 constexpr uint32_t kLargestSearchGroup = 4;  // triangle_search_program
 // sort=auto takes the dynamic sort up to this longest list: faster there on
@@ -51,7 +51,7 @@ void set_size(GLuint program, int width, int height) {
 }
 
 uint64_t bytes_per_fragment(const Settings& s) {
-  return uint64_t((s.linearized() ? 0 : kNextBytes) + kFragmentBytes + kSearchBytes + kShadeBytes +
+  return uint64_t((s.ranged() ? 0 : kNextBytes) + kFragmentBytes + kSearchBytes + kShadeBytes +
                   (s.measure_accuracy ? kTruthBytes : 0));
 }
 
@@ -62,23 +62,26 @@ bool tracks_convergence(const Settings& s) {
 
 // Per pixel: head and count; with storage=linearized the counting pass's
 // R32F count, the fill's offset and its cursor, and an entry in the list of
-// covered pixels (pixel_dispatch.glsl); plus (when the diffusion
+// covered pixels (pixel_dispatch.glsl); with arrays the same but the count
+// target (the offsets buffer holds the fill's counts); plus (when the diffusion
 // skips converged fragments) a stamp, an entry in each of three worklists,
 // an update count and a seed mark (stylize_seed_queue.comp).
-uint64_t bytes_per_pixel(const Settings& s) { return 8 + (s.linearized() ? 16 : 0) + (tracks_convergence(s) ? 24 : 0); }
+uint64_t bytes_per_pixel(const Settings& s) {
+  return 8 + (s.linearized() ? 16 : s.arrays() ? 12 : 0) + (tracks_convergence(s) ? 24 : 0);
+}
 
-// storage=linearized taking its slots by framebuffer fetch (fill, resolved on this device).
-bool fetches_cursors(const Settings& s) { return s.linearized() && fills_by_framebuffer_fetch(s.fill); }
+// storage=linearized or arrays taking its slots by framebuffer fetch (fill, resolved on this device).
+bool fetches_cursors(const Settings& s) { return s.ranged() && fills_by_framebuffer_fetch(s.fill); }
 
 // Combinations that cannot work, named (the constructor throws them).
 void check_combination(const Settings& s) {
-  if (s.linearized() && s.sort == SortMethod::dynamic)
+  if (s.ranged() && s.sort == SortMethod::dynamic)
     throw std::invalid_argument(
         "illustration_buffer: sort=dynamic sorts the fill's linked lists and needs storage=linked (storage=linearized "
-        "sorts each pixel's contiguous range with sort=array or auto)");
-  if (!s.linearized() && s.fill != SlotFill::automatic)
+        "and arrays sort each pixel's contiguous range with sort=array or auto)");
+  if (!s.ranged() && s.fill != SlotFill::automatic)
     throw std::invalid_argument("illustration_buffer: fill=atomic or fill=framebuffer_fetch chooses how "
-                                "storage=linearized takes its slots; with storage=linked leave fill=auto");
+                                "storage=linearized or arrays takes its slots; with storage=linked leave fill=auto");
   const bool sweep = s.diffused() && s.diffusion == Diffusion::sweep;
   if (sweep && s.adaptive_alpha)
     throw std::invalid_argument("illustration_buffer: diffusion=sweep leaves alpha as it starts, which eq. 8 would "
@@ -98,15 +101,16 @@ void check_combination(const Settings& s) {
 // What the fill and the sort share: the storage and how the fill took its slots.
 ShaderDefines storage_defines(const Settings& s) {
   ShaderDefines defines;
-  if (s.linearized()) defines.push_back({"IB_LINEARIZED", "1"});
+  if (s.ranged()) defines.push_back({"IB_RANGED", "1"});
+  if (s.arrays()) defines.push_back({"IB_ARRAYS", "1"});
   if (fetches_cursors(s)) defines.push_back({"IB_FETCH_CURSOR", "1"});
   return defines;
 }
 
 // The per-pixel passes' dispatch (pixel_dispatch.glsl): with
-// storage=linearized over the covered pixels the host lists.
+// storage=linearized or arrays over the covered pixels the host lists.
 ShaderDefines per_pixel_defines(const Settings& s) {
-  return s.linearized() ? ShaderDefines{{"IB_LISTED", "1"}} : ShaderDefines{};
+  return s.ranged() ? ShaderDefines{{"IB_LISTED", "1"}} : ShaderDefines{};
 }
 
 ShaderDefines fill_defines(const Settings& s, bool flat) {
@@ -125,18 +129,18 @@ class IllustrationBuffer final : public Technique {
       : s_(settings),
         counters_(make_buffer(kCounterBytes)),
         pool_("illustration_buffer",
-              s_.linearized() ? FragmentPool::Sizing::exact : FragmentPool::Sizing::previous_frame,
+              s_.linearized() ? FragmentPool::Sizing::exact
+              : s_.arrays()   ? FragmentPool::Sizing::fixed  // slots per pixel (size_slots)
+                              : FragmentPool::Sizing::previous_frame,
               kLargestRecordBytes, [this](uint64_t capacity) { allocate_pool(capacity); }, kSmallestPool) {
     check_combination(s_);
-    if (s_.linearized()) {
-      list_lengths_.emplace();
-      cursors_.emplace(s_.fill);
-    }
+    if (s_.linearized()) list_lengths_.emplace();
+    if (s_.ranged()) cursors_.emplace(s_.fill);
     fill_ = build_geometry_program("algorithms/illustration_buffer/fill.frag", fill_defines(s_, false));
     if (s_.flat_color_records)
       fill_flat_ = build_geometry_program("algorithms/illustration_buffer/fill.frag", fill_defines(s_, true));
     for (const Program* fill : fills()) {
-      if (!s_.linearized()) set_uniform(fill->id(), IB_MAX_PER_PIXEL_LOCATION, s_.max_per_pixel);
+      if (!s_.ranged()) set_uniform(fill->id(), IB_MAX_PER_PIXEL_LOCATION, s_.max_per_pixel);
       if (s_.modulation == Modulation::normal_variation)
         set_uniform(fill->id(), IB_NORMAL_VARIATION_SCALE_LOCATION, s_.normal_variation_scale);
     }
@@ -206,9 +210,12 @@ class IllustrationBuffer final : public Technique {
     height_ = height;
     head_ = make_buffer(GLsizeiptr(width) * height * 4);
     count_ = make_buffer(GLsizeiptr(width) * height * 4);
-    pool_.reset(s_.linearized() ? 1 : uint64_t(width) * uint64_t(height) * s_.initial_nodes_per_pixel);
+    const uint64_t pixels = uint64_t(width) * uint64_t(height);
+    slots_ = s_.arrays() ? uint32_t(s_.initial_nodes_per_pixel) : 0;
+    longest_by_tile_.clear();
+    pool_.reset(s_.linearized() ? 1 : pixels * s_.initial_nodes_per_pixel);
     no_attachments_ = make_attachmentless_framebuffer(width, height);
-    if (s_.linearized()) resize_linearized(width, height);
+    if (s_.ranged()) resize_ranged(width, height);
     if (tracks_convergence(s_)) {
       stamps_ = make_buffer(GLsizeiptr(width) * height * 4);
       pixel_updates_ = make_buffer(GLsizeiptr(width) * height * 4);
@@ -228,14 +235,15 @@ class IllustrationBuffer final : public Technique {
   void render(const Frame& frame) override {
     flat_ = s_.flat_color_records && frame.scene.flat_colors_view() != 0;
     flat_table_bytes_ = flat_ ? frame.scene.flat_colors_bytes() : 0;
-    const uint32_t longest = s_.linearized() ? fill_linearized(frame) : fill_linked(frame);
+    const uint32_t longest = s_.linearized() ? fill_linearized(frame) : s_.arrays() ? fill_arrays(frame) : fill_linked(frame);
     {
       auto stage = frame.clock.stage("sort");
       const GLuint sort = sort_program(longest);
       glUseProgram(sort);
       glBindTextureUnit(IB_FRAGMENT_UNIT, fragment_view_.id());
       if (flat_) glBindTextureUnit(IB_FLAT_COLORS_UNIT, frame.scene.flat_colors_view());
-      if (s_.linearized()) glBindTextureUnit(IB_OFFSETS_UNIT, offsets_view_.id());
+      if (s_.ranged()) glBindTextureUnit(IB_OFFSETS_UNIT, offsets_view_.id());
+      if (s_.arrays()) set_uniform(sort, IB_SLOTS_LOCATION, slots_);
       if (s_.stores_triangle_vertices()) {
         prepare_scene_data(frame.scene);
         glBindTextureUnit(IB_SORT_TRIANGLES_UNIT, triangles_view_.id());
@@ -275,9 +283,10 @@ class IllustrationBuffer final : public Technique {
     c.fragments_stored = stored_;
     c.fragments_dropped = dropped_;
     c.passes = passes_;
-    c.overflow_retries = pool_.overflow_retries();
+    c.overflow_retries = pool_.overflow_retries() + slot_overflows_;
     c.extra = {{"lists_truncated", double(truncated_lists_)},
                {"linearized_storage", s_.linearized() ? 1.0 : 0.0},
+               {"array_storage", s_.arrays() ? 1.0 : 0.0},
                {"framebuffer_fetch_fill", fetches_cursors(s_) ? 1.0 : 0.0},
                {"flat_color_records", flat_ ? 1.0 : 0.0},
                {"neighbor_passes", modulated() ? 1.0 : 0.0},
@@ -352,12 +361,15 @@ class IllustrationBuffer final : public Technique {
     return longest;
   }
 
-  // From the counted lengths: the fill's ranges (offsets_), and the sorted
+  // From the counted lengths (the counting pass's floats, or the arrays'
+  // final cursors): the fill's ranges (offsets_, linearized), and the sorted
   // ranges and lengths of the kept fragments (head_, count_: the prefix sum
-  // of min(count, max_per_pixel), the fill's own ranges unless `truncated`).
-  void upload_ranges(const std::vector<float>& counts, bool truncated) {
+  // of min(count, max_per_pixel), the fill's own offsets unless `truncated`).
+  template <class Count>
+  void upload_ranges(const std::vector<Count>& counts, bool truncated) {
     offsets_from_counts(counts, host_offsets_);
-    glNamedBufferSubData(offsets_.id(), 0, GLsizeiptr(host_offsets_.size() * 4), host_offsets_.data());
+    if (s_.linearized())
+      glNamedBufferSubData(offsets_.id(), 0, GLsizeiptr(host_offsets_.size() * 4), host_offsets_.data());
     lengths_from_counts(counts, host_lengths_, s_.max_per_pixel);
     const GLsizeiptr pixel_bytes = GLsizeiptr(host_lengths_.size() * 4);
     glNamedBufferSubData(count_.id(), 0, pixel_bytes, host_lengths_.data());
@@ -368,10 +380,10 @@ class IllustrationBuffer final : public Technique {
       offsets_from_counts(counts, host_sorted_offsets_, s_.max_per_pixel);
       glNamedBufferSubData(head_.id(), 0, pixel_bytes, host_sorted_offsets_.data());
       stored_ = host_sorted_offsets_.back();
-      const float most = float(s_.max_per_pixel);
-      truncated_lists_ = uint64_t(std::count_if(counts.begin(), counts.end(), [&](float n) { return n > most; }));
+      truncated_lists_ =
+          uint64_t(std::count_if(counts.begin(), counts.end(), [&](Count n) { return n > Count(s_.max_per_pixel); }));
     } else {
-      glCopyNamedBufferSubData(offsets_.id(), head_.id(), 0, 0, pixel_bytes);
+      glNamedBufferSubData(head_.id(), 0, pixel_bytes, host_offsets_.data());
     }
     dropped_ = produced_ - stored_;
     covered_pixels_.clear();
@@ -381,15 +393,65 @@ class IllustrationBuffer final : public Technique {
       glNamedBufferSubData(covered_.id(), 0, GLsizeiptr(covered_pixels_.size() * 4), covered_pixels_.data());
   }
 
-  void resize_linearized(int width, int height) {
+  // storage=arrays: stage "fill": the fill into per-pixel arrays of slots_
+  // records, the cursors read back (each pixel's count) and the ranges from
+  // them. A list longer than the slots (its cursor passed them) grows the
+  // slots to it and the fill runs again: nothing is lost (an overflow
+  // retry). Returns the longest list.
+  uint32_t fill_arrays(const Frame& frame) {
+    auto stage = frame.clock.stage("fill");
+    size_slots(frame);
+    for (passes_ = 1;; ++passes_) {
+      fill_buffer_u32(counters_, 0);
+      cursors_->start_at_zero();
+      bind_storage();
+      cursors_->bind_image(IB_CURSORS_IMAGE_UNIT);
+      set_uniform(fill_program().id(), IB_SLOTS_LOCATION, slots_);
+      draw_scene_pass(frame, fill_program(), cursors_->fill_framebuffer());
+      SlotCursors::unbind_image(IB_CURSORS_IMAGE_UNIT);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+      const std::vector<uint32_t>& counts = cursors_->read_back();
+      const uint32_t longest = counts.empty() ? 0 : *std::max_element(counts.begin(), counts.end());
+      longest_by_tile_[size_t(std::max(frame.tile_index, 0))] = longest;
+      if (longest <= slots_) {
+        upload_ranges(counts, longest > s_.max_per_pixel);
+        glNamedBufferSubData(offsets_.id(), 0, GLsizeiptr(counts.size() * 4), counts.data());  // the sort's ib_fill_counts
+        return longest;
+      }
+      ++slot_overflows_;
+      allocate_slots(longest);
+    }
+  }
+
+  // storage=arrays, before the fill: as many slots as the longest list any
+  // tile of the last frame had (the first frame: initial_nodes_per_pixel);
+  // fewer only when that is less than half of them, so that a view whose
+  // longest list wavers does not reallocate every frame.
+  void size_slots(const Frame& frame) {
+    const size_t tiles = size_t(std::max(frame.tile_count, 1));
+    if (longest_by_tile_.size() != tiles) longest_by_tile_.assign(tiles, 0);
+    const uint32_t last = *std::max_element(longest_by_tile_.begin(), longest_by_tile_.end());
+    const uint32_t wanted = last > 0 ? last : uint32_t(s_.initial_nodes_per_pixel);
+    if (wanted > slots_ || 2 * wanted < slots_ || pool_.capacity() < uint64_t(width_) * uint64_t(height_) * slots_)
+      allocate_slots(wanted);
+  }
+
+  void allocate_slots(uint32_t slots) {
+    slots_ = std::max<uint32_t>(slots, 1);
+    pool_.reset(uint64_t(width_) * uint64_t(height_) * slots_);
+  }
+
+  // The fill's per-pixel ranges (offsets_: linearized's offsets, W*H + 1
+  // values, or arrays' counts), the covered-pixel list and the cursors.
+  void resize_ranged(int width, int height) {
     const GLsizeiptr pixels = GLsizeiptr(width) * height;
-    list_lengths_->resize(width, height);
+    if (list_lengths_) list_lengths_->resize(width, height);
     offsets_ = make_buffer((pixels + 1) * 4);
     offsets_view_ = make_buffer_texture(offsets_, GL_R32UI, 0, (pixels + 1) * 4);
     covered_ = make_buffer(pixels * 4);
     covered_view_ = make_buffer_texture(covered_, GL_R32UI, 0, pixels * 4);
     cursors_->resize(width, height, "illustration_buffer");
-    gl_check("allocating the illustration buffer's linearized ranges");
+    gl_check("allocating the illustration buffer's per-pixel ranges");
   }
 
   // Neighbour search, then the fields' initial and boundary conditions
@@ -542,7 +604,7 @@ class IllustrationBuffer final : public Technique {
   // longer than the array get the variant that keeps the nearest ones.
   GLuint sort_program(uint32_t longest) {
     const bool dynamic = s_.sort == SortMethod::dynamic ||
-                         (s_.sort == SortMethod::automatic && !s_.linearized() && longest <= kLongestDynamicList);
+                         (s_.sort == SortMethod::automatic && !s_.ranged() && longest <= kLongestDynamicList);
     sorted_dynamically_ = dynamic;
     const uint32_t size =
         dynamic ? 0 : std::min(s_.max_per_pixel, std::max(kSmallestArray, std::bit_ceil(std::max<uint32_t>(longest, 1))));
@@ -605,9 +667,9 @@ class IllustrationBuffer final : public Technique {
   }
 
   // The bound `program` (built with per_pixel_defines) once per pixel, or
-  // with storage=linearized once per covered pixel (pixel_dispatch.glsl).
+  // with storage=linearized or arrays once per covered pixel (pixel_dispatch.glsl).
   void run_per_covered_pixel(GLuint program) const {
-    if (!s_.linearized()) return run_per_pixel();
+    if (!s_.ranged()) return run_per_pixel();
     glBindTextureUnit(IB_LISTED_PIXELS_UNIT, covered_view_.id());
     set_uniform(program, IB_LISTED_PIXELS_LOCATION, GLuint(covered_pixels_.size()));
     dispatch_in_groups_of_64(covered_pixels_.size());
@@ -671,7 +733,7 @@ class IllustrationBuffer final : public Technique {
 
 
   void allocate_pool(uint64_t capacity) {
-    if (!s_.linearized()) next_ = make_buffer(GLsizeiptr(capacity) * kNextBytes);  // sort=dynamic's lists
+    if (!s_.ranged()) next_ = make_buffer(GLsizeiptr(capacity) * kNextBytes);  // sort=dynamic's lists
     data_ = make_buffer(GLsizeiptr(capacity) * kFragmentBytes);
     data2_ = make_buffer(GLsizeiptr(capacity) * kSearchBytes);
     data3_ = make_buffer(GLsizeiptr(capacity) * kShadeBytes);
@@ -684,7 +746,7 @@ class IllustrationBuffer final : public Technique {
     fields_view_[0] = make_buffer_texture(data_, GL_RGBA32F, 0, field_bytes);
     fields_view_[1] = make_buffer_texture(data_, GL_RGBA32F, second_field_range(), field_bytes);
     gl_check("creating the illustration buffer's read-only views");
-    if (!s_.linearized())
+    if (!s_.ranged())
       for (const Program* fill : fills()) set_uniform(fill->id(), IB_CAPACITY_LOCATION, GLuint(capacity));
   }
 
@@ -726,10 +788,16 @@ class IllustrationBuffer final : public Technique {
   Texture worklist_views_[3], seeds_view_, head_view_, count_view_;
   Texture fragment_view_, search_view_, shade_view_, triangles_view_, fields_view_[2];  // read-only views (views.glsl)
   Framebuffer no_attachments_;
-  // storage=linearized: the counting pass, the fill's ranges (offsets_, W*H + 1
-  // values) and cursors (a buffer, or the R32UI target with framebuffer fetch).
+  // storage=linearized: the counting pass; linearized and arrays: the fill's
+  // ranges (offsets_: resize_ranged) and cursors (a buffer, or the R32UI
+  // target with framebuffer fetch).
   std::optional<ListLengthPass> list_lengths_;
   std::optional<SlotCursors> cursors_;
+  // storage=arrays: slots per pixel, the longest list of each tile's last
+  // fill (size_slots), and the fills run again for a longer list.
+  uint32_t slots_ = 0;
+  std::vector<uint32_t> longest_by_tile_;
+  uint64_t slot_overflows_ = 0;
   Buffer offsets_, covered_;
   Texture offsets_view_, covered_view_;
   // covered_pixels_: the pixels holding a fragment, in raster order (covered_, pixel_dispatch.glsl).
@@ -800,8 +868,8 @@ void IllustrationBuffer::work_saved(TechniqueCounters& c) const {
   const uint64_t single = uint64_t(std::count(count.begin(), count.end(), 1u));
   const uint64_t walked = s_.max_per_pixel == 1 ? truncated_lists_ : 0;
   c.work_saved = {{"passes_skipped", skipped}, {"fragments_not_sorted", double(single - walked)}};
-  // storage=linearized: the empty pixels the sort and the search were not dispatched over.
-  const uint64_t empty = s_.linearized() ? count.size() - covered_pixels_.size() : 0;
+  // storage=linearized or arrays: the empty pixels the sort and the search were not dispatched over.
+  const uint64_t empty = s_.ranged() ? count.size() - covered_pixels_.size() : 0;
   c.work_saved.push_back({"empty_pixels_not_dispatched", double(empty)});
 }
 
@@ -873,11 +941,14 @@ std::unique_ptr<Technique> make_illustration_buffer(const Settings& settings) {
 }
 
 std::string missing_device_feature(const Settings& settings) {
-  return settings.linearized() ? missing_slot_fill_feature(settings.fill) : "";
+  return settings.ranged() ? missing_slot_fill_feature(settings.fill) : "";
 }
 
 StorageNeed storage_need(const Settings& settings, const FrameContent& content) {
+  // arrays: the first frame's slots, or as many as the longest list.
+  const uint64_t slots = std::max<uint64_t>(settings.initial_nodes_per_pixel, content.longest_list);
   const uint64_t nodes = std::max(settings.linearized() ? content.fragments
+                                  : settings.arrays()   ? content.pixels() * slots
                                                         : fragment_pool::nodes_for(content, settings.initial_nodes_per_pixel),
                                   kSmallestPool);
   return {nodes * uint64_t(kLargestRecordBytes),

@@ -103,11 +103,14 @@ void SlotCursors::start(const Buffer& offsets) const {
   glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
 }
 
-uint32_t SlotCursors::count_mismatched(const std::vector<uint32_t>& offsets) const {
+void SlotCursors::start_at_zero() const {
+  const GLuint zero = 0;
+  if (fetch_) glClearTexImage(target_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  else glClearNamedBufferData(buffer_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+}
+
+const std::vector<uint32_t>& SlotCursors::read_back() const {
   const size_t pixels = size_t(width_) * size_t(height_);
-  if (offsets.size() != pixels + 1)
-    throw std::logic_error("SlotCursors::count_mismatched: " + std::to_string(offsets.size()) + " offsets for " +
-                           std::to_string(pixels) + " pixels");
   ends_.resize(pixels);
   const GLsizei bytes = GLsizei(pixels * sizeof(uint32_t));
   if (fetch_) {
@@ -117,8 +120,17 @@ uint32_t SlotCursors::count_mismatched(const std::vector<uint32_t>& offsets) con
     glGetNamedBufferSubData(buffer_.id(), 0, bytes, ends_.data());
   }
   gl_check("reading the fill's final cursors back");
+  return ends_;
+}
+
+uint32_t SlotCursors::count_mismatched(const std::vector<uint32_t>& offsets) const {
+  const size_t pixels = size_t(width_) * size_t(height_);
+  if (offsets.size() != pixels + 1)
+    throw std::logic_error("SlotCursors::count_mismatched: " + std::to_string(offsets.size()) + " offsets for " +
+                           std::to_string(pixels) + " pixels");
+  const std::vector<uint32_t>& ends = read_back();
   uint32_t mismatched = 0;
-  for (size_t p = 0; p < pixels; ++p) mismatched += ends_[p] != offsets[p + 1] ? 1 : 0;
+  for (size_t p = 0; p < pixels; ++p) mismatched += ends[p] != offsets[p + 1] ? 1 : 0;
   return mismatched;
 }
 
@@ -135,12 +147,17 @@ void fail_on_mismatched_ranges(const std::string& technique, uint32_t mismatched
                              std::to_string(counted_fragments) + " in all); the image would be wrong");
 }
 
-void offsets_from_counts(const std::vector<float>& counts, std::vector<uint32_t>& offsets, uint32_t most_per_pixel) {
+namespace {
+
+// offsets_from_counts for whole-number counts of any type (float from the
+// counting pass's R32F target, uint from a fill's cursors).
+template <class Count>
+void offsets_from(const std::vector<Count>& counts, std::vector<uint32_t>& offsets, uint32_t most_per_pixel) {
   offsets.resize(counts.size() + 1);
   uint64_t sum = 0;
   for (size_t i = 0; i < counts.size(); ++i) {
     offsets[i] = uint32_t(sum);
-    sum += std::min(uint64_t(counts[i]), uint64_t(most_per_pixel));  // whole numbers below 2^24: exact in float
+    sum += std::min(uint64_t(counts[i]), uint64_t(most_per_pixel));  // whole numbers below 2^24 when float: exact
     if (sum > UINT32_MAX)
       throw std::runtime_error("list lengths: more than " + std::to_string(UINT32_MAX) +
                                " fragments in one frame overflow 32-bit offsets");
@@ -148,9 +165,28 @@ void offsets_from_counts(const std::vector<float>& counts, std::vector<uint32_t>
   offsets.back() = uint32_t(sum);
 }
 
-void lengths_from_counts(const std::vector<float>& counts, std::vector<uint32_t>& lengths, uint32_t most_per_pixel) {
+template <class Count>
+void lengths_from(const std::vector<Count>& counts, std::vector<uint32_t>& lengths, uint32_t most_per_pixel) {
   lengths.resize(counts.size());
   for (size_t i = 0; i < counts.size(); ++i) lengths[i] = std::min(uint32_t(counts[i]), most_per_pixel);
+}
+
+}  // namespace
+
+void offsets_from_counts(const std::vector<float>& counts, std::vector<uint32_t>& offsets, uint32_t most_per_pixel) {
+  offsets_from(counts, offsets, most_per_pixel);
+}
+
+void offsets_from_counts(const std::vector<uint32_t>& counts, std::vector<uint32_t>& offsets, uint32_t most_per_pixel) {
+  offsets_from(counts, offsets, most_per_pixel);
+}
+
+void lengths_from_counts(const std::vector<float>& counts, std::vector<uint32_t>& lengths, uint32_t most_per_pixel) {
+  lengths_from(counts, lengths, most_per_pixel);
+}
+
+void lengths_from_counts(const std::vector<uint32_t>& counts, std::vector<uint32_t>& lengths, uint32_t most_per_pixel) {
+  lengths_from(counts, lengths, most_per_pixel);
 }
 
 uint64_t ListLengthPass::bytes_allocated() const { return uint64_t(width_) * uint64_t(height_) * 4u; }

@@ -56,6 +56,9 @@ class ListLengthPass {
 // values, the last one the total. Throws when the total passes 32 bits.
 void offsets_from_counts(const std::vector<float>& counts, std::vector<uint32_t>& offsets,
                          uint32_t most_per_pixel = UINT32_MAX);
+// The same from counts held as uints (a fill's final cursors, SlotCursors::read_back).
+void offsets_from_counts(const std::vector<uint32_t>& counts, std::vector<uint32_t>& offsets,
+                         uint32_t most_per_pixel = UINT32_MAX);
 // How the fill of such ranges takes a fragment's slot in its pixel's range
 // (the parameter `fill` of every technique that fills them): an image
 // atomic on the pixel's cursor, or the cursor as the pixel's R32UI colour,
@@ -82,6 +85,9 @@ class SlotCursors {
   // Every cursor := its pixel's offset (the first width x height values of
   // `offsets`, uints in pixel order).
   void start(const Buffer& offsets) const;
+  // Every cursor := 0: a fill into per-pixel arrays, whose final cursors are
+  // the pixels' fragment counts.
+  void start_at_zero() const;
   // The framebuffer the fill draws into: the cursor target with framebuffer
   // fetch, else one without attachments.
   const Framebuffer& fill_framebuffer() const { return framebuffer_; }
@@ -97,6 +103,8 @@ class SlotCursors {
   // back on the host: a check of every pixel for passes that do not visit
   // them all (4 bytes per pixel read back).
   uint32_t count_mismatched(const std::vector<uint32_t>& offsets) const;
+  // Every pixel's final cursor, read back on the host (pixel i = x + y * width).
+  const std::vector<uint32_t>& read_back() const;
 
  private:
   bool fetch_;
@@ -114,6 +122,8 @@ void fail_on_mismatched_ranges(const std::string& technique, uint32_t mismatched
 
 // min(count, most_per_pixel) of every pixel, as uints.
 void lengths_from_counts(const std::vector<float>& counts, std::vector<uint32_t>& lengths,
+                         uint32_t most_per_pixel = UINT32_MAX);
+void lengths_from_counts(const std::vector<uint32_t>& counts, std::vector<uint32_t>& lengths,
                          uint32_t most_per_pixel = UINT32_MAX);
 
 // Throws std::runtime_error when a technique's largest buffer of per-pixel
