@@ -42,12 +42,20 @@ vec3 oit_view_normal() {
   return gl_FrontFacing ? n : -n;
 }
 
-// Straight (not premultiplied) colour and opacity of this fragment.
-// Unlit scenes output the material colour exactly; lit ones use a two-sided
-// headlight: ambient 0.25 + diffuse 0.75 * |n.v|.
-vec4 oit_shade() {
-  if (!oit_scene_lit()) return v_color;
+// What the lighting multiplies the material colour's rgb by: a two-sided
+// headlight, ambient 0.25 + diffuse 0.75 * |n.v|; 1 for unlit scenes.
+float oit_light_factor() {
+  if (!oit_scene_lit()) return 1.0;
   vec3 to_eye = normalize(-v_view_position);
   float lambert = abs(dot(normalize(v_view_normal), to_eye));
-  return vec4(v_color.rgb * (0.25 + 0.75 * lambert), v_color.a);
+  return 0.25 + 0.75 * lambert;
+}
+
+// Straight (not premultiplied) colour and opacity of this fragment: unlit
+// scenes output the material colour exactly (the flat v_color, SceneGpu's
+// flat-colour table), lit ones its rgb times oit_light_factor(). A
+// technique that stores the factor can rebuild the colour bit for bit.
+vec4 oit_shade() {
+  if (!oit_scene_lit()) return v_color;
+  return vec4(v_color.rgb * oit_light_factor(), v_color.a);
 }

@@ -725,19 +725,25 @@ TEST(IllustrationBuffer, LinearizedAndArrayStorageGiveTheLinkedListsRecords) {
 }
 
 // flat_color_records: on unlit scenes the fill stores no colour and the sort
-// fetches the triangle's; the records, and so the image, are the same.
+// fetches the triangle's; on lit ones too with contiguous ranges, whose
+// record keeps the light factor instead of a list link (the linked lists'
+// lit records keep their colour). The records, and so the image, are the
+// same, bit for bit.
 TEST(IllustrationBuffer, FlatColourRecordsGiveTheStoredColoursImage) {
   struct Case {
     const char* scene;
     RawParams scene_params, params;
-    double flat;  // whether the scene is unlit (a flat-colour table exists)
+    double flat;  // whether the fill left the colour out (an unlit scene, or a lit one with contiguous ranges)
   };
   const std::vector<Case> cases = {
       {"quads", {{"layers", "12"}, {"objects", "3"}}, {}, 1.0},
       {"random_quads", {{"count", "64"}, {"size", "0.3"}}, {{"modulation", "none"}}, 1.0},
       {"quads", {{"layers", "12"}}, {{"modulation", "angle"}, {"storage", "linked"}}, 1.0},
       {"quads", {{"layers", "6"}}, {{"neighbors", "heuristic"}, {"max_per_pixel", "4"}}, 1.0},
-      {"torus", {}, {}, 0.0}};
+      {"torus", {}, {{"storage", "linked"}}, 0.0},
+      {"torus", {}, {{"storage", "linearized"}}, 1.0},
+      {"torus", {}, {{"storage", "arrays"}}, 1.0},
+      {"nested_spheres", {}, {{"storage", "arrays"}, {"modulation", "none"}}, 1.0}};
   for (const Case& c : cases) {
     const std::vector<RunResult> runs =
         render_each("flat_color_records", {"false", "true"}, c.params, c.scene, c.scene_params, 40, 32);

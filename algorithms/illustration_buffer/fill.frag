@@ -116,14 +116,22 @@ void main() {
   const uint index = take_record(pixel);
   if (index == IB_NIL) return;
   const uint next = link_record(pixel, index);
+#if defined(IB_FLAT_COLOR) && defined(IB_RANGED)
+  // No link in contiguous ranges: key.w keeps the light factor (1 unlit), from
+  // which the sort rebuilds the lit colour bit for bit (shading.glsl).
+  const uvec4 key = uvec4(floatBitsToUint(depth), oit_triangle_id(), v_object_id, floatBitsToUint(oit_light_factor()));
+#else
   const uvec4 key = uvec4(floatBitsToUint(depth), oit_triangle_id(), v_object_id, next);
+#endif
 #if defined(IB_SURFACE) && !defined(IB_FLAT_COLOR)
   const uvec4 surface = uvec4(floatBitsToUint(vec3(slopes, local_opacity)), ib_pack_normal(oit_view_normal()));
   ib_fragments[index] = IbFragment(oit_shade(), key, surface);
 #else
-  // IB_FLAT_COLOR (flat_color_records on an unlit scene): the sort fetches the
-  // triangle's colour by its id, so the fill stores no colour (on llvmpipe
-  // each 16 B store at a per-lane address is a loop over the lanes).
+  // IB_FLAT_COLOR (flat_color_records on an unlit scene, or a lit one with
+  // contiguous ranges): the sort fetches the triangle's colour by its id
+  // (times the light factor in key.w when ranged), so the fill stores no
+  // colour (on llvmpipe each 16 B store at a per-lane address is a loop over
+  // the lanes).
 #ifndef IB_FLAT_COLOR
   ib_fragments[index].color = oit_shade();
 #endif

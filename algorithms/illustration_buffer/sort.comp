@@ -75,8 +75,9 @@ uint sorted_range(uint pixel, uint kept) {
 }
 
 #ifdef IB_FLAT_COLOR
-// flat_color_records on an unlit scene: the fill stored no colour; each
-// fragment's is its triangle's flat colour, by stable triangle id (SceneGpu).
+// flat_color_records (unlit scenes; lit ones with IB_RANGED): the fill stored
+// no colour; each fragment's is its triangle's flat colour, by stable
+// triangle id (SceneGpu), with IB_RANGED times the light factor in key.w.
 layout(binding = IB_FLAT_COLORS_UNIT) uniform samplerBuffer ib_flat_colors;
 #endif
 
@@ -85,7 +86,10 @@ bool precedes(uvec3 a, uvec3 b) { return a.x < b.x || (a.x == b.x && a.y < b.y);
 // Copies fill record `node` of `pixel` to sorted position `to`.
 void copy_record(uint to, uint node, uint pixel) {
   const uvec4 key = texelFetch(ib_fragment_view, int(node * 3u + 1u));
-#ifdef IB_FLAT_COLOR
+#if defined(IB_FLAT_COLOR) && defined(IB_RANGED)
+  const vec4 flat_color = texelFetch(ib_flat_colors, int(key.y));
+  const vec4 color = vec4(flat_color.rgb * uintBitsToFloat(key.w), flat_color.a);  // key.w: the light factor (fill.frag)
+#elif defined(IB_FLAT_COLOR)
   const vec4 color = texelFetch(ib_flat_colors, int(key.y));
 #else
   const vec4 color = uintBitsToFloat(texelFetch(ib_fragment_view, int(node * 3u)));

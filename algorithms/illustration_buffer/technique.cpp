@@ -233,7 +233,9 @@ class IllustrationBuffer final : public Technique {
   }
 
   void render(const Frame& frame) override {
-    flat_ = s_.flat_color_records && frame.scene.flat_colors_view() != 0;
+    // Lit scenes: the record keeps the light factor where the linked lists keep their link.
+    flat_ = s_.flat_color_records && frame.scene.flat_colors_view() != 0 &&
+            (frame.scene.shading() == SceneShading::unlit || s_.ranged());
     flat_table_bytes_ = flat_ ? frame.scene.flat_colors_bytes() : 0;
     const uint32_t longest = s_.linearized() ? fill_linearized(frame) : s_.arrays() ? fill_arrays(frame) : fill_linked(frame);
     {

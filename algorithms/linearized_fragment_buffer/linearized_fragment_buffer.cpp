@@ -160,7 +160,8 @@ class LinearizedFragmentBuffer final : public Technique {
     {
       // The counting pass and the prefix sum: everything that sizes the frame.
       auto count = frame.clock.stage("count");
-      flat_ = flat_color_nodes_ && frame.scene.flat_colors_view() != 0;
+      // Its nodes keep no light factor: unlit scenes only.
+      flat_ = flat_color_nodes_ && frame.scene.shading() == SceneShading::unlit && frame.scene.flat_colors_view() != 0;
       pool_.set_record_bytes(node_bytes());
       if (host_scan_) scan_on_host(frame);
       else scan_on_device(frame);

@@ -86,7 +86,6 @@ GLuint SceneGpu::flat_colors_view() const {
 }
 
 void SceneGpu::build_flat_colors() const {
-  if (scene_.lit) return;
   const size_t triangles = scene_.triangle_count();
   if (triangles == 0) return;
   const uint32_t largest = *std::max_element(scene_.triangle_ids.begin(), scene_.triangle_ids.end());

@@ -25,13 +25,15 @@ class SceneGpu {
   // One draw call over every triangle, so gl_PrimitiveID = triangle index.
   void draw() const;
   size_t bytes() const { return bytes_; }
-  // Unlit scenes shade every fragment with its triangle's flat colour
-  // (shading.glsl: v_color, read from the provoking vertex), so a technique
-  // that stores a fragment's stable triangle id can fetch its exact colour
-  // later instead of storing 16 bytes of it. This buffer texture (RGBA32F,
-  // indexed by stable triangle id) holds those colours; 0 for lit scenes and
-  // for scenes whose stable ids are not unique or are far larger than the
-  // triangle count (no table is worth building then). Built on the first
+  // Every fragment's material colour is its triangle's flat colour
+  // (shading.glsl: v_color, read from the provoking vertex); unlit scenes
+  // shade with exactly it, lit ones multiply its rgb by oit_light_factor().
+  // So a technique that stores a fragment's stable triangle id (and on lit
+  // scenes the factor) can rebuild its exact colour later instead of storing
+  // 16 bytes of it. This buffer texture (RGBA32F, indexed by stable triangle
+  // id) holds those colours; 0 for scenes whose stable ids are not unique or
+  // are far larger than the triangle count (no table is worth building
+  // then). Built on the first
   // call, so scenes pay nothing unless a technique asks; the technique counts
   // flat_colors_bytes() in its memory.
   GLuint flat_colors_view() const;
