@@ -773,8 +773,9 @@ TEST(IllustrationBuffer, StorageOptionsThatDoNotGoTogetherAreErrorsNamingThem) {
   }
 }
 
-// storage=auto: linearized on a software rasterizer, linked on a GPU (the
-// counter says which ran); an explicit sort=dynamic or fill= decides it.
+// storage=auto: linearized on a software rasterizer's first frame (later
+// ones may fill arrays: the test below), linked on a GPU (the counter says
+// which ran); an explicit sort=dynamic or fill= decides it.
 TEST(IllustrationBuffer, AutoStorageFollowsTheDeviceUnlessSortOrFillNeedsOne) {
   test::gl_context();
   const double software = current_device_is_software() ? 1.0 : 0.0;
@@ -785,6 +786,32 @@ TEST(IllustrationBuffer, AutoStorageFollowsTheDeviceUnlessSortOrFillNeedsOne) {
     const RunResult r = test::harness().run(test::one_frame("illustration_buffer", params, "quads", {}, 8));
     ASSERT_EQ(r.status, RunStatus::ok) << what << ": " << r.message;
     EXPECT_EQ(test::extra_counter(r, "linearized_storage"), linearized) << what;
+  }
+}
+
+// storage=auto on a software rasterizer: the counting pass on a tile's
+// first frame, then per-pixel arrays on the frames after one whose slots
+// (pixels x longest list) held at most 4x its fragments: the torus's even
+// lists, not the spheres' (a deep middle, empty corners). On a GPU: linked
+// lists. The image is the linked lists' either way.
+TEST(IllustrationBuffer, AutoStorageFillsArraysAfterAFrameOfEvenLists) {
+  test::gl_context();
+  const bool software = current_device_is_software();
+  for (const char* scene : {"torus", "spheres"}) {
+    RunSpec spec = test::one_frame("illustration_buffer", {}, scene, {}, 48);
+    spec.warmup = 1;
+    spec.frames = 2;
+    const RunResult r = test::harness().run(spec);
+    ASSERT_EQ(r.status, RunStatus::ok) << scene << ": " << r.message;
+    const bool even = uint64_t(48 * 48) * r.max_depth_complexity <= 4 * r.scene_fragments;
+    EXPECT_EQ(even, std::string(scene) == "torus") << scene;  // both branches are covered
+    const bool arrays = software && even;
+    EXPECT_EQ(test::extra_counter(r, "array_storage"), arrays ? 1.0 : 0.0) << scene;
+    EXPECT_EQ(test::extra_counter(r, "linearized_storage"), software && !even ? 1.0 : 0.0) << scene;
+    if (software) EXPECT_EQ(r.counters.passes, arrays ? 1u : 2u) << scene;  // no counting pass in an arrays frame
+    const RunResult linked =
+        test::render_once("illustration_buffer", {{"storage", "linked"}}, scene, {}, 48, 48);
+    EXPECT_EQ(largest_difference(linked.image, r.image), 0.0) << scene;
   }
 }
 

@@ -26,7 +26,9 @@ const Choices<Diffusion> kDiffusions{
 const Choices<Profile> kProfiles{{Profile::none, "none"}, {Profile::exponential, "exponential"}, {Profile::power, "power"}};
 
 // storage=auto: what sort= or fill= asks for where one of them needs one
-// storage; else linearized on a software rasterizer and linked on a GPU. On
+// storage; else linearized on a software rasterizer (with per-pixel arrays
+// on the frames whose lists are even: Settings::arrays_where_even) and
+// linked on a GPU. On
 // an H200 the counting pass's read-back of every pixel's count cost more
 // than the linked fill's global counter saves (README: storage).
 Storage resolved_storage(Storage storage, SortMethod sort, SlotFill fill) {
@@ -65,7 +67,10 @@ Settings settings_from(const ParamSet& p) {
       diffusion == Diffusion::automatic && s.diffusion_tolerance == 0.0f && current_device_is_software();
   s.sort = p.choice("sort", kSorts);
   s.fill = p.choice("fill", kSlotFills);
-  s.storage = resolved_storage(p.choice("storage", kStorages), s.sort, s.fill);
+  const Storage storage = p.choice("storage", kStorages);
+  s.storage = resolved_storage(storage, s.sort, s.fill);
+  s.arrays_where_even =
+      storage == Storage::automatic && s.storage == Storage::linearized && current_device_is_software();
   s.flat_color_records = p.boolean("flat_color_records");
   s.normal_variation_scale = float(p.real("normal_variation_scale"));
   s.lambda_alpha = float(p.real("lambda_alpha"));
@@ -148,17 +153,19 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
               "(Knowles et al. 2012): no list walk in the sort, no global counter in the fill; arrays = no "
               "counting pass: per-pixel arrays of as many slots as the previous frame's longest list (first frame: "
               "initial_nodes_per_pixel), each fragment at its pixel's next slot, a longer list caught by its "
-              "cursor and filled again with more slots; auto = linked with sort=dynamic, linearized with "
-              "fill=atomic or framebuffer_fetch, else linearized on a software rasterizer and linked on a GPU"),
+              "cursor and filled again with more slots; auto = linked with sort=dynamic, else on a software "
+              "rasterizer arrays on the frames after one whose slots would hold at most 4x its fragments and "
+              "linearized on the others, and on a GPU linked (linearized with fill=atomic or framebuffer_fetch)"),
           kSlotFills.spec(
               "fill", SlotFill::automatic,
               "storage=linearized or arrays: how a fragment takes its slot: atomic = an image atomic on its pixel's cursor; "
               "framebuffer_fetch = the cursor is the pixel's R32UI colour, read and incremented in primitive order "
               "(GL_EXT_shader_framebuffer_fetch); auto = framebuffer_fetch where the device has it"),
           ParamSpec::boolean("flat_color_records", true,
-                             "unlit scenes (every fragment has its triangle's flat colour): the fill stores no colour "
-                             "and the sort fetches the exact colour by triangle id; false, or lit scenes: the fill "
-                             "stores the float colour"),
+                             "the fill stores no colour and the sort fetches the triangle's flat colour by triangle id: "
+                             "on unlit scenes, and on lit ones with storage=linearized or arrays (the record keeps the "
+                             "light factor instead of a list link; the same colour bit for bit); false, or lit scenes "
+                             "with storage=linked: the fill stores the float colour"),
           ParamSpec::real("normal_variation_scale", 10.0, 0.0, 1000.0,
                           "modulation=normal_variation: opacity = min(1, scale * |grad n|), grad n the view normal's "
                           "change per pixel (dFdx, dFdy)"),
@@ -193,8 +200,9 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
                               {{"skip_converged", "true"}, {"diffusion", "steps"}},
                               {{"skip_converged", "false"}, {"diffusion", "steps"}}},
                              {"flat_color_records",
-                              "stores no colour in the fill record on unlit scenes and fetches each fragment's flat "
-                              "colour by triangle id in the sort",
+                              "stores no colour in the fill record (unlit scenes, and lit ones with contiguous ranges: "
+                              "the light factor instead) and fetches each fragment's flat colour by triangle id in the "
+                              "sort",
                               {{"flat_color_records", "true"}},
                               {{"flat_color_records", "false"}}}},
       .extra_support_check = [](const ParamSet& params, const SceneFacts& scene) -> std::string {

@@ -59,13 +59,18 @@ struct Settings {
   SortMethod sort = SortMethod::automatic;
   Storage storage = Storage::linearized;
   SlotFill fill = SlotFill::automatic;  // storage=linearized or arrays (list_length_pass.h)
-  bool flat_color_records = true;  // unlit scenes: no colour in the fill record
+  // storage=auto on a software rasterizer (storage is linearized then): each
+  // frame fills per-pixel arrays where the last frame's lists were even
+  // enough (technique.cpp, kMostSlotsPerFragment), else runs the counting pass.
+  bool arrays_where_even = false;
+  bool flat_color_records = true;  // unlit scenes, lit ones with ranged(): no colour in the fill record
   float normal_variation_scale = 10.0f;
   bool measure_accuracy = false;
   double accuracy_footprints = 1.5;
 
   bool linearized() const { return storage == Storage::linearized; }
   bool arrays() const { return storage == Storage::arrays; }
+  bool may_fill_arrays() const { return arrays() || arrays_where_even; }
   // Whether each pixel's fill records are contiguous and the host knows
   // every pixel's count before the sort (linearized: from the counting pass;
   // arrays: the fill's cursors, read back).

@@ -42,6 +42,10 @@ constexpr uint32_t kLargestSearchGroup = 4;  // triangle_search_program
 constexpr uint32_t kLongestDynamicList = 4;
 // Keeps both field ranges inside fragData for any storage-offset alignment up to 4 KiB.
 constexpr uint64_t kSmallestPool = 256;
+// Settings::arrays_where_even: per-pixel arrays only where their slots
+// (pixels x longest list) hold at most this many times the fragments; more
+// uneven lists (a few deep pixels) take the counting pass and exact ranges.
+constexpr uint64_t kMostSlotsPerFragment = 4;
 
 // u_width and u_height (ib_storage.glsl) are declared for every program and
 // used by some: the compiler drops the others (uniforms.h).
@@ -98,11 +102,12 @@ void check_combination(const Settings& s) {
     throw std::runtime_error("illustration_buffer: " + missing);
 }
 
-// What the fill and the sort share: the storage and how the fill took its slots.
-ShaderDefines storage_defines(const Settings& s) {
+// What the fill and the sort share: the storage (`arrays`: this frame's
+// ranges are per-pixel arrays) and how the fill took its slots.
+ShaderDefines storage_defines(const Settings& s, bool arrays) {
   ShaderDefines defines;
   if (s.ranged()) defines.push_back({"IB_RANGED", "1"});
-  if (s.arrays()) defines.push_back({"IB_ARRAYS", "1"});
+  if (arrays) defines.push_back({"IB_ARRAYS", "1"});
   if (fetches_cursors(s)) defines.push_back({"IB_FETCH_CURSOR", "1"});
   return defines;
 }
@@ -113,8 +118,8 @@ ShaderDefines per_pixel_defines(const Settings& s) {
   return s.ranged() ? ShaderDefines{{"IB_LISTED", "1"}} : ShaderDefines{};
 }
 
-ShaderDefines fill_defines(const Settings& s, bool flat) {
-  ShaderDefines defines = storage_defines(s);
+ShaderDefines fill_defines(const Settings& s, bool flat, bool arrays) {
+  ShaderDefines defines = storage_defines(s, arrays);
   if (flat) defines.push_back({"IB_FLAT_COLOR", "1"});
   if (s.measure_accuracy) defines.push_back({"IB_MEASURE", "1"});
   if (s.records_surface()) defines.push_back({"IB_SURFACE", "1"});
@@ -136,9 +141,13 @@ class IllustrationBuffer final : public Technique {
     check_combination(s_);
     if (s_.linearized()) list_lengths_.emplace();
     if (s_.ranged()) cursors_.emplace(s_.fill);
-    fill_ = build_geometry_program("algorithms/illustration_buffer/fill.frag", fill_defines(s_, false));
-    if (s_.flat_color_records)
-      fill_flat_ = build_geometry_program("algorithms/illustration_buffer/fill.frag", fill_defines(s_, true));
+    for (const bool arrays : {false, true}) {
+      if (arrays ? !s_.may_fill_arrays() : s_.arrays()) continue;
+      for (const bool flat : {false, true})
+        if (!flat || s_.flat_color_records)
+          fills_[arrays][flat] =
+              build_geometry_program("algorithms/illustration_buffer/fill.frag", fill_defines(s_, flat, arrays));
+    }
     for (const Program* fill : fills()) {
       if (!s_.ranged()) set_uniform(fill->id(), IB_MAX_PER_PIXEL_LOCATION, s_.max_per_pixel);
       if (s_.modulation == Modulation::normal_variation)
@@ -211,8 +220,8 @@ class IllustrationBuffer final : public Technique {
     head_ = make_buffer(GLsizeiptr(width) * height * 4);
     count_ = make_buffer(GLsizeiptr(width) * height * 4);
     const uint64_t pixels = uint64_t(width) * uint64_t(height);
-    slots_ = s_.arrays() ? uint32_t(s_.initial_nodes_per_pixel) : 0;
-    longest_by_tile_.clear();
+    slots_ = s_.arrays() ? uint32_t(s_.initial_nodes_per_pixel) : 0;  // arrays_where_even: sized on its first arrays frame
+    lists_by_tile_.clear();
     pool_.reset(s_.linearized() ? 1 : pixels * s_.initial_nodes_per_pixel);
     no_attachments_ = make_attachmentless_framebuffer(width, height);
     if (s_.ranged()) resize_ranged(width, height);
@@ -237,7 +246,8 @@ class IllustrationBuffer final : public Technique {
     flat_ = s_.flat_color_records && frame.scene.flat_colors_view() != 0 &&
             (frame.scene.shading() == SceneShading::unlit || s_.ranged());
     flat_table_bytes_ = flat_ ? frame.scene.flat_colors_bytes() : 0;
-    const uint32_t longest = s_.linearized() ? fill_linearized(frame) : s_.arrays() ? fill_arrays(frame) : fill_linked(frame);
+    arrays_ = fills_arrays(frame);
+    const uint32_t longest = arrays_ ? fill_arrays(frame) : s_.linearized() ? fill_linearized(frame) : fill_linked(frame);
     {
       auto stage = frame.clock.stage("sort");
       const GLuint sort = sort_program(longest);
@@ -245,14 +255,14 @@ class IllustrationBuffer final : public Technique {
       glBindTextureUnit(IB_FRAGMENT_UNIT, fragment_view_.id());
       if (flat_) glBindTextureUnit(IB_FLAT_COLORS_UNIT, frame.scene.flat_colors_view());
       if (s_.ranged()) glBindTextureUnit(IB_OFFSETS_UNIT, offsets_view_.id());
-      if (s_.arrays()) set_uniform(sort, IB_SLOTS_LOCATION, slots_);
+      if (arrays_) set_uniform(sort, IB_SLOTS_LOCATION, slots_);
       if (s_.stores_triangle_vertices()) {
         prepare_scene_data(frame.scene);
         glBindTextureUnit(IB_SORT_TRIANGLES_UNIT, triangles_view_.id());
       }
       run_per_covered_pixel(sort);
       // The dispatch left out the empty pixels: the host checks every range.
-      if (s_.linearized())
+      if (s_.linearized() && !arrays_)
         fail_on_mismatched_ranges("illustration_buffer", cursors_->count_mismatched(host_offsets_), produced_);
     }
     bind_sorted_views();
@@ -287,8 +297,8 @@ class IllustrationBuffer final : public Technique {
     c.passes = passes_;
     c.overflow_retries = pool_.overflow_retries() + slot_overflows_;
     c.extra = {{"lists_truncated", double(truncated_lists_)},
-               {"linearized_storage", s_.linearized() ? 1.0 : 0.0},
-               {"array_storage", s_.arrays() ? 1.0 : 0.0},
+               {"linearized_storage", s_.linearized() && !arrays_ ? 1.0 : 0.0, Combine::max},
+               {"array_storage", arrays_ ? 1.0 : 0.0, Combine::max},
                {"framebuffer_fetch_fill", fetches_cursors(s_) ? 1.0 : 0.0},
                {"flat_color_records", flat_ ? 1.0 : 0.0},
                {"neighbor_passes", modulated() ? 1.0 : 0.0},
@@ -311,9 +321,13 @@ class IllustrationBuffer final : public Technique {
   bool modulated() const { return s_.diffused(); }
 
   std::vector<const Program*> fills() const {
-    return fill_flat_ ? std::vector<const Program*>{&fill_, &fill_flat_} : std::vector<const Program*>{&fill_};
+    std::vector<const Program*> built;
+    for (const auto& by_colour : fills_)
+      for (const Program& fill : by_colour)
+        if (fill) built.push_back(&fill);
+    return built;
   }
-  const Program& fill_program() const { return flat_ ? fill_flat_ : fill_; }
+  const Program& fill_program() const { return fills_[arrays_][flat_]; }
 
   // storage=linked: stage "clear", then the fill into linked lists, again
   // after a pool overflow (the pool grew). Returns the longest list.
@@ -352,6 +366,7 @@ class IllustrationBuffer final : public Technique {
       pool_.set_exact(produced_);
       fill_buffer_u32(counters_, 0);
       cursors_->start(offsets_);
+      remember_lists(frame, longest);
     }
     auto stage = frame.clock.stage("fill");
     bind_storage();
@@ -370,7 +385,7 @@ class IllustrationBuffer final : public Technique {
   template <class Count>
   void upload_ranges(const std::vector<Count>& counts, bool truncated) {
     offsets_from_counts(counts, host_offsets_);
-    if (s_.linearized())
+    if (!arrays_)
       glNamedBufferSubData(offsets_.id(), 0, GLsizeiptr(host_offsets_.size() * 4), host_offsets_.data());
     lengths_from_counts(counts, host_lengths_, s_.max_per_pixel);
     const GLsizeiptr pixel_bytes = GLsizeiptr(host_lengths_.size() * 4);
@@ -402,7 +417,7 @@ class IllustrationBuffer final : public Technique {
   // retry). Returns the longest list.
   uint32_t fill_arrays(const Frame& frame) {
     auto stage = frame.clock.stage("fill");
-    size_slots(frame);
+    size_slots();
     for (passes_ = 1;; ++passes_) {
       fill_buffer_u32(counters_, 0);
       cursors_->start_at_zero();
@@ -414,9 +429,9 @@ class IllustrationBuffer final : public Technique {
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
       const std::vector<uint32_t>& counts = cursors_->read_back();
       const uint32_t longest = counts.empty() ? 0 : *std::max_element(counts.begin(), counts.end());
-      longest_by_tile_[size_t(std::max(frame.tile_index, 0))] = longest;
       if (longest <= slots_) {
         upload_ranges(counts, longest > s_.max_per_pixel);
+        remember_lists(frame, longest);
         glNamedBufferSubData(offsets_.id(), 0, GLsizeiptr(counts.size() * 4), counts.data());  // the sort's ib_fill_counts
         return longest;
       }
@@ -425,14 +440,32 @@ class IllustrationBuffer final : public Technique {
     }
   }
 
-  // storage=arrays, before the fill: as many slots as the longest list any
-  // tile of the last frame had (the first frame: initial_nodes_per_pixel);
+  // Whether this frame fills per-pixel arrays: with storage=arrays always;
+  // with arrays_where_even where this tile's last frame had lists whose
+  // slots (pixels x longest) held at most kMostSlotsPerFragment times its
+  // fragments (no history: the counting pass runs first).
+  bool fills_arrays(const Frame& frame) {
+    lists_by_tile_.resize(size_t(std::max(frame.tile_count, 1)));
+    if (s_.arrays()) return true;
+    if (!s_.arrays_where_even) return false;
+    const TileLists& last = lists_by_tile_[size_t(std::max(frame.tile_index, 0))];
+    const uint64_t slots = uint64_t(width_) * uint64_t(height_) * last.longest;
+    return last.fragments > 0 && slots <= kMostSlotsPerFragment * last.fragments;
+  }
+
+  // This tile's longest list and fragments (produced_), for the next frame.
+  void remember_lists(const Frame& frame, uint32_t longest) {
+    lists_by_tile_.resize(std::max(lists_by_tile_.size(), size_t(std::max(frame.tile_index, 0)) + 1));
+    lists_by_tile_[size_t(std::max(frame.tile_index, 0))] = {longest, produced_};
+  }
+
+  // Before a fill into per-pixel arrays: as many slots as the longest list
+  // any tile of the last frame had (none known: initial_nodes_per_pixel);
   // fewer only when that is less than half of them, so that a view whose
   // longest list wavers does not reallocate every frame.
-  void size_slots(const Frame& frame) {
-    const size_t tiles = size_t(std::max(frame.tile_count, 1));
-    if (longest_by_tile_.size() != tiles) longest_by_tile_.assign(tiles, 0);
-    const uint32_t last = *std::max_element(longest_by_tile_.begin(), longest_by_tile_.end());
+  void size_slots() {
+    uint32_t last = 0;
+    for (const TileLists& tile : lists_by_tile_) last = std::max(last, tile.longest);
     const uint32_t wanted = last > 0 ? last : uint32_t(s_.initial_nodes_per_pixel);
     if (wanted > slots_ || 2 * wanted < slots_ || pool_.capacity() < uint64_t(width_) * uint64_t(height_) * slots_)
       allocate_slots(wanted);
@@ -591,8 +624,9 @@ class IllustrationBuffer final : public Technique {
   }
 
   std::vector<GLuint> programs() const {
-    std::vector<GLuint> all = {fill_.id(), compose_.id()};
-    for (const Program* p : {&fill_flat_, &neighbors_, &stylize_init_, &stylize_inits_[0], &stylize_inits_[1],
+    std::vector<GLuint> all = {compose_.id()};
+    for (const Program* fill : fills()) all.push_back(fill->id());
+    for (const Program* p : {&neighbors_, &stylize_init_, &stylize_inits_[0], &stylize_inits_[1],
                              &seed_queue_, &stylize_diffuse_, &diffuse_listed_, &diffuse_sweep_, &sweep_check_})
       if (*p) all.push_back(p->id());
     for (const auto& [variant, program] : sorts_) all.push_back(program.id());
@@ -611,16 +645,16 @@ class IllustrationBuffer final : public Technique {
     const uint32_t size =
         dynamic ? 0 : std::min(s_.max_per_pixel, std::max(kSmallestArray, std::bit_ceil(std::max<uint32_t>(longest, 1))));
     const bool truncates = !dynamic && longest > size;
-    auto it = sorts_.find({size, flat_, truncates});
+    auto it = sorts_.find({size, flat_, truncates, arrays_});
     if (it == sorts_.end()) {
-      ShaderDefines defines = storage_defines(s_);
+      ShaderDefines defines = storage_defines(s_, arrays_);
       for (const ShaderDefine& define : per_pixel_defines(s_)) defines.push_back(define);
       if (flat_) defines.push_back({"IB_FLAT_COLOR", "1"});
       if (truncates) defines.push_back({"IB_TRUNCATES", "1"});
       defines.push_back(dynamic ? ShaderDefine{"IB_DYNAMIC", "1"} : ShaderDefine{"IB_ARRAY", std::to_string(size)});
       if (s_.stores_triangle_vertices()) defines.push_back({"IB_TRIANGLE_VERTICES", "1"});
       if (s_.records_surface()) defines.push_back({"IB_SURFACE", "1"});
-      it = sorts_.emplace(SortVariant{size, flat_, truncates}, build_compute_program("algorithms/illustration_buffer/sort.comp", defines)).first;
+      it = sorts_.emplace(SortVariant{size, flat_, truncates, arrays_}, build_compute_program("algorithms/illustration_buffer/sort.comp", defines)).first;
       set_size(it->second.id(), width_, height_);
       if (dynamic) set_uniform(it->second.id(), IB_MAX_PER_PIXEL_LOCATION, s_.max_per_pixel);
     }
@@ -771,14 +805,16 @@ class IllustrationBuffer final : public Technique {
   void read_lists(std::vector<uint32_t>& first, std::vector<uint32_t>& count, std::vector<SortedRecord>& sorted) const;
 
   Settings s_;
-  // fill_flat_: flat_color_records, for unlit scenes (no colour in the record).
+  // fills_[arrays][flat]: into per-pixel arrays (IB_ARRAYS) or not; with
+  // flat_color_records (no colour in the record: fill.frag) or not.
   // stylize_inits_: with skip_converged's queue ([1]: also alpha seeds); diffuse_sweep_: diffusion=sweep.
-  Program fill_, fill_flat_, compose_, neighbors_, stylize_init_, stylize_inits_[2], seed_queue_, stylize_diffuse_,
+  Program fills_[2][2], compose_, neighbors_, stylize_init_, stylize_inits_[2], seed_queue_, stylize_diffuse_,
       diffuse_listed_, diffuse_sweep_, sweep_check_;
   bool flat_ = false;  // this frame's records hold no colour
   uint64_t flat_table_bytes_ = 0;
-  // By local array size (0: the dynamic sort), flat colours, and whether a list is longer than the array.
-  using SortVariant = std::tuple<uint32_t, bool, bool>;
+  // By local array size (0: the dynamic sort), flat colours, whether a list is longer than the array, and
+  // whether the fill records are per-pixel arrays.
+  using SortVariant = std::tuple<uint32_t, bool, bool, bool>;
   std::map<SortVariant, Program> sorts_;
   std::map<uint32_t, Program> triangle_searches_;  // by IB_GROUP (triangle_search_program)
   bool sorted_dynamically_ = false;    // the last frame's sort
@@ -795,10 +831,17 @@ class IllustrationBuffer final : public Technique {
   // target with framebuffer fetch).
   std::optional<ListLengthPass> list_lengths_;
   std::optional<SlotCursors> cursors_;
-  // storage=arrays: slots per pixel, the longest list of each tile's last
-  // fill (size_slots), and the fills run again for a longer list.
+  // Per-pixel arrays (storage=arrays, or arrays_where_even): whether this
+  // frame fills them, the slots per pixel, each tile's last longest list and
+  // fragments (size_slots, fills_arrays), and the fills run again for a
+  // longer list.
+  bool arrays_ = false;
   uint32_t slots_ = 0;
-  std::vector<uint32_t> longest_by_tile_;
+  struct TileLists {
+    uint32_t longest = 0;
+    uint64_t fragments = 0;
+  };
+  std::vector<TileLists> lists_by_tile_;
   uint64_t slot_overflows_ = 0;
   Buffer offsets_, covered_;
   Texture offsets_view_, covered_view_;
@@ -947,12 +990,16 @@ std::string missing_device_feature(const Settings& settings) {
 }
 
 StorageNeed storage_need(const Settings& settings, const FrameContent& content) {
-  // arrays: the first frame's slots, or as many as the longest list.
-  const uint64_t slots = std::max<uint64_t>(settings.initial_nodes_per_pixel, content.longest_list);
-  const uint64_t nodes = std::max(settings.linearized() ? content.fragments
-                                  : settings.arrays()   ? content.pixels() * slots
-                                                        : fragment_pool::nodes_for(content, settings.initial_nodes_per_pixel),
-                                  kSmallestPool);
+  // arrays: the first frame's slots, or as many as the longest list;
+  // arrays_where_even: the exact count, or arrays where the lists are even.
+  const uint64_t arrays = content.pixels() * std::max<uint64_t>(settings.initial_nodes_per_pixel, content.longest_list);
+  const uint64_t even = content.pixels() * content.longest_list;
+  const uint64_t ranged = settings.arrays() ? arrays
+                          : settings.arrays_where_even && even <= kMostSlotsPerFragment * content.fragments
+                              ? std::max(content.fragments, even)
+                              : content.fragments;
+  const uint64_t nodes = std::max(
+      settings.ranged() ? ranged : fragment_pool::nodes_for(content, settings.initial_nodes_per_pixel), kSmallestPool);
   return {nodes * uint64_t(kLargestRecordBytes),
           content.pixels() * bytes_per_pixel(settings) + nodes * bytes_per_fragment(settings)};
 }
