@@ -815,6 +815,38 @@ TEST(IllustrationBuffer, AutoStorageFillsArraysAfterAFrameOfEvenLists) {
   }
 }
 
+// storage=auto on a software rasterizer, when a frame's lists outgrow the
+// slots the last frame's even lists sized (the torus's, then the nested
+// spheres' six layers): that frame is filled again into exact ranges from
+// the counts its cursors hold (an overflow retry, two passes, no counting
+// pass, no arrays sized by an uneven frame), with the image a first frame
+// of exact ranges gives.
+TEST(IllustrationBuffer, AutoStorageRefillsIntoExactRangesWhenAListOutgrowsItsSlots) {
+  test::gl_context();
+  const TechniqueDescriptor& d = builtin_techniques().get("illustration_buffer");
+  const Scene torus = load_scene("torus", {}), nested = load_scene("nested_spheres", {});
+  const SceneGpu torus_gpu(torus), nested_gpu(nested);
+  test::TechniqueRenderer moved(d, 48, 48), fresh(d, 48, 48);
+  moved.render(torus_gpu);  // the counting pass: even lists
+  moved.render(torus_gpu);  // per-pixel arrays of the torus's longest list
+  const double arrays_before = find_figure(moved.technique->counters().extra, "array_storage").value_or(-1.0);
+  const Image image = moved.render(nested_gpu);
+  const TechniqueCounters c = moved.technique->counters();
+  if (current_device_is_software()) {
+    EXPECT_EQ(arrays_before, 1.0);
+    EXPECT_EQ(c.overflow_retries, 1u);
+    EXPECT_EQ(c.passes, 2u);  // the fill into arrays, then into exact ranges
+    EXPECT_EQ(find_figure(c.extra, "array_storage").value_or(-1.0), 0.0);
+    EXPECT_EQ(find_figure(c.extra, "linearized_storage").value_or(-1.0), 1.0);
+  }
+  EXPECT_EQ(largest_difference(fresh.render(nested_gpu), image), 0.0);
+  // The next frame of the nested spheres takes arrays of their longest list.
+  const Image again = moved.render(nested_gpu);
+  EXPECT_EQ(largest_difference(again, image), 0.0);
+  if (current_device_is_software())
+    EXPECT_EQ(find_figure(moved.technique->counters().extra, "array_storage").value_or(-1.0), 1.0);
+}
+
 // carnecky2013 Fig. 11(c): opacity = (2/pi) * the angle between normal and
 // view ray. A sphere of radius R met by a ray at distance h from its centre
 // is entered and left at the same angle, asin(h / R), so a pixel's coverage

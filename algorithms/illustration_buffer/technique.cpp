@@ -361,21 +361,33 @@ class IllustrationBuffer final : public Technique {
     {
       auto stage = frame.clock.stage("count");
       longest = list_lengths_->longest_list(frame);
-      upload_ranges(list_lengths_->host_counts(), longest > s_.max_per_pixel);
-      pool_.before_fill(frame);
-      pool_.set_exact(produced_);
-      fill_buffer_u32(counters_, 0);
-      cursors_->start(offsets_);
-      remember_lists(frame, longest);
+      start_exact_ranges(frame, list_lengths_->host_counts(), longest);
     }
     auto stage = frame.clock.stage("fill");
+    draw_fill(frame);
+    passes_ = 2;
+    return longest;
+  }
+
+  // The ranges of storage=linearized from every pixel's count, the pool
+  // sized exactly and the cursors at the offsets.
+  template <class Count>
+  void start_exact_ranges(const Frame& frame, const std::vector<Count>& counts, uint32_t longest) {
+    upload_ranges(counts, longest > s_.max_per_pixel);
+    pool_.before_fill(frame);
+    pool_.set_exact(produced_);
+    fill_buffer_u32(counters_, 0);
+    cursors_->start(offsets_);
+    remember_lists(frame, longest);
+  }
+
+  // The fill of ranged storage: the scene drawn, each fragment at its pixel's cursor.
+  void draw_fill(const Frame& frame) {
     bind_storage();
     cursors_->bind_image(IB_CURSORS_IMAGE_UNIT);
     draw_scene_pass(frame, fill_program(), cursors_->fill_framebuffer());
     SlotCursors::unbind_image(IB_CURSORS_IMAGE_UNIT);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    passes_ = 2;
-    return longest;
   }
 
   // From the counted lengths (the counting pass's floats, or the arrays'
@@ -410,23 +422,21 @@ class IllustrationBuffer final : public Technique {
       glNamedBufferSubData(covered_.id(), 0, GLsizeiptr(covered_pixels_.size() * 4), covered_pixels_.data());
   }
 
-  // storage=arrays: stage "fill": the fill into per-pixel arrays of slots_
-  // records, the cursors read back (each pixel's count) and the ranges from
-  // them. A list longer than the slots (its cursor passed them) grows the
-  // slots to it and the fill runs again: nothing is lost (an overflow
-  // retry). Returns the longest list.
+  // Per-pixel arrays: stage "fill": the fill into arrays of slots_ records,
+  // the cursors read back (each pixel's count) and the ranges from them. A
+  // list longer than the slots (its cursor passed them) is an overflow
+  // retry, nothing is lost: storage=arrays grows the slots to it and fills
+  // again; storage=auto fills again into exact ranges from the counts the
+  // cursors hold (as after a counting pass), so that a frame whose lists
+  // turned uneven never sizes arrays by its longest. Returns the longest list.
   uint32_t fill_arrays(const Frame& frame) {
     auto stage = frame.clock.stage("fill");
     size_slots();
     for (passes_ = 1;; ++passes_) {
       fill_buffer_u32(counters_, 0);
       cursors_->start_at_zero();
-      bind_storage();
-      cursors_->bind_image(IB_CURSORS_IMAGE_UNIT);
       set_uniform(fill_program().id(), IB_SLOTS_LOCATION, slots_);
-      draw_scene_pass(frame, fill_program(), cursors_->fill_framebuffer());
-      SlotCursors::unbind_image(IB_CURSORS_IMAGE_UNIT);
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+      draw_fill(frame);
       const std::vector<uint32_t>& counts = cursors_->read_back();
       const uint32_t longest = counts.empty() ? 0 : *std::max_element(counts.begin(), counts.end());
       if (longest <= slots_) {
@@ -436,6 +446,13 @@ class IllustrationBuffer final : public Technique {
         return longest;
       }
       ++slot_overflows_;
+      if (s_.arrays_where_even) {
+        arrays_ = false;  // this frame's fill program, sort and range check are linearized's
+        start_exact_ranges(frame, counts, longest);
+        draw_fill(frame);
+        passes_ = 2;
+        return longest;
+      }
       allocate_slots(longest);
     }
   }
