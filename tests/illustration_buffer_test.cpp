@@ -690,7 +690,9 @@ TEST(IllustrationBuffer, LinearizedAndArrayStorageGiveTheLinkedListsRecords) {
         const bool arrays = std::string(storage) == "arrays";
         EXPECT_EQ(test::extra_counter(r, "linearized_storage"), arrays ? 0.0 : 1.0) << what;
         EXPECT_EQ(test::extra_counter(r, "array_storage"), arrays ? 1.0 : 0.0) << what;
-        if (std::string(fill) == "atomic") EXPECT_EQ(test::extra_counter(r, "framebuffer_fetch_fill"), 0.0) << what;
+        if (std::string(fill) == "atomic") {
+          EXPECT_EQ(test::extra_counter(r, "framebuffer_fetch_fill"), 0.0) << what;
+        }
         if (arrays) {
           const uint64_t regrown = r.max_depth_complexity > 8 ? 1 : 0;
           EXPECT_EQ(r.counters.overflow_retries, regrown) << what;
@@ -716,8 +718,9 @@ TEST(IllustrationBuffer, LinearizedAndArrayStorageGiveTheLinkedListsRecords) {
                                     "link_checksum", "silhouette_fragments", "fragment_updates"}) {
           const bool counted = find_figure(l.counters.extra, counter).has_value();
           EXPECT_EQ(find_figure(r.counters.extra, counter).has_value(), counted) << what << " " << counter;
-          if (counted)
+          if (counted) {
             EXPECT_EQ(test::extra_counter(r, counter), test::extra_counter(l, counter)) << what << " " << counter;
+          }
         }
       }
     }
@@ -752,8 +755,9 @@ TEST(IllustrationBuffer, FlatColourRecordsGiveTheStoredColoursImage) {
     EXPECT_EQ(largest_difference(a.image, b.image), 0.0) << c.scene;
     EXPECT_EQ(test::extra_counter(a, "flat_color_records"), 0.0) << c.scene;
     EXPECT_EQ(test::extra_counter(b, "flat_color_records"), c.flat) << c.scene;
-    if (c.params.count("modulation") == 0)
+    if (c.params.count("modulation") == 0) {
       EXPECT_EQ(test::extra_counter(a, "link_checksum"), test::extra_counter(b, "link_checksum")) << c.scene;
+    }
   }
   const RunResult plain = test::render_once("illustration_buffer", {{"modulation", "none"}}, "quads", {{"layers", "8"}}, 24, 24);
   EXPECT_EQ(test::extra_counter(plain, "flat_color_records"), 1.0);
@@ -808,7 +812,9 @@ TEST(IllustrationBuffer, AutoStorageFillsArraysAfterAFrameOfEvenLists) {
     const bool arrays = software && even;
     EXPECT_EQ(test::extra_counter(r, "array_storage"), arrays ? 1.0 : 0.0) << scene;
     EXPECT_EQ(test::extra_counter(r, "linearized_storage"), software && !even ? 1.0 : 0.0) << scene;
-    if (software) EXPECT_EQ(r.counters.passes, arrays ? 1u : 2u) << scene;  // no counting pass in an arrays frame
+    if (software) {
+      EXPECT_EQ(r.counters.passes, arrays ? 1u : 2u) << scene;  // no counting pass in an arrays frame
+    }
     const RunResult linked =
         test::render_once("illustration_buffer", {{"storage", "linked"}}, scene, {}, 48, 48);
     EXPECT_EQ(largest_difference(linked.image, r.image), 0.0) << scene;
@@ -843,8 +849,9 @@ TEST(IllustrationBuffer, AutoStorageRefillsIntoExactRangesWhenAListOutgrowsItsSl
   // The next frame of the nested spheres takes arrays of their longest list.
   const Image again = moved.render(nested_gpu);
   EXPECT_EQ(largest_difference(again, image), 0.0);
-  if (current_device_is_software())
+  if (current_device_is_software()) {
     EXPECT_EQ(find_figure(moved.technique->counters().extra, "array_storage").value_or(-1.0), 1.0);
+  }
 }
 
 // carnecky2013 Fig. 11(c): opacity = (2/pi) * the angle between normal and
