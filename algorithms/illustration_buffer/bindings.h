@@ -28,6 +28,7 @@
 #define IB_WORK_NEXT_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 13)  // stylize_diffuse.comp, IB_WORKLIST
 #define IB_SEEDS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 14)      // stylize_init.comp, IB_TRACK
 #define IB_SWEEP_CHANGED_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 15)  // stylize_init.comp (IB_SEED_FLAG), stylize_diffuse.comp (IB_CHECK)
+#define IB_DISTANCES_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 16)  // sweep_distances.glsl
 
 // Texture units of the read-only buffer-texture views. The per-fragment
 // passes' (views.glsl) and the listed diffusion steps' (stylize_diffuse.comp):
@@ -39,6 +40,8 @@
 #define IB_COUNT_UNIT 5
 #define IB_SEEDS_UNIT 6  // stylize_seed_queue.comp
 #define IB_LISTED_PIXELS_UNIT 7  // pixel_dispatch.glsl (IB_LISTED): sort.comp, neighbors_triangle_index.comp
+#define IB_DISTANCES_UNIT 8      // sweep_distances.glsl: the sweeps' hop distances
+#define IB_FIELD_TABLE_UNIT 9    // sweep_distances.glsl: beta and gamma by hop distance
 // The sort's (sort.comp), a program of its own: fill records and the triangle table.
 #define IB_FRAGMENT_UNIT 0
 #define IB_SORT_TRIANGLES_UNIT 1  // neighbors=triangle_index
@@ -70,5 +73,7 @@
 #define IB_TOLERANCE_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 17)  // stylize_diffuse.comp, IB_WORKLIST
 #define IB_NORMAL_VARIATION_SCALE_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 18)  // fill.frag, IB_NORMAL_VARIATION
 #define IB_SWEEP_DIRECTION_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 19)  // stylize_diffuse.comp, IB_SWEEP
+#define IB_TABLE_SIZE_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 20)      // stylize_diffuse.comp, IB_CHECK
+#define IB_DISTANCE_CUTOFF_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 21) // stylize_diffuse.comp, IB_SWEEP and IB_CHECK
 
 #endif

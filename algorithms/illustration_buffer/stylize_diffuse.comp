@@ -16,7 +16,8 @@
 // fragment that moved by more than u_tolerance queues the pixels around it
 // for the next step (worklist.glsl). The first step's pixels are queued by
 // stylize_init. Of diffusion=sweep: IB_SWEEP, in place along the rows, and
-// IB_CHECK, whether any fragment would still move (below).
+// IB_CHECK, whether any fragment would still move (below), both on hop
+// distances (sweep_distances.glsl).
 // With skip_converged a move of at most u_tolerance is not applied (the
 // fragment keeps its value), so a fragment that is not queued has its value
 // in both field ranges.
@@ -90,16 +91,28 @@ void main() {
 #elif defined(IB_SWEEP) || defined(IB_CHECK)
 // diffusion=sweep runs only where alpha cannot move (every fragment starts
 // with the scene's one alpha, eq. 4, and eq. 8 of equal values is exactly
-// alpha): so only beta and gamma are read and raised, which spares llvmpipe
-// the gathers of the neighbours' alphas.
+// alpha): so only beta and gamma move, carried as hop distances
+// (sweep_distances.glsl), which spares llvmpipe the gathers of whole field
+// texels.
+#include "algorithms/illustration_buffer/sweep_distances.glsl"
 
-// Beta and gamma of fragment s after one step of eq. 9 from `field`.
-vec2 raised(uint s, vec4 field) {
+// Beta's and gamma's first distance whose value is 0 (F(d) <= 0): no
+// farther distance is kept (it stays IB_DISTANCE_FAR), as eq. 9 carries
+// nothing from a value of 0, so the sweeps stop where the values do.
+layout(location = IB_DISTANCE_CUTOFF_LOCATION) uniform uvec2 u_cutoff;
+
+// Eq. 9 in distances: fragment s's distances `own` after one step, each
+// unfixed one the nearest linked neighbour's + 1 where that is nearer and
+// below the cutoff.
+uint swept(uint s, uint own) {
   const uvec4 links = ib_sorted_links(s);
-  vec2 most = vec2(0.0);
+  uvec2 nearest = uvec2(IB_DISTANCE_FAR);
   for (int d = 0; d < 4; ++d)
-    if (links[d] < IB_OFF_IMAGE) most = max(most, texelFetch(ib_fields_view, int(links[d])).yz);
-  return raised(field, most);
+    if (links[d] < IB_OFF_IMAGE)
+      nearest = min(nearest, ib_unpack_distances(texelFetch(ib_distances_view, int(links[d])).x) & IB_DISTANCE_FAR);
+  const uvec2 mine = ib_unpack_distances(own);
+  const uvec2 offered = mix(uvec2(IB_DISTANCE_FAR), nearest + 1u, lessThan(nearest + 1u, u_cutoff));
+  return ib_pack_distances(mix(min(mine, offered), mine, notEqual(mine & IB_DISTANCE_FIXED, uvec2(0u))));
 }
 
 #if defined(IB_SWEEP)
@@ -109,7 +122,7 @@ vec2 raised(uint s, vec4 field) {
 // k - 1, or the group before) has updated a pixel when it reads it: a pass
 // carries values along any path that goes only in its two directions (a
 // raster-order chamfer pass). Values read from other workgroups may be
-// old; that only slows the convergence (the fields only rise).
+// old; that only slows the convergence (distances only fall).
 layout(location = IB_SWEEP_DIRECTION_LOCATION) uniform ivec2 u_direction;
 
 void main() {
@@ -121,22 +134,32 @@ void main() {
     const uint x = u_direction.x > 0 ? t - lag : width - 1u - (t - lag);
     const uint pixel = y * width + x, first = ib_pixel_first(pixel), end = first + ib_pixel_count(pixel);
     for (uint s = first; s < end; ++s) {
-      const vec4 field = texelFetch(ib_fields_view, int(s));
-      const vec2 next = raised(s, field);
-      if (next != field.yz) ib_fields_out[s].yz = next;
+      const uint own = texelFetch(ib_distances_view, int(s)).x, next = swept(s, own);
+      if (next != own) ib_distances[s] = next;
     }
   }
 }
 #else
 // The convergence check: one invocation per fragment; 1 when a step would
-// move a field (the sweeps have not reached the fixed point yet).
+// move a distance (the sweeps have not reached the fixed point yet). It
+// also writes the fragment's beta and gamma, F(distance), from the host's
+// table (F(d) for d < u_table_size, beta's then gamma's; 0 beyond): the
+// values of the last round's check are the fixed point's.
 layout(std430, binding = IB_SWEEP_CHANGED_BINDING) writeonly buffer IbSweepChanged { uint ib_sweep_changed; };
+layout(binding = IB_FIELD_TABLE_UNIT) uniform samplerBuffer ib_field_table;
+layout(location = IB_TABLE_SIZE_LOCATION) uniform uint u_table_size;
+
+float field_at(uint distance, uint table) {
+  return distance < u_table_size ? texelFetch(ib_field_table, int(table * u_table_size + distance)).x : 0.0;
+}
 
 void main() {
   const uint s = ib_fragment_index();
   if (s >= u_fragments) return;
-  const vec4 field = texelFetch(ib_fields_view, int(s));
-  if (raised(s, field) != field.yz) ib_sweep_changed = 1u;
+  const uint own = texelFetch(ib_distances_view, int(s)).x;
+  if (swept(s, own) != own) ib_sweep_changed = 1u;
+  const uvec2 distances = ib_unpack_distances(own) & IB_DISTANCE_FAR;
+  ib_fields_out[s].yz = vec2(field_at(distances.x, 0u), field_at(distances.y, 1u));
 }
 #endif
 #else

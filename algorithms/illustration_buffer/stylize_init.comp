@@ -37,8 +37,14 @@ layout(std430, binding = IB_SEEDS_BINDING) writeonly buffer IbSeeds { uint ib_se
 #ifdef IB_SEED_FLAG
 // diffusion=sweep: 1 when some fragment starts with beta or gamma of 1;
 // without one nothing can move (alpha cannot either where the sweeps run),
-// and the sweeps are skipped.
+// and the sweeps are skipped. And the fields as the sweeps' hop distances.
 layout(std430, binding = IB_SWEEP_CHANGED_BINDING) writeonly buffer IbSeeded { uint ib_seeded; };
+#include "algorithms/illustration_buffer/sweep_distances.glsl"
+
+// A field's starting distance: a seed (fixed at 1) 0, fixed at 0 far, both fixed; else far.
+uint starting_distance(float value, bool held) {
+  return held ? IB_DISTANCE_FIXED | (value == 1.0 ? 0u : IB_DISTANCE_FAR) : IB_DISTANCE_FAR;
+}
 #endif
 
 layout(location = IB_USE_BETA_LOCATION) uniform bool u_use_beta;
@@ -109,5 +115,7 @@ void main() {
 #endif
 #ifdef IB_SEED_FLAG
   if (beta == 1.0 || gamma == 1.0) ib_seeded = 1u;
+  ib_distances[s] = ib_pack_distances(uvec2(starting_distance(beta, (flags & IB_FIXED_BETA) != 0u),
+                                            starting_distance(gamma, (flags & IB_FIXED_GAMMA) != 0u)));
 #endif
 }

@@ -26,6 +26,7 @@ namespace oit::illustration_buffer {
 namespace {
 
 constexpr GLsizeiptr kFragmentBytes = 48, kNextBytes = 4, kTruthBytes = 16, kFieldBytes = 16;
+constexpr GLsizeiptr kDistanceBytes = 4;  // the sweeps' hop distances (sweep_distances.glsl)
 // The sorted records, split over fragData2 (key, geometry) and fragData3 (colour, links).
 constexpr GLsizeiptr kSearchBytes = 32, kShadeBytes = 32;
 // The largest per-record buffer (fragData; it also holds both field ranges) bounds the pool.
@@ -56,7 +57,7 @@ void set_size(GLuint program, int width, int height) {
 
 uint64_t bytes_per_fragment(const Settings& s) {
   return uint64_t((s.ranged() ? 0 : kNextBytes) + kFragmentBytes + kSearchBytes + kShadeBytes +
-                  (s.measure_accuracy ? kTruthBytes : 0));
+                  (s.measure_accuracy ? kTruthBytes : 0) + (s.may_sweep() ? kDistanceBytes : 0));
 }
 
 // The steps of skip_converged (worklist.glsl); the sweeps need no tracking.
@@ -204,6 +205,7 @@ class IllustrationBuffer final : public Technique {
       diffuse_sweep_ = build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp", {{"IB_SWEEP", "1"}});
       sweep_check_ = build_compute_program("algorithms/illustration_buffer/stylize_diffuse.comp", {{"IB_CHECK", "1"}});
       sweep_changed_ = make_buffer(4);
+      build_field_table();
     }
     for (const Program* p : {&stylize_diffuse_, &diffuse_listed_, &diffuse_sweep_, &sweep_check_}) {
       if (!*p) continue;
@@ -212,6 +214,28 @@ class IllustrationBuffer final : public Technique {
       set_uniform(p->id(), IB_LAMBDA_BETA_LOCATION, s_.lambda_beta);
       set_uniform(p->id(), IB_LAMBDA_GAMMA_LOCATION, s_.lambda_gamma);
     }
+  }
+
+  // The sweeps' beta and gamma by hop distance d (sweep_distances.glsl):
+  // F(0) = 1, F(d) = F(d - 1) - lambda in float, as eq. 9 subtracts, and 0
+  // from the first value at or below it; iterations + 2 of each (the sweeps
+  // run only where `iterations` steps carry 1 to 0: sweep_reaches_steps).
+  void build_field_table() {
+    field_table_size_ = uint32_t(s_.iterations) + 2;
+    std::vector<float> table;
+    glm::uvec2 cutoff(field_table_size_);  // each field's first distance of value 0
+    for (int field = 0; field < 2; ++field) {
+      float value = 1.0f;
+      for (uint32_t d = 0; d < field_table_size_; ++d, value -= field == 0 ? s_.lambda_beta : s_.lambda_gamma) {
+        table.push_back(std::max(value, 0.0f));
+        if (value <= 0.0f) cutoff[field] = std::min(cutoff[field], d);
+      }
+    }
+    field_table_ = make_buffer(GLsizeiptr(table.size() * sizeof(float)), table.data(), 0);
+    field_table_view_ = make_buffer_texture(field_table_, GL_R32F);
+    set_uniform(sweep_check_.id(), IB_TABLE_SIZE_LOCATION, field_table_size_);
+    for (const Program* p : {&diffuse_sweep_, &sweep_check_}) set_uniform(p->id(), IB_DISTANCE_CUTOFF_LOCATION, cutoff);
+    gl_check("illustration_buffer: the sweeps' field table");
   }
 
   void resize(int width, int height) override {
@@ -282,7 +306,7 @@ class IllustrationBuffer final : public Technique {
     glDrawArrays(GL_TRIANGLES, 0, 3);
     for (GLuint unit : {IB_SEARCH_UNIT, IB_FIELDS_UNIT, IB_SHADE_UNIT, IB_WORK_UNIT, IB_HEAD_UNIT, IB_COUNT_UNIT,
                         IB_FRAGMENT_UNIT, IB_SORT_TRIANGLES_UNIT, IB_OFFSETS_UNIT, IB_FLAT_COLORS_UNIT,
-                        IB_SEEDS_UNIT, IB_LISTED_PIXELS_UNIT})
+                        IB_SEEDS_UNIT, IB_LISTED_PIXELS_UNIT, IB_DISTANCES_UNIT, IB_FIELD_TABLE_UNIT})
       glBindTextureUnit(unit, 0);
   }
 
@@ -291,7 +315,8 @@ class IllustrationBuffer final : public Technique {
     const uint64_t per_fragment = bytes_per_fragment(s_);
     c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * bytes_per_pixel(s_) + pool_.capacity() * per_fragment +
                         kCounterBytes + triangle_rows_ * 16 + flat_table_bytes_ +
-                        (tracks_convergence(s_) ? 3 * kWorklistHeaderBytes : 0) + (s_.may_sweep() ? 4 : 0);
+                        (tracks_convergence(s_) ? 3 * kWorklistHeaderBytes : 0) +
+                        (s_.may_sweep() ? 4 + 2 * uint64_t(field_table_size_) * sizeof(float) : 0);
     c.fragments_stored = stored_;
     c.fragments_dropped = dropped_;
     c.passes = passes_;
@@ -533,9 +558,10 @@ class IllustrationBuffer final : public Technique {
       auto stage = frame.clock.stage("stylize_init");
       if (track) start_worklists();
       const bool alpha_seeds = track && (s_.adaptive_alpha || !one_alpha(frame.scene));
-      if (!track && s_.may_sweep()) {  // stylize_init_ raises the seed flag (IB_SEED_FLAG)
+      if (!track && s_.may_sweep()) {  // stylize_init_ raises the seed flag and writes the distances (IB_SEED_FLAG)
         fill_buffer_u32(sweep_changed_, 0);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_SWEEP_CHANGED_BINDING, sweep_changed_.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_DISTANCES_BINDING, distances_.id());
       }
       // Ranges of fragData (dead after the sort) hold the two field buffers.
       bind_fields(0, second_range);
@@ -582,6 +608,9 @@ class IllustrationBuffer final : public Technique {
   void sweep_to_fixed_point(GLintptr range) {
     bind_fields(range, range);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_SWEEP_CHANGED_BINDING, sweep_changed_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_DISTANCES_BINDING, distances_.id());
+    glBindTextureUnit(IB_DISTANCES_UNIT, distances_view_.id());
+    glBindTextureUnit(IB_FIELD_TABLE_UNIT, field_table_view_.id());
     sweep_rounds_ = 0;
     GLuint changed = 0;  // here: whether the init found a seed
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -798,6 +827,10 @@ class IllustrationBuffer final : public Technique {
     data2_ = make_buffer(GLsizeiptr(capacity) * kSearchBytes);
     data3_ = make_buffer(GLsizeiptr(capacity) * kShadeBytes);
     if (s_.measure_accuracy) truth_ = make_buffer(GLsizeiptr(capacity) * kTruthBytes);
+    if (s_.may_sweep()) {
+      distances_ = make_buffer(GLsizeiptr(capacity) * kDistanceBytes);
+      distances_view_ = make_buffer_texture(distances_, GL_R32UI);
+    }
     gl_check("allocating the illustration buffer's fragment pool");
     fragment_view_ = make_buffer_texture(data_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kFragmentBytes);
     search_view_ = make_buffer_texture(data2_, GL_RGBA32UI, 0, GLsizeiptr(capacity) * kSearchBytes);
@@ -845,6 +878,10 @@ class IllustrationBuffer final : public Technique {
   Buffer counters_, head_, count_, next_, data_, data2_, data3_, truth_, triangles_;
   Buffer stamps_, worklists_[3], pixel_updates_, seeds_;  // skip_converged (worklist.glsl)
   Buffer sweep_changed_;  // diffusion=sweep: 1 when the init found a seed, then when the check found a move
+  // diffusion=sweep: each fragment's hop distances, and beta and gamma by distance (sweep_distances.glsl).
+  Buffer distances_, field_table_;
+  Texture distances_view_, field_table_view_;
+  uint32_t field_table_size_ = 0;
   bool swept_ = false;        // the last frame's diffusion swept
   uint64_t sweep_rounds_ = 0;  // and its rounds
   Texture worklist_views_[3], seeds_view_, head_view_, count_view_;

@@ -12,6 +12,9 @@ void set_uniform(GLuint program, GLint location, float value) { glProgramUniform
 void set_uniform(GLuint program, GLint location, const glm::ivec2& value) {
   glProgramUniform2i(program, location, value.x, value.y);
 }
+void set_uniform(GLuint program, GLint location, const glm::uvec2& value) {
+  glProgramUniform2ui(program, location, value.x, value.y);
+}
 void set_uniform(GLuint program, GLint location, const glm::vec2& value) {
   glProgramUniform2f(program, location, value.x, value.y);
 }

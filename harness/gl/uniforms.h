@@ -21,6 +21,7 @@ void set_uniform(GLuint program, GLint location, GLint value);
 void set_uniform(GLuint program, GLint location, GLuint value);
 void set_uniform(GLuint program, GLint location, float value);
 void set_uniform(GLuint program, GLint location, const glm::ivec2& value);
+void set_uniform(GLuint program, GLint location, const glm::uvec2& value);
 void set_uniform(GLuint program, GLint location, const glm::vec2& value);
 void set_uniform(GLuint program, GLint location, const glm::vec3& value);
 void set_uniform(GLuint program, GLint location, const glm::mat4& value);
