@@ -19,6 +19,13 @@ layout(location = 0) out vec4 out_color;
 
 #ifdef IB_MODULATE
 #include "algorithms/illustration_buffer/fields.glsl"
+#ifdef IB_SWEPT
+// A frame whose diffusion swept: beta and gamma from the hop distances, and
+// alpha the colour's (the sweeps run only where eq. 4 gives every fragment
+// its own alpha and nothing moves it: stylize_init.comp).
+#define IB_FIELD_TABLE
+#include "algorithms/illustration_buffer/sweep_distances.glsl"
+#endif
 // IB_PROFILE 0: none, 1: exponential (eq. 10), 2: power (eq. 11). A define,
 // not a uniform: llvmpipe evaluates the exp and pow of a branch no lane takes.
 layout(location = IB_PROFILE_P_LOCATION) uniform float u_profile_p;
@@ -43,7 +50,11 @@ void main() {
   float transmittance = 1.0;
   for (uint i = first; i < end; ++i) {
     const vec4 c = ib_sorted_color(i);
-#ifdef IB_MODULATE
+#if defined(IB_SWEPT)
+    const vec4 field = vec4(c.a, ib_swept_fields(i), 0.0);
+    const float alpha = clamp(field.x, 0.0, 1.0);
+    const float opacity = (1.0 - profile(field.z)) * (alpha + (1.0 - alpha) * profile(field.y));
+#elif defined(IB_MODULATE)
     const vec4 field = texelFetch(ib_fields_view, int(i));
     const float alpha = clamp(field.x, 0.0, 1.0);
     const float opacity = (1.0 - profile(field.z)) * (alpha + (1.0 - alpha) * profile(field.y));

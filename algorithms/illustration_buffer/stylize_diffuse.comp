@@ -141,25 +141,14 @@ void main() {
 }
 #else
 // The convergence check: one invocation per fragment; 1 when a step would
-// move a distance (the sweeps have not reached the fixed point yet). It
-// also writes the fragment's beta and gamma, F(distance), from the host's
-// table (F(d) for d < u_table_size, beta's then gamma's; 0 beyond): the
-// values of the last round's check are the fixed point's.
+// move a distance (the sweeps have not reached the fixed point yet).
 layout(std430, binding = IB_SWEEP_CHANGED_BINDING) writeonly buffer IbSweepChanged { uint ib_sweep_changed; };
-layout(binding = IB_FIELD_TABLE_UNIT) uniform samplerBuffer ib_field_table;
-layout(location = IB_TABLE_SIZE_LOCATION) uniform uint u_table_size;
-
-float field_at(uint distance, uint table) {
-  return distance < u_table_size ? texelFetch(ib_field_table, int(table * u_table_size + distance)).x : 0.0;
-}
 
 void main() {
   const uint s = ib_fragment_index();
   if (s >= u_fragments) return;
   const uint own = texelFetch(ib_distances_view, int(s)).x;
   if (swept(s, own) != own) ib_sweep_changed = 1u;
-  const uvec2 distances = ib_unpack_distances(own) & IB_DISTANCE_FAR;
-  ib_fields_out[s].yz = vec2(field_at(distances.x, 0u), field_at(distances.y, 1u));
 }
 #endif
 #else

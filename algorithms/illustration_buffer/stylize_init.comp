@@ -34,10 +34,11 @@
 #ifdef IB_TRACK
 layout(std430, binding = IB_SEEDS_BINDING) writeonly buffer IbSeeds { uint ib_seeds[]; };
 #endif
-#ifdef IB_SEED_FLAG
-// diffusion=sweep: 1 when some fragment starts with beta or gamma of 1;
-// without one nothing can move (alpha cannot either where the sweeps run),
-// and the sweeps are skipped. And the fields as the sweeps' hop distances.
+#ifdef IB_SWEEP_INIT
+// diffusion=sweep's frames: the fields as the sweeps' hop distances, which
+// the compose reads (no field range is written), and a flag, 1 when some
+// fragment starts with beta or gamma of 1; without one nothing can move
+// (alpha cannot either where the sweeps run), and the sweeps are skipped.
 layout(std430, binding = IB_SWEEP_CHANGED_BINDING) writeonly buffer IbSeeded { uint ib_seeded; };
 #include "algorithms/illustration_buffer/sweep_distances.glsl"
 
@@ -109,11 +110,13 @@ void main() {
     gamma = 1.0;
     flags |= IB_FIXED_GAMMA;
   }
+#ifndef IB_SWEEP_INIT
   ib_fields_out[s] = vec4(alpha, beta, gamma, float(flags));
+#endif
 #ifdef IB_TRACK
   if (beta == 1.0 || gamma == 1.0 || alpha_differs(alpha, links, pixel)) ib_seeds[pixel] = 1u;
 #endif
-#ifdef IB_SEED_FLAG
+#ifdef IB_SWEEP_INIT
   if (beta == 1.0 || gamma == 1.0) ib_seeded = 1u;
   ib_distances[s] = ib_pack_distances(uvec2(starting_distance(beta, (flags & IB_FIXED_BETA) != 0u),
                                             starting_distance(gamma, (flags & IB_FIXED_GAMMA) != 0u)));

@@ -3,10 +3,10 @@
 // fragment the value F(d) of its nearest seed, d links away through unfixed
 // fragments, F(0) = 1 and F(d) = F(d - 1) - lambda in float, or 0 where no
 // seed is near enough (F(d) <= 0): the max over paths of eq. 9's decrements
-// is F of the shortest path. So the sweeps carry d, and the check turns it
-// into F(d) (a table the host computes with the same float subtraction):
+// is F of the shortest path. So the sweeps carry d, and the compose turns
+// it into F(d) (a table the host computes with the same float subtraction):
 // the same values bit for bit, from one 4-byte read per neighbour where the
-// fields take a 16-byte one.
+// fields take a 16-byte one, and no field ranges written at all.
 //
 // One uint per sorted fragment, beta's distance in bits 0-15 and gamma's
 // in 16-31; each half: the bit IB_DISTANCE_FIXED for a boundary condition
@@ -20,3 +20,17 @@ layout(binding = IB_DISTANCES_UNIT) uniform usamplerBuffer ib_distances_view;
 
 uint ib_pack_distances(uvec2 distances) { return distances.x | (distances.y << 16); }
 uvec2 ib_unpack_distances(uint both) { return uvec2(both & 0xffffu, both >> 16); }
+
+#ifdef IB_FIELD_TABLE
+// F(d) for d < u_table_size, beta's then gamma's (the host's table); 0 beyond.
+layout(binding = IB_FIELD_TABLE_UNIT) uniform samplerBuffer ib_field_table;
+layout(location = IB_TABLE_SIZE_LOCATION) uniform uint u_table_size;
+
+// Beta and gamma of sorted fragment s, from its distances.
+vec2 ib_swept_fields(uint s) {
+  const uvec2 distances = ib_unpack_distances(texelFetch(ib_distances_view, int(s)).x) & IB_DISTANCE_FAR;
+  const bvec2 near = lessThan(distances, uvec2(u_table_size));
+  return vec2(near.x ? texelFetch(ib_field_table, int(distances.x)).x : 0.0,
+              near.y ? texelFetch(ib_field_table, int(u_table_size + distances.y)).x : 0.0);
+}
+#endif

@@ -154,12 +154,17 @@ class IllustrationBuffer final : public Technique {
       if (s_.modulation == Modulation::normal_variation)
         set_uniform(fill->id(), IB_NORMAL_VARIATION_SCALE_LOCATION, s_.normal_variation_scale);
     }
+    const ShaderDefines modulate = {{"IB_MODULATE", "1"}, {"IB_PROFILE", std::to_string(int(s_.profile))}};
     compose_ = build_fullscreen_program("algorithms/illustration_buffer/compose.frag",
-                                        modulated()          ? ShaderDefines{{"IB_MODULATE", "1"},
-                                                                             {"IB_PROFILE", std::to_string(int(s_.profile))}}
+                                        modulated()          ? modulate
                                         : s_.purely_local() ? ShaderDefines{{"IB_LOCAL_OPACITY", "1"}}
                                                              : ShaderDefines{});
     if (!modulated()) return;
+    if (s_.may_sweep()) {  // the swept frames' compose reads the hop distances (sweep_distances.glsl)
+      ShaderDefines swept = modulate;
+      swept.push_back({"IB_SWEPT", "1"});
+      compose_swept_ = build_fullscreen_program("algorithms/illustration_buffer/compose.frag", swept);
+    }
     if (s_.heuristic()) {  // neighbors=triangle_index: triangle_search_program, per frame
       neighbors_ = build_compute_program(
           "algorithms/illustration_buffer/neighbors.comp",
@@ -168,7 +173,9 @@ class IllustrationBuffer final : public Technique {
       set_uniform(neighbors_.id(), IB_WEIGHT_N_LOCATION, s_.weight_n);
     }
     build_stylize_programs();
-    set_uniform(compose_.id(), IB_PROFILE_P_LOCATION, s_.profile == Profile::power ? s_.power_p : s_.exponential_p);
+    for (const Program* compose : {&compose_, &compose_swept_})
+      if (*compose)
+        set_uniform(compose->id(), IB_PROFILE_P_LOCATION, s_.profile == Profile::power ? s_.power_p : s_.exponential_p);
   }
 
   // The programs of the stylize stages (modulated modes): the init and the
@@ -180,15 +187,19 @@ class IllustrationBuffer final : public Technique {
     // stylize_inits_[1] also queues fragments whose alpha differs from a
     // neighbour's (stylize_init.comp, IB_ALPHA_SEEDS): for scenes of more
     // than one alpha, or eq. 5. stylize_init_ queues nothing: for the steps
-    // without skip_converged, and for the sweeps (it raises their seed flag).
-    const bool plain_init = !track || s_.may_sweep();
-    for (Program* init : {&stylize_init_, &stylize_inits_[0], &stylize_inits_[1]}) {
-      const bool tracked = init != &stylize_init_, alpha_seeds = init == &stylize_inits_[1];
-      if (tracked ? !track : !plain_init) continue;
+    // without skip_converged. sweep_init_ writes the sweeps' hop distances
+    // and their seed flag, and no field range.
+    for (Program* init : {&stylize_init_, &stylize_inits_[0], &stylize_inits_[1], &sweep_init_}) {
+      const bool tracked = init == &stylize_inits_[0] || init == &stylize_inits_[1];
+      const bool alpha_seeds = init == &stylize_inits_[1], sweeps = init == &sweep_init_;
+      const bool needed = sweeps    ? s_.may_sweep()
+                          : tracked ? track
+                                    : !track && s_.diffusion == Diffusion::steps;
+      if (!needed) continue;
       ShaderDefines defines;
       if (tracked) defines.push_back({"IB_TRACK", "1"});
       if (alpha_seeds) defines.push_back({"IB_ALPHA_SEEDS", "1"});
-      if (!tracked && s_.may_sweep()) defines.push_back({"IB_SEED_FLAG", "1"});
+      if (sweeps) defines.push_back({"IB_SWEEP_INIT", "1"});
       if (s_.adaptive_alpha) defines.push_back({"IB_ADAPTIVE", "1"});
       *init = build_compute_program("algorithms/illustration_buffer/stylize_init.comp", defines);
       set_uniform(init->id(), IB_USE_BETA_LOCATION, int(s_.uses_beta()));
@@ -233,7 +244,7 @@ class IllustrationBuffer final : public Technique {
     }
     field_table_ = make_buffer(GLsizeiptr(table.size() * sizeof(float)), table.data(), 0);
     field_table_view_ = make_buffer_texture(field_table_, GL_R32F);
-    set_uniform(sweep_check_.id(), IB_TABLE_SIZE_LOCATION, field_table_size_);
+    set_uniform(compose_swept_.id(), IB_TABLE_SIZE_LOCATION, field_table_size_);
     for (const Program* p : {&diffuse_sweep_, &sweep_check_}) set_uniform(p->id(), IB_DISTANCE_CUTOFF_LOCATION, cutoff);
     gl_check("illustration_buffer: the sweeps' field table");
   }
@@ -293,16 +304,19 @@ class IllustrationBuffer final : public Technique {
     const GLintptr second_range = second_field_range();
     if (modulated()) stylize(frame, second_range, longest);
     auto stage = frame.clock.stage("compose");
-    if (modulated()) {
+    if (swept_) {  // the hop distances and their table (sweep_distances.glsl)
+      glBindTextureUnit(IB_DISTANCES_UNIT, distances_view_.id());
+      glBindTextureUnit(IB_FIELD_TABLE_UNIT, field_table_view_.id());
+    } else if (modulated()) {
       // The last range written: the init writes the second range, iteration i
-      // reads the range i wrote before, so even counts end in the second
-      // range; the sweeps work in place on the second range.
-      const GLintptr last = s_.iterations % 2 == 0 || swept_ ? second_range : 0;
+      // reads the range i wrote before, so even counts end in the second range.
+      const GLintptr last = s_.iterations % 2 == 0 ? second_range : 0;
       bind_fields(last, last == 0 ? second_range : 0);
     }
     frame.bind_target();
-    glUseProgram(compose_.id());
-    frame.set_shared_uniforms(compose_.id());
+    const GLuint compose = swept_ ? compose_swept_.id() : compose_.id();
+    glUseProgram(compose);
+    frame.set_shared_uniforms(compose);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     for (GLuint unit : {IB_SEARCH_UNIT, IB_FIELDS_UNIT, IB_SHADE_UNIT, IB_WORK_UNIT, IB_HEAD_UNIT, IB_COUNT_UNIT,
                         IB_FRAGMENT_UNIT, IB_SORT_TRIANGLES_UNIT, IB_OFFSETS_UNIT, IB_FLAT_COLORS_UNIT,
@@ -558,14 +572,14 @@ class IllustrationBuffer final : public Technique {
       auto stage = frame.clock.stage("stylize_init");
       if (track) start_worklists();
       const bool alpha_seeds = track && (s_.adaptive_alpha || !one_alpha(frame.scene));
-      if (!track && s_.may_sweep()) {  // stylize_init_ raises the seed flag and writes the distances (IB_SEED_FLAG)
+      if (swept_) {  // sweep_init_ raises the seed flag and writes the distances
         fill_buffer_u32(sweep_changed_, 0);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_SWEEP_CHANGED_BINDING, sweep_changed_.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_DISTANCES_BINDING, distances_.id());
       }
       // Ranges of fragData (dead after the sort) hold the two field buffers.
       bind_fields(0, second_range);
-      run_per_fragment(track ? stylize_inits_[alpha_seeds ? 1 : 0].id() : stylize_init_.id());
+      run_per_fragment(swept_ ? sweep_init_.id() : track ? stylize_inits_[alpha_seeds ? 1 : 0].id() : stylize_init_.id());
       if (track) {
         glUseProgram(seed_queue_.id());
         glBindTextureUnit(IB_SEEDS_UNIT, seeds_view_.id());
@@ -579,7 +593,7 @@ class IllustrationBuffer final : public Technique {
       }
     }
     auto stage = frame.clock.stage("diffuse");
-    if (swept_) return sweep_to_fixed_point(second_range);
+    if (swept_) return sweep_to_fixed_point();
     for (int i = 0; i < s_.iterations; ++i) {
       i % 2 == 0 ? bind_fields(second_range, 0) : bind_fields(0, second_range);
       if (track) run_queued(uint32_t(i + 1));
@@ -598,19 +612,17 @@ class IllustrationBuffer final : public Technique {
     return exact;
   }
 
-  // Sweeps in place over the field range at `range` (the init's values):
+  // Sweeps in place over the hop distances the init wrote (sweep_distances.glsl):
   // none when the init found no seed (nothing can move); else a round is
   // four raster-order passes, one per diagonal quadrant, then a check;
   // rounds until the check finds nothing that would move. The fields
-  // only rise towards the fixed point of eq. 9, so any order of updates
-  // ends there (README: Diffusion); a round is at least one step, so
-  // `iterations` rounds always suffice.
-  void sweep_to_fixed_point(GLintptr range) {
-    bind_fields(range, range);
+  // only rise towards the fixed point of eq. 9 (the distances only fall),
+  // so any order of updates ends there (README: Diffusion); a round is at
+  // least one step, so `iterations` rounds always suffice.
+  void sweep_to_fixed_point() {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_SWEEP_CHANGED_BINDING, sweep_changed_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, IB_DISTANCES_BINDING, distances_.id());
     glBindTextureUnit(IB_DISTANCES_UNIT, distances_view_.id());
-    glBindTextureUnit(IB_FIELD_TABLE_UNIT, field_table_view_.id());
     sweep_rounds_ = 0;
     GLuint changed = 0;  // here: whether the init found a seed
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -679,7 +691,7 @@ class IllustrationBuffer final : public Technique {
   std::vector<GLuint> programs() const {
     std::vector<GLuint> all = {compose_.id()};
     for (const Program* fill : fills()) all.push_back(fill->id());
-    for (const Program* p : {&neighbors_, &stylize_init_, &stylize_inits_[0], &stylize_inits_[1],
+    for (const Program* p : {&compose_swept_, &neighbors_, &stylize_init_, &stylize_inits_[0], &stylize_inits_[1], &sweep_init_,
                              &seed_queue_, &stylize_diffuse_, &diffuse_listed_, &diffuse_sweep_, &sweep_check_})
       if (*p) all.push_back(p->id());
     for (const auto& [variant, program] : sorts_) all.push_back(program.id());
@@ -864,8 +876,10 @@ class IllustrationBuffer final : public Technique {
   Settings s_;
   // fills_[arrays][flat]: into per-pixel arrays (IB_ARRAYS) or not; with
   // flat_color_records (no colour in the record: fill.frag) or not.
-  // stylize_inits_: with skip_converged's queue ([1]: also alpha seeds); diffuse_sweep_: diffusion=sweep.
-  Program fills_[2][2], compose_, neighbors_, stylize_init_, stylize_inits_[2], seed_queue_, stylize_diffuse_,
+  // stylize_inits_: with skip_converged's queue ([1]: also alpha seeds); sweep_init_, diffuse_sweep_,
+  // sweep_check_, compose_swept_: the frames whose diffusion sweeps.
+  Program fills_[2][2], compose_, compose_swept_, neighbors_, stylize_init_, stylize_inits_[2], sweep_init_,
+      seed_queue_, stylize_diffuse_,
       diffuse_listed_, diffuse_sweep_, sweep_check_;
   bool flat_ = false;  // this frame's records hold no colour
   uint64_t flat_table_bytes_ = 0;
