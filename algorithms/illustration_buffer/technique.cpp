@@ -415,7 +415,6 @@ class IllustrationBuffer final : public Technique {
     upload_ranges(counts, longest > s_.max_per_pixel);
     pool_.before_fill(frame);
     pool_.set_exact(produced_);
-    fill_buffer_u32(counters_, 0);
     cursors_->start(offsets_);
     remember_lists(frame, longest);
   }
@@ -479,7 +478,6 @@ class IllustrationBuffer final : public Technique {
     auto stage = frame.clock.stage("fill");
     size_slots();
     for (passes_ = 1;; ++passes_) {
-      fill_buffer_u32(counters_, 0);
       cursors_->start_at_zero();
       set_uniform(fill_program().id(), IB_SLOTS_LOCATION, slots_);
       draw_fill(frame);
