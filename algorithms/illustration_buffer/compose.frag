@@ -50,12 +50,12 @@ void main() {
   float transmittance = 1.0;
   for (uint i = first; i < end; ++i) {
     const vec4 c = ib_sorted_color(i);
-#if defined(IB_SWEPT)
+#if defined(IB_MODULATE)
+#ifdef IB_SWEPT
     const vec4 field = vec4(c.a, ib_swept_fields(i), 0.0);
-    const float alpha = clamp(field.x, 0.0, 1.0);
-    const float opacity = (1.0 - profile(field.z)) * (alpha + (1.0 - alpha) * profile(field.y));
-#elif defined(IB_MODULATE)
+#else
     const vec4 field = texelFetch(ib_fields_view, int(i));
+#endif
     const float alpha = clamp(field.x, 0.0, 1.0);
     const float opacity = (1.0 - profile(field.z)) * (alpha + (1.0 - alpha) * profile(field.y));
 #elif defined(IB_LOCAL_OPACITY)
