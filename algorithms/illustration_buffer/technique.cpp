@@ -289,7 +289,9 @@ class IllustrationBuffer final : public Technique {
       glUseProgram(sort);
       glBindTextureUnit(IB_FRAGMENT_UNIT, fragment_view_.id());
       if (flat_) glBindTextureUnit(IB_FLAT_COLORS_UNIT, frame.scene.flat_colors_view());
-      if (s_.ranged()) glBindTextureUnit(IB_OFFSETS_UNIT, offsets_view_.id());
+      // Arrays: the fill's counts, which are the kept lengths (count_) unless a list was truncated.
+      if (s_.ranged())
+        glBindTextureUnit(IB_OFFSETS_UNIT, arrays_ && truncated_lists_ == 0 ? count_view_.id() : offsets_view_.id());
       if (arrays_) set_uniform(sort, IB_SLOTS_LOCATION, slots_);
       if (s_.stores_triangle_vertices()) {
         prepare_scene_data(frame.scene);
@@ -486,7 +488,8 @@ class IllustrationBuffer final : public Technique {
       if (longest <= slots_) {
         upload_ranges(counts, longest > s_.max_per_pixel);
         remember_lists(frame, longest);
-        glNamedBufferSubData(offsets_.id(), 0, GLsizeiptr(counts.size() * 4), counts.data());  // the sort's ib_fill_counts
+        if (truncated_lists_ > 0)  // the sort's ib_fill_counts; else the kept lengths are the counts
+          glNamedBufferSubData(offsets_.id(), 0, GLsizeiptr(counts.size() * 4), counts.data());
         return longest;
       }
       ++slot_overflows_;
@@ -514,9 +517,9 @@ class IllustrationBuffer final : public Technique {
     return last.fragments > 0 && slots <= kMostSlotsPerFragment * last.fragments;
   }
 
-  // This tile's longest list and fragments (produced_), for the next frame.
+  // This tile's longest list and fragments (produced_), for the next frame
+  // (lists_by_tile_ is sized by fills_arrays, which every frame runs first).
   void remember_lists(const Frame& frame, uint32_t longest) {
-    lists_by_tile_.resize(std::max(lists_by_tile_.size(), size_t(std::max(frame.tile_index, 0)) + 1));
     lists_by_tile_[size_t(std::max(frame.tile_index, 0))] = {longest, produced_};
   }
 
