@@ -44,12 +44,18 @@ bool Settings::sweep_reaches_steps() const {
   // The value after n steps from 1 is 1 - lambda - ... - lambda (n times, in
   // float, as the shader computes it); a field is carried to its end when
   // step iterations + 1 would be at or below 0, the unfixed fields' start.
-  const auto reaches = [&](float lambda) {
-    float value = 1.0f;
-    for (int step = 0; step <= iterations && value > 0.0f; ++step) value -= lambda;
-    return value <= 0.0f;
-  };
+  const auto reaches = [&](float lambda) { return values_from_one(lambda, uint32_t(iterations) + 2).back() <= 0.0f; };
   return (!uses_beta() || reaches(lambda_beta)) && (!uses_gamma() || reaches(lambda_gamma));
+}
+
+std::vector<float> Settings::values_from_one(float lambda, uint32_t count) {
+  std::vector<float> values(count);
+  float value = 1.0f;
+  for (float& v : values) {
+    v = value;
+    value -= lambda;
+  }
+  return values;
 }
 
 Settings settings_from(const ParamSet& p) {

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "harness/core/list_length_pass.h"
 #include "harness/core/technique.h"
@@ -92,6 +93,9 @@ struct Settings {
   // below for each field used, so that the steps' result is the fixed point
   // wherever alpha cannot move (Diffusion).
   bool sweep_reaches_steps() const;
+  // Eq. 9's values along a path from a field of 1: F(0) = 1, F(d) =
+  // F(d - 1) - lambda in float, as the shaders subtract, for d < count.
+  static std::vector<float> values_from_one(float lambda, uint32_t count);
   // Whether the sweeps may run at all (some frame may still need the steps: one_alpha).
   bool may_sweep() const { return diffused() && (diffusion == Diffusion::sweep || sweep_where_exact); }
 };

@@ -236,10 +236,11 @@ class IllustrationBuffer final : public Technique {
     std::vector<float> table;
     glm::uvec2 cutoff(field_table_size_);  // each field's first distance of value 0
     for (int field = 0; field < 2; ++field) {
-      float value = 1.0f;
-      for (uint32_t d = 0; d < field_table_size_; ++d, value -= field == 0 ? s_.lambda_beta : s_.lambda_gamma) {
-        table.push_back(std::max(value, 0.0f));
-        if (value <= 0.0f) cutoff[field] = std::min(cutoff[field], d);
+      const std::vector<float> values =
+          Settings::values_from_one(field == 0 ? s_.lambda_beta : s_.lambda_gamma, field_table_size_);
+      for (uint32_t d = 0; d < field_table_size_; ++d) {
+        table.push_back(std::max(values[d], 0.0f));
+        if (values[d] <= 0.0f) cutoff[field] = std::min(cutoff[field], d);
       }
     }
     field_table_ = make_buffer(GLsizeiptr(table.size() * sizeof(float)), table.data(), 0);
