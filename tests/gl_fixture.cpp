@@ -190,6 +190,8 @@ std::vector<DiagnosticImage> diagnostic_images_once(const std::string& technique
   const Scene loaded = load_scene(scene, scene_params);
   const SceneGpu gpu(loaded);
   const Camera camera = resolve_camera(gpu, "default");
+  prepared.resolve(gl_context().device(), {loaded.triangle_count(), loaded.object_count, true},
+                   FrameContent{width, height, 0, 0});
   prepared.create(untiled_plan(width, height));
   RenderTarget target(width, height);
   StageClock clock(ClockKind::wall);

@@ -135,8 +135,8 @@ TEST(Harness, UnsupportedRunIsSkippedWithTheReasonAndTheSweepGoesOn) {
 // on NVIDIA's driver), so it needs no 64-bit integers; a technique that
 // declares them is skipped with the reason on a device without them.
 TEST(Harness, DeviceWithoutInt64RunsTheReferenceAndSkipsWhatDeclaresInt64) {
-  DeviceInfo weak = test::gl_context().device();
-  weak.has_int64 = false;
+  DeviceProfile weak = test::gl_context().device();
+  weak.int64 = false;
   const auto& reference = builtin_techniques().reference();
   EXPECT_EQ(supports(reference, ParamSet(reference.params, {}, "t"), weak, SceneFacts{2, 1, true}), "");
   TechniqueDescriptor needs_int64 = reference;

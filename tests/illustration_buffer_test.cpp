@@ -561,7 +561,7 @@ TEST(IllustrationBuffer, SweepingToTheFixedPointGivesTheStepsImage) {
 // why, and auto runs the steps.
 TEST(IllustrationBuffer, SweepingWhereTheFixedPointDiffersIsAnErrorAndAutoSteps) {
   test::gl_context();
-  const double software = current_device_is_software() ? 1.0 : 0.0;
+  const double software = test::gl_context().device().software ? 1.0 : 0.0;
   const RawParams quads = {{"count", "64"}, {"size", "0.3"}};
   struct Case {
     const char* scene;
@@ -782,7 +782,7 @@ TEST(IllustrationBuffer, StorageOptionsThatDoNotGoTogetherAreErrorsNamingThem) {
 // which ran); an explicit sort=dynamic or fill= decides it.
 TEST(IllustrationBuffer, AutoStorageFollowsTheDeviceUnlessSortOrFillNeedsOne) {
   test::gl_context();
-  const double software = current_device_is_software() ? 1.0 : 0.0;
+  const double software = test::gl_context().device().software ? 1.0 : 0.0;
   for (const auto& [params, linearized, what] : std::vector<std::tuple<RawParams, double, std::string>>{
            {{}, software, "defaults"},
            {{{"sort", "dynamic"}}, 0.0, "sort=dynamic"},
@@ -800,7 +800,7 @@ TEST(IllustrationBuffer, AutoStorageFollowsTheDeviceUnlessSortOrFillNeedsOne) {
 // lists. The image is the linked lists' either way.
 TEST(IllustrationBuffer, AutoStorageFillsArraysAfterAFrameOfEvenLists) {
   test::gl_context();
-  const bool software = current_device_is_software();
+  const bool software = test::gl_context().device().software;
   for (const char* scene : {"torus", "spheres"}) {
     RunSpec spec = test::one_frame("illustration_buffer", {}, scene, {}, 48);
     spec.warmup = 1;
@@ -838,7 +838,7 @@ TEST(IllustrationBuffer, AutoStorageRefillsIntoExactRangesWhenAListOutgrowsItsSl
   const double arrays_before = find_figure(moved.technique->counters().extra, "array_storage").value_or(-1.0);
   const Image image = moved.render(nested_gpu);
   const TechniqueCounters c = moved.technique->counters();
-  if (current_device_is_software()) {
+  if (test::gl_context().device().software) {
     EXPECT_EQ(arrays_before, 1.0);
     EXPECT_EQ(c.overflow_retries, 1u);
     EXPECT_EQ(c.passes, 2u);  // the fill into arrays, then into exact ranges
@@ -849,7 +849,7 @@ TEST(IllustrationBuffer, AutoStorageRefillsIntoExactRangesWhenAListOutgrowsItsSl
   // The next frame of the nested spheres takes arrays of their longest list.
   const Image again = moved.render(nested_gpu);
   EXPECT_EQ(largest_difference(again, image), 0.0);
-  if (current_device_is_software()) {
+  if (test::gl_context().device().software) {
     EXPECT_EQ(find_figure(moved.technique->counters().extra, "array_storage").value_or(-1.0), 1.0);
   }
 }

@@ -52,7 +52,7 @@ std::vector<RawParams> runnable_options() {
   std::vector<RawParams> options;
   for (const RawParams& params : kOptions) {
     const auto fill = params.find("fill");
-    if (fill == params.end() || fill->second != "framebuffer_fetch" || current_device_has_framebuffer_fetch())
+    if (fill == params.end() || fill->second != "framebuffer_fetch" || test::gl_context().device().framebuffer_fetch)
       options.push_back(params);
   }
   return options;
@@ -157,7 +157,7 @@ TEST(LinearizedFragmentBuffer, EveryOptionIsOrderIndependent) {
 TEST(LinearizedFragmentBuffer, AutoFillScanAndKeyFormatPickTheDevicesPaths) {
   test::gl_context();
   const bool fetch = epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch");
-  const bool software = current_device_is_software();
+  const bool software = test::gl_context().device().software;
   const bool int64 = epoxy_has_gl_extension("GL_ARB_gpu_shader_int64");
   const RunResult r = test::render_once("linearized_fragment_buffer", {}, "quads", {{"layers", "4"}}, 16, 16);
   EXPECT_EQ(find_figure(r.counters.extra, "framebuffer_fetch_fill"), fetch ? 1.0 : 0.0);

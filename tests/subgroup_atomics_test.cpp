@@ -47,7 +47,7 @@ void expect_same_with_and_without_ballot(const Case& c) {
 TEST(SubgroupAtomics, SoftwareGlTakesTheSubgroupPath) {
   // Mesa llvmpipe (the CI device) has GL_ARB_shader_ballot: the fast path is
   // what CI tests and what the README's numbers measured.
-  const DeviceInfo& device = test::gl_context().device();
+  const DeviceProfile& device = test::gl_context().device();
   unsetenv("OIT_SHADER_BALLOT");
   if (device.software) {
     EXPECT_EQ(atomics_path(), "subgroup atomics") << device.renderer;

@@ -139,7 +139,7 @@ TEST(TechniqueHelpers, SlotCursorsCountThePixelsWhoseFillEndedElsewhere) {
   const Buffer ends_buffer = make_buffer(GLsizeiptr(ends.size() * 4), ends.data(), 0);
   const Buffer one_more_buffer = make_buffer(GLsizeiptr(one_more.size() * 4), one_more.data(), 0);
   for (const SlotFill fill : {SlotFill::atomic, SlotFill::framebuffer_fetch}) {
-    ASSERT_EQ(missing_slot_fill_feature(fill), "");
+    ASSERT_EQ(missing_slot_fill_feature(fill, test::gl_context().device()), "");
     SlotCursors cursors(fill);
     cursors.resize(4, 2, "test");
     cursors.start(starts_buffer);

@@ -70,7 +70,7 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
                              {"k_auto", "sizes k from the view's depth complexity (a counting pass) instead of the "
                                         "worst-case constant 64",
                               {{"k", "auto"}}, {{"k", "64"}}}},
-      .extra_support_check = [](const ParamSet& params, const SceneFacts& scene) -> std::string {
+      .extra_support_check = [](const ParamSet& params, const SceneFacts& scene, const DeviceProfile&) -> std::string {
         const int depth_bits = params.choice("depth_bits", bkb::kDepthBits);
         const uint32_t limit = 1u << (32 - depth_bits);
         if (scene.objects > limit)

@@ -2,7 +2,6 @@
 // technique itself is in technique.cpp; see README.md.
 #include "algorithms/illustration_buffer/settings.h"
 
-#include "harness/gl/context.h"
 
 namespace oit {
 namespace illustration_buffer {
@@ -19,23 +18,26 @@ const Choices<Modulation> kModulations{{Modulation::none, "none"},
                                        {Modulation::normal_variation, "normal_variation"}};
 const Choices<SortMethod> kSorts{{SortMethod::automatic, "auto"}, {SortMethod::array, "array"},
                                  {SortMethod::dynamic, "dynamic"}};
-const Choices<Storage> kStorages{
-    {Storage::automatic, "auto"}, {Storage::linked, "linked"}, {Storage::linearized, "linearized"}, {Storage::arrays, "arrays"}};
-const Choices<Diffusion> kDiffusions{
-    {Diffusion::automatic, "auto"}, {Diffusion::steps, "steps"}, {Diffusion::sweep, "sweep"}};
+const Choices<Storage> kStorages{{Storage::automatic, "auto"},
+                                  {Storage::linked, "linked"},
+                                  {Storage::linearized, "linearized"},
+                                  {Storage::arrays, "arrays"},
+                                  {Storage::arrays_when_even, "arrays_when_even"}};
+const Choices<Diffusion> kDiffusions{{Diffusion::automatic, "auto"},
+                                     {Diffusion::steps, "steps"},
+                                     {Diffusion::sweep, "sweep"},
+                                     {Diffusion::sweep_where_exact, "sweep_where_exact"}};
+// flat_color_records: true and false, or auto (true on a software
+// rasterizer, false on a GPU).
+const Choices<int> kFlatColorRecords{{-1, "auto"}, {1, "true"}, {0, "false"}};
 const Choices<Profile> kProfiles{{Profile::none, "none"}, {Profile::exponential, "exponential"}, {Profile::power, "power"}};
 
-// storage=auto: what sort= or fill= asks for where one of them needs one
-// storage; else linearized on a software rasterizer (with per-pixel arrays
-// on the frames whose lists are even: Settings::arrays_where_even) and
-// linked on a GPU. On
-// an H200 the counting pass's read-back of every pixel's count cost more
-// than the linked fill's global counter saves (README: storage).
-Storage resolved_storage(Storage storage, SortMethod sort, SlotFill fill) {
-  if (storage != Storage::automatic) return storage;
-  if (sort == SortMethod::dynamic) return Storage::linked;
-  if (fill != SlotFill::automatic) return Storage::linearized;
-  return current_device_is_software() ? Storage::linearized : Storage::linked;
+// A resolved choice; throws for an `auto` the resolution rule did not resolve.
+template <typename E>
+E resolved(const ParamSet& p, const std::string& name, const Choices<E>& table) {
+  if (p.choice(name) == "auto")
+    throw std::logic_error("illustration_buffer: " + name + "=auto reached the technique unresolved");
+  return p.choice(name, table);
 }
 
 }  // namespace
@@ -66,18 +68,15 @@ Settings settings_from(const ParamSet& p) {
   s.iterations = int(p.integer("iterations"));
   s.skip_converged = p.boolean("skip_converged");
   s.diffusion_tolerance = float(p.real("diffusion_tolerance"));
-  const Diffusion diffusion = p.choice("diffusion", kDiffusions);
+  const Diffusion diffusion = resolved(p, "diffusion", kDiffusions);
   s.diffusion = diffusion == Diffusion::sweep ? Diffusion::sweep : Diffusion::steps;
-  // A tolerance asks for the steps that stop small moves; the sweeps are exact.
-  s.sweep_where_exact =
-      diffusion == Diffusion::automatic && s.diffusion_tolerance == 0.0f && current_device_is_software();
+  s.sweep_where_exact = diffusion == Diffusion::sweep_where_exact;
   s.sort = p.choice("sort", kSorts);
   s.fill = p.choice("fill", kSlotFills);
-  const Storage storage = p.choice("storage", kStorages);
-  s.storage = resolved_storage(storage, s.sort, s.fill);
-  s.arrays_where_even =
-      storage == Storage::automatic && s.storage == Storage::linearized && current_device_is_software();
-  s.flat_color_records = p.boolean("flat_color_records");
+  const Storage storage = resolved(p, "storage", kStorages);
+  s.storage = storage == Storage::arrays_when_even ? Storage::linearized : storage;
+  s.arrays_where_even = storage == Storage::arrays_when_even;
+  s.flat_color_records = resolved(p, "flat_color_records", kFlatColorRecords) == 1;
   s.normal_variation_scale = float(p.real("normal_variation_scale"));
   s.lambda_alpha = float(p.real("lambda_alpha"));
   s.lambda_beta = float(p.real("lambda_beta"));
@@ -93,6 +92,33 @@ Settings settings_from(const ParamSet& p) {
   s.measure_accuracy = p.boolean("measure_accuracy");
   s.accuracy_footprints = p.real("accuracy_footprints");
   return s;
+}
+
+// The resolution rule (README: device-dependent defaults). storage=auto:
+// linked where sort=dynamic needs it; linearized where fill= asks for a
+// ranged fill; else arrays_when_even on a software rasterizer and linked on
+// a GPU. diffusion=auto: sweep_where_exact on a software rasterizer without
+// a tolerance (a tolerance asks for the steps that stop small moves), steps
+// elsewhere. flat_color_records=auto: true on a software rasterizer, false
+// on a GPU. fill=auto, where the storage is ranged: framebuffer fetch where
+// the device has it.
+RawParams resolve_parameters(const ParamSet& requested, const ResolveInput& input) {
+  const bool software = input.device.software;
+  RawParams resolved;
+  const SlotFill fill = requested.choice("fill", kSlotFills);
+  Storage storage = requested.choice("storage", kStorages);
+  if (storage == Storage::automatic) {
+    storage = requested.choice("sort", kSorts) == SortMethod::dynamic ? Storage::linked
+              : fill != SlotFill::automatic                           ? Storage::linearized
+              : software                                              ? Storage::arrays_when_even
+                                                                      : Storage::linked;
+    resolved["storage"] = kStorages.name(storage);
+  }
+  if (storage != Storage::linked) resolved["fill"] = kSlotFills.name(resolve_slot_fill(fill, input.device));
+  if (requested.choice("diffusion", kDiffusions) == Diffusion::automatic)
+    resolved["diffusion"] = software && requested.real("diffusion_tolerance") == 0.0 ? "sweep_where_exact" : "steps";
+  if (requested.choice("flat_color_records") == "auto") resolved["flat_color_records"] = software ? "true" : "false";
+  return resolved;
 }
 
 }  // namespace illustration_buffer
@@ -129,8 +155,9 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
               "steps = `iterations` synchronous steps of eq. 8-9 (skip_converged applies); sweep = in-place "
               "raster-order sweeps in the four diagonal directions until no field moves, the same result where alpha cannot move "
               "(eq. 4, one alpha in the scene) and `iterations` steps carry beta and gamma to 0 (an error "
-              "otherwise, and with a diffusion_tolerance); auto = sweep on the frames where it is exact on a "
-              "software rasterizer and diffusion_tolerance is 0, else steps"),
+              "otherwise, and with a diffusion_tolerance); sweep_where_exact = sweep on the frames where that is exact, "
+              "else steps (a software rasterizer's path); auto = sweep_where_exact on a software rasterizer "
+              "when diffusion_tolerance is 0, else steps"),
           ParamSpec::real("lambda_alpha", 1.0, 0.0, 1.0,
                           "diffusion coefficient of alpha (eq. 8, normalised Laplacian)"),
           ParamSpec::real("lambda_beta", 0.05, 0.0, 1.0, "decrement per step of the silhouette field (eq. 9)"),
@@ -159,19 +186,21 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
               "(Knowles et al. 2012): no list walk in the sort, no global counter in the fill; arrays = no "
               "counting pass: per-pixel arrays of as many slots as the previous frame's longest list (first frame: "
               "initial_nodes_per_pixel), each fragment at its pixel's next slot, a longer list caught by its "
-              "cursor and filled again with more slots; auto = linked with sort=dynamic, else on a software "
-              "rasterizer arrays on the frames after one whose slots would hold at most 4x its fragments and "
-              "linearized on the others, and on a GPU linked (linearized with fill=atomic or framebuffer_fetch)"),
+              "cursor and filled again with more slots; arrays_when_even = arrays on the frames after one whose "
+              "slots would hold at most 4x its fragments and linearized on the others (a software rasterizer's "
+              "path); auto = linked with sort=dynamic, linearized with fill=atomic or framebuffer_fetch, else "
+              "arrays_when_even on a software rasterizer and linked on a GPU"),
           kSlotFills.spec(
               "fill", SlotFill::automatic,
               "storage=linearized or arrays: how a fragment takes its slot: atomic = an image atomic on its pixel's cursor; "
               "framebuffer_fetch = the cursor is the pixel's R32UI colour, read and incremented in primitive order "
               "(GL_EXT_shader_framebuffer_fetch); auto = framebuffer_fetch where the device has it"),
-          ParamSpec::boolean("flat_color_records", true,
-                             "the fill stores no colour and the sort fetches the triangle's flat colour by triangle id: "
-                             "on unlit scenes, and on lit ones with storage=linearized or arrays (the record keeps the "
-                             "light factor instead of a list link; the same colour bit for bit); false, or lit scenes "
-                             "with storage=linked: the fill stores the float colour"),
+          illustration_buffer::kFlatColorRecords.spec(
+              "flat_color_records", -1,
+              "true = the fill stores no colour and the sort fetches the triangle's flat colour by triangle id: on "
+              "unlit scenes, and on lit ones with storage=linearized or arrays (the record keeps the light factor "
+              "instead of a list link; the same colour bit for bit); false, or lit scenes with storage=linked: the "
+              "fill stores the float colour; auto = true on a software rasterizer, false on a GPU"),
           ParamSpec::real("normal_variation_scale", 10.0, 0.0, 1000.0,
                           "modulation=normal_variation: opacity = min(1, scale * |grad n|), grad n the view normal's "
                           "change per pixel (dFdx, dFdy)"),
@@ -211,12 +240,14 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
                               "sort",
                               {{"flat_color_records", "true"}},
                               {{"flat_color_records", "false"}}}},
-      .extra_support_check = [](const ParamSet& params, const SceneFacts& scene) -> std::string {
+      .extra_support_check = [](const ParamSet& params, const SceneFacts& scene,
+                                const DeviceProfile& device) -> std::string {
         const illustration_buffer::Settings s = illustration_buffer::settings_from(params);
         if (s.diffused() && s.neighbors == illustration_buffer::NeighborSearch::triangle_index && !scene.indexed)
           return "neighbors=triangle_index needs indexed geometry (shared vertex indices)";
-        return illustration_buffer::missing_device_feature(s);
+        return illustration_buffer::missing_device_feature(s, device);
       },
+      .resolve = illustration_buffer::resolve_parameters,
       .create = [](const ParamSet& params) {
         return illustration_buffer::make_illustration_buffer(illustration_buffer::settings_from(params));
       },

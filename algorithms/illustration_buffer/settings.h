@@ -30,16 +30,21 @@ enum class Profile { none, exponential, power };  // eq. 10 / eq. 11
 // from the counts' prefix sum, exactly sized, filled in place; or
 // fixed-size per-pixel arrays of as many slots as the previous frame's
 // longest list (no counting pass; a longer list is caught by its cursor and
-// the fill runs again with more slots). automatic is resolved by
-// settings_from and never reaches the technique.
-enum class Storage { automatic, linked, linearized, arrays };
+// the fill runs again with more slots); or, a software rasterizer's choice,
+// linearized with per-pixel arrays on the frames after one whose lists were
+// even (arrays_when_even: one geometry pass fewer where each pass is costly).
+// automatic is resolved by the registry's resolution rule and never reaches
+// the technique.
+enum class Storage { automatic, linked, linearized, arrays, arrays_when_even };
 // How the diffusion reaches its result: `iterations` synchronous steps of
 // eq. 8-9, or in-place sweeps along the image lines until nothing moves (the
 // fixed point, which equals the steps' result when alpha cannot move and
-// `iterations` steps carry beta and gamma to 0: sweep_reaches_steps). auto
-// (resolved by settings_from): sweeps where exact on a software
-// rasterizer, steps on a GPU.
-enum class Diffusion { automatic, steps, sweep };
+// `iterations` steps carry beta and gamma to 0: sweep_reaches_steps), or,
+// a software rasterizer's choice, sweeps on the frames where they are exact
+// and steps elsewhere (sweep_where_exact). auto is resolved by the
+// registry's resolution rule: sweep_where_exact on a software rasterizer,
+// steps on a GPU.
+enum class Diffusion { automatic, steps, sweep, sweep_where_exact };
 
 struct Settings {
   NeighborSearch neighbors = NeighborSearch::triangle_index;
@@ -48,8 +53,8 @@ struct Settings {
   int iterations = 20;
   bool skip_converged = true;       // diffuse only the pixels whose neighbourhood changed
   float diffusion_tolerance = 0.0f; // a fragment moving by at most this keeps its value
-  Diffusion diffusion = Diffusion::steps;  // never automatic here (settings_from resolves it)
-  bool sweep_where_exact = false;           // diffusion=auto on this device: sweep the frames where it is exact
+  Diffusion diffusion = Diffusion::steps;  // steps or sweep
+  bool sweep_where_exact = false;           // diffusion=sweep_where_exact: sweep the frames where it is exact
   float lambda_alpha = 1.0f, lambda_beta = 0.05f, lambda_gamma = 0.1f;
   Profile profile = Profile::none;
   float exponential_p = 3.0f, power_p = 0.3f;
@@ -60,9 +65,9 @@ struct Settings {
   SortMethod sort = SortMethod::automatic;
   Storage storage = Storage::linearized;
   SlotFill fill = SlotFill::automatic;  // storage=linearized or arrays (list_length_pass.h)
-  // storage=auto on a software rasterizer (storage is linearized then): each
-  // frame fills per-pixel arrays where the last frame's lists were even
-  // enough (technique.cpp, kMostSlotsPerFragment), else runs the counting pass.
+  // storage=arrays_when_even (storage is linearized then): each frame fills
+  // per-pixel arrays where the last frame's lists were even enough
+  // (technique.cpp, kMostSlotsPerFragment), else runs the counting pass.
   bool arrays_where_even = false;
   bool flat_color_records = true;  // unlit scenes, lit ones with ranged(): no colour in the fill record
   float normal_variation_scale = 10.0f;
@@ -103,7 +108,7 @@ struct Settings {
 Settings settings_from(const ParamSet& params);
 // The explicit choice this device cannot run (fill=framebuffer_fetch without
 // the extension), or "": the harness skips such a run.
-std::string missing_device_feature(const Settings& settings);
+std::string missing_device_feature(const Settings& settings, const DeviceProfile& device);
 std::unique_ptr<Technique> make_illustration_buffer(const Settings& settings);
 // GPU storage of a frame of `content` (TechniqueDescriptor::storage_need).
 StorageNeed storage_need(const Settings& settings, const FrameContent& content);

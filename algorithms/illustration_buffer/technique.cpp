@@ -99,8 +99,6 @@ void check_combination(const Settings& s) {
   if (sweep && s.diffusion_tolerance > 0.0f)
     throw std::invalid_argument("illustration_buffer: diffusion_tolerance stops small moves of diffusion=steps; "
                                 "diffusion=sweep is exact: leave the tolerance at 0 or use diffusion=steps");
-  if (const std::string missing = missing_device_feature(s); !missing.empty())
-    throw std::runtime_error("illustration_buffer: " + missing);
 }
 
 // What the fill and the sort share: the storage (`arrays`: this frame's
@@ -1062,8 +1060,8 @@ std::unique_ptr<Technique> make_illustration_buffer(const Settings& settings) {
   return std::make_unique<IllustrationBuffer>(settings);
 }
 
-std::string missing_device_feature(const Settings& settings) {
-  return settings.ranged() ? missing_slot_fill_feature(settings.fill) : "";
+std::string missing_device_feature(const Settings& settings, const DeviceProfile& device) {
+  return settings.ranged() ? missing_slot_fill_feature(settings.fill, device) : "";
 }
 
 StorageNeed storage_need(const Settings& settings, const FrameContent& content) {

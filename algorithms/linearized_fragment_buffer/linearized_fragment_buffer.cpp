@@ -23,7 +23,6 @@
 #include "harness/core/passes.h"
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
-#include "harness/gl/context.h"
 #include "harness/gl/shader_program.h"
 #include "harness/gl/uniforms.h"
 #include "algorithms/linearized_fragment_buffer/bindings.h"
@@ -63,40 +62,38 @@ const Choices<KeyFormat> kKeyFormats{
 
 constexpr const char* kFillShader = "algorithms/linearized_fragment_buffer/fill.frag";
 
-bool device_has_int64() { return epoxy_has_gl_extension("GL_ARB_gpu_shader_int64"); }
-
 // The explicit choice this device cannot run, or "": the harness skips
-// such a run (extra_support_check); the viewer, which builds techniques
-// directly, gets it as the constructor's error.
-std::string missing_device_feature(const ParamSet& params) {
-  if (std::string missing = missing_slot_fill_feature(params.choice("fill", kSlotFills)); !missing.empty())
+// such a run (extra_support_check).
+std::string missing_device_feature(const ParamSet& params, const DeviceProfile& device) {
+  if (std::string missing = missing_slot_fill_feature(params.choice("fill", kSlotFills), device); !missing.empty())
     return missing;
-  if (params.choice("key_format", kKeyFormats) == KeyFormat::uint64 && !device_has_int64())
+  if (params.choice("key_format", kKeyFormats) == KeyFormat::uint64 && !device.int64)
     return "key_format=uint64 needs GL_ARB_gpu_shader_int64, which this device lacks (use key_format=uint32_pair or "
            "auto)";
   return "";
 }
 
-// The constructor checks this first, so no program is built for a path the
-// device lacks.
-const ParamSet& runnable(const ParamSet& params) {
-  if (const std::string missing = missing_device_feature(params); !missing.empty())
-    throw std::runtime_error("linearized_fragment_buffer: " + missing);
-  return params;
+// The resolution rule. fill=auto: framebuffer fetch where the device has
+// it. key_format=auto: one uint64 where the device has 64-bit integers.
+// scan=auto: on the host where the "GPU" is the CPU (the counts are read
+// back for the pool size anyway, and a running sum there costs less than the
+// compute dispatches; README: scan), in compute shaders on a GPU.
+RawParams resolve_parameters(const ParamSet& requested, const ResolveInput& input) {
+  RawParams resolved;
+  resolved["fill"] = kSlotFills.name(resolve_slot_fill(requested.choice("fill", kSlotFills), input.device));
+  if (requested.choice("key_format", kKeyFormats) == KeyFormat::automatic)
+    resolved["key_format"] = input.device.int64 ? "uint64" : "uint32_pair";
+  if (requested.choice("scan", kScans) == Scan::automatic) resolved["scan"] = input.device.software ? "host" : "compute";
+  return resolved;
 }
 
-// key_format=auto: one uint64 where the device has 64-bit integers.
-bool uses_uint64_keys(const ParamSet& params) {
-  const KeyFormat format = params.choice("key_format", kKeyFormats);
-  return format == KeyFormat::uint64 || (format == KeyFormat::automatic && device_has_int64());
-}
-
-// scan=auto: on the host where the "GPU" is the CPU: the counts are read
-// back for the pool size anyway, and a running sum there costs less than
-// the compute dispatches (README: scan).
-bool scans_on_host(const ParamSet& params) {
-  const Scan scan = params.choice("scan", kScans);
-  return scan == Scan::host || (scan == Scan::automatic && current_device_is_software());
+// A parameter the resolution rule leaves concrete; throws for an unresolved auto.
+template <typename E>
+E resolved(const ParamSet& params, const std::string& name, const Choices<E>& table) {
+  const E value = params.choice(name, table);
+  if (params.choice(name) == "auto")
+    throw std::logic_error("linearized_fragment_buffer: " + name + "=auto reached the technique unresolved");
+  return value;
 }
 
 // The resolve's #defines for an array of `size` fragments: one network of
@@ -124,12 +121,12 @@ ShaderDefines resolve_defines(uint32_t size, bool blocks, uint32_t block, bool f
 class LinearizedFragmentBuffer final : public Technique {
  public:
   explicit LinearizedFragmentBuffer(const ParamSet& params)
-      : register_blocks_(runnable(params).choice("sort", kSorts) == Sort::register_block),
+      : register_blocks_(params.choice("sort", kSorts) == Sort::register_block),
         block_(params.choice("block_size", kBlockSizes)),
         backwards_allocation_(params.boolean("backwards_allocation")),
         flat_color_nodes_(params.boolean("flat_color_nodes")),
-        host_scan_(scans_on_host(params)),
-        key64_(uses_uint64_keys(params)),
+        host_scan_(resolved(params, "scan", kScans) == Scan::host),
+        key64_(resolved(params, "key_format", kKeyFormats) == KeyFormat::uint64),
         cursors_(params.choice("fill", kSlotFills)),
         fill_(build_geometry_program(kFillShader, fill_defines(false))),
         mismatched_(make_buffer(4)),
@@ -382,7 +379,9 @@ void register_technique_linearized_fragment_buffer(TechniqueRegistry& registry) 
            "stores 8-byte keys on unlit scenes and fetches each fragment's flat colour by triangle id instead of "
            "storing 24-byte nodes with the colour",
            {{"flat_color_nodes", "true"}}, {{"flat_color_nodes", "false"}}}},
-      .extra_support_check = [](const ParamSet& params, const SceneFacts&) { return missing_device_feature(params); },
+      .extra_support_check = [](const ParamSet& params, const SceneFacts&,
+                                const DeviceProfile& device) { return missing_device_feature(params, device); },
+      .resolve = resolve_parameters,
       .create = make_technique<LinearizedFragmentBuffer>,
       .storage_need = [](const ParamSet&, const FrameContent& content) {
         const uint64_t fragments = std::max<uint64_t>(content.fragments, 1);

@@ -171,7 +171,7 @@ void register_technique_stochastic_transparency(TechniqueRegistry& registry) {
                  ParamSpec::integer("seed", 1, 0, 0xffffffffLL, "seed of the per-fragment coverage masks")},
       .stages = {"clear", "fill", "store", "compose"},
       .quality_sweep = {{"samples", kSampleCounts.names()}, {"passes", {"1", "2", "4", "8"}}},
-      .extra_support_check = [](const ParamSet& params, const SceneFacts&) {
+      .extra_support_check = [](const ParamSet& params, const SceneFacts&, const DeviceProfile&) {
         return sample_count_support(params.choice("samples", kSampleCounts));
       },
       .create = make_technique<StochasticTransparency>,

@@ -151,7 +151,8 @@ int run_adaptive(const CommonOptions& common, const AdaptiveOptions& options) {
 
   auto context = create_headless_context(parse_device_choice(common.device), common.debug_gl);
   Harness harness(*context, registry);
-  const DeviceInfo& device = harness.device();
+  const DeviceProfile& device = harness.device();
+  parse_size(size_for(options.size, device), width, height);
   const RunContext csv_context = run_context(device);
   std::unique_ptr<CsvWriter> csv;
   if (!options.csv.empty()) csv = std::make_unique<CsvWriter>(options.csv);

@@ -29,7 +29,7 @@ json stage_json(const StageResult& stage) {
   const Summary& s = stage.summary;
   return {{"stage", stage.stage}, {"clock", stage.clock}, {"median_ms", s.median}, {"min_ms", s.min},
           {"p05_ms", s.p05},      {"p95_ms", s.p95},      {"mean_ms", s.mean},     {"frames", s.count},
-          {"samples_ms", stage.samples_ms}};
+          {"ci_low_ms", s.interval.low}, {"ci_high_ms", s.interval.high}, {"samples_ms", stage.samples_ms}};
 }
 
 json run_json(const RunResult& r, const std::string& run_id) {
@@ -37,8 +37,20 @@ json run_json(const RunResult& r, const std::string& run_id) {
   json run = {{"run_id", run_id}, {"technique", r.spec.technique}, {"params", params_object(r.technique_params)},
               {"scene", r.spec.scene}, {"scene_params", params_object(r.scene_params)}, {"camera", r.spec.camera},
               {"width", r.spec.width}, {"height", r.spec.height}, {"scene_rect", r.spec.scene_rect},
-              {"warmup", r.spec.warmup}, {"status", to_string(r.status)}, {"message", r.message},
-              {"noisy", r.noisy}};
+              {"requested_params", params_object(r.requested_params)},
+              {"warmup", ran ? r.warmup_frames : r.spec.warmup}, {"status", to_string(r.status)},
+              {"message", r.message}, {"noisy", r.noisy}, {"warnings", r.warnings}, {"rounds", r.rounds},
+              {"frame_rounds", r.frame_rounds}};
+  run["precision_reached"] = r.spec.precision > 0.0 ? json(r.precision_reached) : json(nullptr);
+  run["ratio"] = r.ratio ? json{{"baseline", r.baseline}, {"ratio", r.ratio->ratio},
+                                {"ci_low", r.ratio->interval.low}, {"ci_high", r.ratio->interval.high}}
+                         : json(nullptr);
+  run["frame_overhead_ms"] = r.frame_overhead_ms ? json(*r.frame_overhead_ms) : json(nullptr);
+  auto clocks = [](const std::optional<GpuClockReading>& c) {
+    return c ? json{{"sm_mhz", c->sm_mhz}, {"memory_mhz", c->memory_mhz}, {"temperature_c", c->temperature_c}}
+             : json(nullptr);
+  };
+  run["gpu_clocks"] = {{"start", clocks(r.gpu_start)}, {"end", clocks(r.gpu_end)}};
   run["tiles"] = ran ? json(r.tiles) : json(nullptr);
   run["other_cpu_load"] = r.other_process_load >= 0.0 ? json(r.other_process_load) : json(nullptr);
   run["clock_disagreement"] = r.clock_disagreement ? json(*r.clock_disagreement) : json(nullptr);

@@ -84,6 +84,23 @@ std::string number(const char* format, double value) {
   return text;
 }
 
+// "12.77±0.31": the median total and the half-width of its 95% interval.
+std::string median_text(const RunResult& r) {
+  const StageResult* total = r.total();
+  if (!total) return "";
+  const Summary& s = total->summary;
+  return number("%.2f", s.median) + "±" + number("%.2g", (s.interval.high - s.interval.low) / 2.0);
+}
+
+// The ratio to the baseline: paired by round with its 95% interval where the
+// runs were interleaved, else the plain ratio of the medians.
+std::string ratio_text(const RunResult& r, double base) {
+  if (r.ratio)
+    return number("%.2f", r.ratio->ratio) + " [" + number("%.2f", r.ratio->interval.low) + "-" +
+           number("%.2f", r.ratio->interval.high) + "]";
+  return base > 0.0 ? number("%.2f", r.median_total_ms() / base) : "";
+}
+
 void print_row(const RunResult& r, const std::string& params, double base) {
   const std::string status = to_string(r.status);
   if (r.status != RunStatus::ok) {
@@ -92,13 +109,10 @@ void print_row(const RunResult& r, const std::string& params, double base) {
                 fit(r.message, kConsoleWidth - 56).c_str());
     return;
   }
-  const StageResult* total = r.total();
-  const std::string spread = total ? number("%.2f", total->summary.p05) + "-" + number("%.2f", total->summary.p95) : "";
-  const std::string ratio = base > 0.0 ? number("%.2f", r.median_total_ms() / base) : "";
   const std::string error = r.error ? number("%.3g", r.error->max_abs) : "";
   char row[256];
-  std::snprintf(row, sizeof row, "%-26s %-20s %-7s %9.2f  %-15s %10s %9s %9llu %s", fit(r.spec.technique, 26).c_str(),
-                fit(params, 20).c_str(), status.c_str(), r.median_total_ms(), spread.c_str(), ratio.c_str(),
+  std::snprintf(row, sizeof row, "%-26s %-20s %-7s %14s %18s %9s %9llu %s", fit(r.spec.technique, 26).c_str(),
+                fit(params, 20).c_str(), status.c_str(), median_text(r).c_str(), ratio_text(r, base).c_str(),
                 error.c_str(), static_cast<unsigned long long>(r.counters.fragments_dropped), r.noisy ? "yes" : "");
   std::string line = row;
   line.erase(line.find_last_not_of(' ') + 1);
@@ -110,6 +124,11 @@ void print_row(const RunResult& r, const std::string& params, double base) {
   for (const Figure& figure : r.counters.work_saved)
     if (figure.value != 0.0) saved += " " + figure.name + "=" + number("%.10g", figure.value);
   if (!saved.empty()) std::printf("%s\n", fit("    work saved:" + saved, kConsoleWidth).c_str());
+  for (const std::string& warning : r.warnings) std::printf("    %s\n", wrap_after(4, "warning: " + warning).c_str());
+  if (r.spec.precision > 0.0 && !r.precision_reached)
+    std::printf("    %s\n", wrap_after(4, "precision " + number("%.3g", r.spec.precision) + " not reached after " +
+                                            std::to_string(r.total() ? r.total()->summary.count : 0) +
+                                            " frames (a cap stopped it)").c_str());
 }
 
 }  // namespace
@@ -171,8 +190,8 @@ void print_summary(const std::vector<RunResult>& results, const std::string& bas
   bool has_baseline = false;
   for (const auto& block : blocks) has_baseline |= block_base(block, baseline) > 0.0;
   const std::string ratio = has_baseline ? "x " + baseline : "x fastest";
-  std::printf("\n%-26s %-20s %-7s %9s  %-15s %10s %9s %9s %-5s\n", "technique", "params", "status", "median ms",
-              "p05-p95 ms", fit(ratio, 10).c_str(), "max error", "dropped", "noisy");
+  std::printf("\n%-26s %-20s %-7s %14s %18s %9s %9s %-5s\n", "technique", "params", "status", "median±95% ms",
+              fit(ratio + " [95%]", 18).c_str(), "max error", "dropped", "noisy");
   for (const auto& block : blocks) {
     std::printf("%s\n", fit("-- " + block_title(*block.front()), kConsoleWidth).c_str());
     const double base = block_base(block, has_baseline ? baseline : "");
@@ -182,13 +201,21 @@ void print_summary(const std::vector<RunResult>& results, const std::string& bas
     }
   }
   std::printf("%s\n", fit(has_baseline ? "(" + ratio + ": median total over " + baseline +
-                                             "'s in the same block, same run; params: non-default and swept ones)"
+                                             "'s in the same block, paired by round; params: as run, non-default)"
                                        : "(" + ratio + ": " + baseline +
                                              " did not run ok here, so ratios are over each block's fastest run)",
                           kConsoleWidth)
                           .c_str());
-  std::printf("(median and p05-p95: per-frame total time; noisy: other processes used over %.0f%% of the cores)\n",
+  std::printf("(median±: per-frame total time and the half-width of its 95%% interval; noisy: other processes used over "
+              "%.0f%% of the cores, or the GPU's clock moved)\n",
               kNoisyLoadThreshold * 100.0);
+  for (const RunResult& r : results)
+    if (r.frame_overhead_ms) {
+      std::printf("(frame overhead floor: %.3g ms on the %s clock, the median empty frame; a total under 5x it is "
+                  "mostly fixed cost)\n",
+                  *r.frame_overhead_ms, to_string(r.clock).c_str());
+      break;
+    }
 }
 
 }  // namespace oit

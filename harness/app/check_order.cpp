@@ -57,7 +57,7 @@ int run_check_order(const CommonOptions& common, const CheckOrderOptions& option
   RunSpec base;
   base.scene = options.scene;
   for (const auto& s : options.scene_sets) parse_assignment(s, base.scene_params);
-  parse_size(options.size, base.width, base.height);
+  parse_size(size_for(options.size, harness.device()), base.width, base.height);
   base.warmup = 0;
   base.frames = 1;
   std::vector<const TechniqueDescriptor*> techniques;

@@ -1,5 +1,6 @@
 #include "harness/app/commands.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <optional>
@@ -32,11 +33,11 @@ void print_params(const ParamSchema& schema) {
 
 }  // namespace
 
-std::string platform_text(const DeviceInfo& device) {
+std::string platform_text(const DeviceProfile& device) {
   return device.platform + ", host pages " + host_page_policy() + ", " + atomics_path();
 }
 
-RunContext run_context(const DeviceInfo& device) {
+RunContext run_context(const DeviceProfile& device) {
   return {device.renderer, device.version, platform_text(device), OIT_GIT_REVISION, utc_timestamp()};
 }
 
@@ -67,7 +68,7 @@ std::string technique_table_markdown(const TechniqueRegistry& registry) {
 
 int run_list(const CommonOptions& common) {
   auto context = open_context(common);
-  const DeviceInfo& device = context->device();
+  const DeviceProfile& device = context->device();
   std::printf("Device: %s (%s, %s)%s\n\n", device.renderer.c_str(), device.version.c_str(), platform_text(device).c_str(),
               device.software ? " — software GL: stage clock defaults to wall+glFinish" : "");
   const DeviceLimits limits = query_device_limits();
@@ -125,7 +126,7 @@ int run_render(const CommonOptions& common, const RenderOptions& options) {
     spec.scene = options.scene;
     for (const auto& s : options.scene_sets) parse_assignment(s, spec.scene_params);
     spec.camera = cameras[view];
-    parse_size(options.size, spec.width, spec.height);
+    parse_size(size_for(options.size, harness.device()), spec.width, spec.height);
     spec.background = parse_background(options.background);
     spec.scene_rect = parse_on_off("--scene-rect", options.scene_rect);
     if (!options.memory_budget.empty()) spec.memory_budget = parse_memory_size(options.memory_budget);
@@ -168,14 +169,13 @@ class BenchSession {
 
   void run_all(const std::vector<RunSpec>& runs) {
     const Progress progress(runs.size());
-    for (size_t i = 0; i < runs.size(); ++i) {
-      const std::string start = progress.start_text(i, runs[i]);
-      std::fputs(start.c_str(), stderr);  // before the run: what is running now
-      images_.clear();
-      const std::string outcome = run_one(runs[i]) + progress.timing_text(i + 1);
-      std::fprintf(stderr, "%s\n", wrap_after(start.size(), outcome).c_str());
-      // On a line of their own: paths are long, and a script finds them there.
-      if (!images_.empty()) std::fprintf(stderr, "  images: %s\n", images_.c_str());
+    for (size_t begin = 0; begin < runs.size();) {
+      size_t end = begin + 1;
+      while (end < runs.size() && same_block(runs[begin], runs[end])) ++end;
+      if (options_.rounds > 1 && end - begin > 1) run_interleaved(runs, begin, end, progress);
+      else
+        for (size_t i = begin; i < end; ++i) run_alone(runs, i, progress);
+      begin = end;
     }
   }
 
@@ -183,8 +183,17 @@ class BenchSession {
   int report() const;
 
  private:
+  static bool same_block(const RunSpec& a, const RunSpec& b) {
+    return a.scene == b.scene && a.scene_params == b.scene_params && a.camera == b.camera && a.width == b.width &&
+           a.height == b.height && a.scene_rect == b.scene_rect;
+  }
+  void run_alone(const std::vector<RunSpec>& runs, size_t i, const Progress& progress);
+  // Runs [begin, end) of one block in interleaved rounds (BenchOptions::rounds).
+  void run_interleaved(const std::vector<RunSpec>& runs, size_t begin, size_t end, const Progress& progress);
+  // Whether the run is to be left out (--resume: done, or claimed by another
+  // process); `outcome` then says why. Otherwise its claim, when resuming.
+  bool leave_out(const RunSpec& spec, std::optional<RunClaims::Claim>& claim, std::string& outcome);
   // Each returns what happened, for the progress line.
-  std::string run_one(const RunSpec& spec);
   std::string record(RunResult result);
   // The names of the images written (none without --images).
   std::string write_images(const RunResult& result) const;
@@ -202,20 +211,119 @@ class BenchSession {
   size_t resumed_ = 0, elsewhere_ = 0;
 };
 
-std::string BenchSession::run_one(const RunSpec& spec) {
+bool BenchSession::leave_out(const RunSpec& spec, std::optional<RunClaims::Claim>& claim, std::string& outcome) {
   const auto key = options_.resume ? resume_key(spec, builtin_techniques()) : std::nullopt;
+  if (!key) return false;
   // Claimed before it runs, then looked up again: another --resume process
   // on this file may have run it meanwhile, or be running it now.
-  const auto claim = key && !finished_.count(*key) ? claims_->try_claim(*key) : std::nullopt;
-  if (key && !finished_.count(*key) && !claim) {
+  if (!finished_.count(*key))
+    if (auto taken = claims_->try_claim(*key)) claim.emplace(std::move(*taken));
+  if (!finished_.count(*key) && !claim) {
     ++elsewhere_;
-    return "being run by another bench --resume on " + options_.csv + ", left to it";
+    outcome = "being run by another bench --resume on " + options_.csv + ", left to it";
+    return true;
   }
-  if (key && (finished_.count(*key) || csv_.finished_runs().count(*key))) {
+  if (finished_.count(*key) || csv_.finished_runs().count(*key)) {
     ++resumed_;
-    return "already in " + options_.csv + ", not run again";
+    outcome = "already in " + options_.csv + ", not run again";
+    return true;
   }
-  return record(harness_.run(spec));
+  return false;
+}
+
+void BenchSession::run_alone(const std::vector<RunSpec>& runs, size_t i, const Progress& progress) {
+  const std::string start = progress.start_text(i, runs[i]);
+  std::fputs(start.c_str(), stderr);  // before the run: what is running now
+  images_.clear();
+  std::optional<RunClaims::Claim> claim;
+  std::string outcome;
+  if (!leave_out(runs[i], claim, outcome)) outcome = record(harness_.run(runs[i]));
+  outcome += progress.timing_text(i + 1);
+  std::fprintf(stderr, "%s\n", wrap_after(start.size(), outcome).c_str());
+  // On a line of their own: paths are long, and a script finds them there.
+  if (!images_.empty()) std::fprintf(stderr, "  images: %s\n", images_.c_str());
+}
+
+namespace {
+
+// A run's total samples grouped by the round each frame ran in.
+std::vector<std::vector<double>> samples_by_round(const RunResult& result) {
+  std::vector<std::vector<double>> rounds(size_t(std::max(result.rounds, 0)));
+  const StageResult* total = result.total();
+  if (!total) return rounds;
+  for (size_t i = 0; i < total->samples_ms.size() && i < result.frame_rounds.size(); ++i)
+    rounds[size_t(result.frame_rounds[i])].push_back(total->samples_ms[i]);
+  return rounds;
+}
+
+}  // namespace
+
+void BenchSession::run_interleaved(const std::vector<RunSpec>& runs, size_t begin, size_t end,
+                                   const Progress& progress) {
+  struct Slot {
+    size_t index;
+    std::optional<RunClaims::Claim> claim;
+    std::unique_ptr<ActiveRun> active;
+    RunResult result;
+    std::string outcome;
+    bool left_out = false;
+  };
+  std::vector<Slot> slots;
+  for (size_t i = begin; i < end; ++i) {
+    Slot& slot = slots.emplace_back();
+    slot.index = i;
+    slot.left_out = leave_out(runs[i], slot.claim, slot.outcome);
+    if (slot.left_out) continue;
+    std::fprintf(stderr, "%s", progress.start_text(i, runs[i]).c_str());
+    slot.active = harness_.start(runs[i], slot.result);
+    std::fprintf(stderr, "%s\n", slot.active ? ("warmed up (" + std::to_string(slot.active->result().warmup_frames) +
+                                                  " frames), timed in rounds")
+                                                     .c_str()
+                                               : to_string(slot.result.status).c_str());
+  }
+  // Round-robin: each round gives every run that still wants frames its
+  // share; a run is done once it has had the rounds and no longer wants more.
+  const int least = std::max(1, options_.rounds);
+  for (int round = 0;; ++round) {
+    bool any = false;
+    for (Slot& slot : slots) {
+      if (!slot.active) continue;
+      const int per_round = std::max(1, (slot.active->result().spec.frames + least - 1) / least);
+      if (round >= least && !slot.active->wants_more()) continue;
+      any = true;
+      if (!harness_.render_round(*slot.active, per_round, round)) {
+        slot.result = std::move(slot.active->result());
+        slot.active.reset();
+      }
+    }
+    if (!any) break;
+  }
+  for (Slot& slot : slots)
+    if (slot.active) {
+      slot.result = harness_.finish(*slot.active);
+      slot.active.reset();
+    }
+  // The ratio to the block's baseline, paired by round.
+  const Slot* base = nullptr;
+  for (const Slot& slot : slots)
+    if (!slot.left_out && slot.result.status == RunStatus::ok && slot.result.spec.technique == options_.baseline)
+      base = &slot;
+  if (base) {
+    const auto base_rounds = samples_by_round(base->result);
+    for (Slot& slot : slots)
+      if (!slot.left_out && slot.result.status == RunStatus::ok) {
+        slot.result.baseline = options_.baseline;
+        slot.result.ratio = paired_round_ratio(samples_by_round(slot.result), base_rounds);
+      }
+  }
+  for (Slot& slot : slots) {
+    const std::string start = progress.start_text(slot.index, runs[slot.index]);
+    images_.clear();
+    if (!slot.left_out) slot.outcome = record(std::move(slot.result));
+    std::fprintf(stderr, "%s%s\n", start.c_str(),
+                 wrap_after(start.size(), slot.outcome + progress.timing_text(slot.index + 1)).c_str());
+    if (!images_.empty()) std::fprintf(stderr, "  images: %s\n", images_.c_str());
+  }
 }
 
 std::string BenchSession::record(RunResult result) {
@@ -273,7 +381,7 @@ int BenchSession::report() const {
   if (elsewhere_ > 0)
     std::printf("%s\n", wrap_after(0, "(" + runs_text(elsewhere_) + " left to another bench --resume on " + csv +
                                           ": not in this table)").c_str());
-  const DeviceInfo& device = harness_.device();
+  const DeviceProfile& device = harness_.device();
   std::printf("\ndevice: %s\nplatform: %s\n%s\n", device.renderer.c_str(), platform_text(device).c_str(),
               wrap_after(0, "clock: " + clock_name(options_, harness_) + " | rows appended to " + csv).c_str());
   std::printf("runs: %zu done (%zu ok, %zu error), %zu resumed (already in the CSV), %zu skipped\n", ok + failed, ok,
@@ -293,8 +401,13 @@ int BenchSession::report() const {
 
 int run_bench(const CommonOptions& common, const BenchOptions& options) {
   // Every combination is checked before a context opens or a file is touched.
-  const std::vector<RunSpec> runs = expand_sweep(options.sweep, builtin_techniques());
+  expand_sweep(options.sweep, builtin_techniques());
   auto context = open_context(common);
+  // Then expanded for the device: `auto` sizes and warm-up are its profile's.
+  SweepOptions sweep = options.sweep;
+  sweep.auto_size = context->device().default_size;
+  sweep.auto_warmup_ms = context->device().default_warmup_ms;
+  const std::vector<RunSpec> runs = expand_sweep(sweep, builtin_techniques());
   Harness harness(*context, builtin_techniques());
   BenchSession session(harness, options);
   const std::string header = "oitbench bench: " + std::to_string(runs.size()) + " runs on " +
@@ -303,6 +416,8 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
                              (options.resume ? " (resuming: runs already there are not run again)" : "");
   // Wrapped like the progress lines: a long CSV path must not push it past the console width.
   std::fprintf(stderr, "%s\n", wrap_after(0, header).c_str());
+  if (std::find(sweep.sizes.begin(), sweep.sizes.end(), "auto") != sweep.sizes.end())
+    std::fprintf(stderr, "size auto: %s (this device's default)\n", sweep.auto_size.c_str());
   session.run_all(runs);
   return session.report();
 }

@@ -17,9 +17,9 @@ inline constexpr int kExitRunsFailed = 4;
 // made, the page policy of the host heap (huge_page_malloc.h), which on
 // software GL holds every GL buffer, and whether shared counters take the
 // subgroup path (gl/shader_capabilities.h): both change timings.
-std::string platform_text(const DeviceInfo& device);
+std::string platform_text(const DeviceProfile& device);
 // The per-sweep columns of every CSV row (device, revision, start time).
-RunContext run_context(const DeviceInfo& device);
+RunContext run_context(const DeviceProfile& device);
 
 struct CommonOptions {
   std::string device = "auto";
@@ -61,6 +61,12 @@ struct BenchOptions {
   std::string json;     // bench_files.h: this invocation's runs as JSON, when set
   // Leave out every run that already has an ok or skipped row in `csv`.
   bool resume = false;
+  // The runs of one block (scene, its parameters, camera, size, scene
+  // rectangle: the runs the summary compares) are kept alive together and
+  // their timed frames run in interleaved rounds, round-robin (A B C, A B C,
+  // ...), so that a slow spell of the host hits each alike; the ratio to the
+  // baseline is then paired by round. 1: each run whole, one after another.
+  int rounds = 6;
 };
 
 // `oitbench export --wide RESULTS.csv -o OUT.csv` (export_command.cpp): one
@@ -74,6 +80,9 @@ struct ExportOptions {
   std::string out;
 };
 int run_export(const ExportOptions& options);
+// `oitbench compare ...`: /usr/bin/python3 -m analysis.compare with the
+// same arguments (compare_command.cpp); returns only when it cannot start.
+int run_compare(const std::vector<std::string>& arguments);
 
 int run_list(const CommonOptions& common);
 // The README's technique table, generated from the registry (`oitbench list

@@ -36,6 +36,10 @@ void add_bench_options(CLI::App* command, oit::BenchOptions& options, const std:
                       "CSV file to append every timed frame's stage times to (one row per run, stage, clock, frame)");
   command->add_option("--json", options.json, "JSON file to write this invocation's runs to (samples included)");
   command->add_option("--baseline", options.baseline, "technique whose median total the summary's ratios divide by");
+  command->add_option("--rounds", options.rounds,
+                      "interleave each block's runs in this many rounds at least (A B C, A B C, ...; the ratios "
+                      "paired by round, with 95% intervals); 1: each run whole, one after another")
+      ->check(CLI::Range(1, 1000));
 }
 
 // Each command's options live here from parsing to running; `add` registers
@@ -113,11 +117,11 @@ void add_bench_and_pareto_commands(CLI::App& app, Commands& c) {
   // pareto: the bench options, with each technique's quality knobs swept.
   c.pareto.sweep.scenes = {"quads", "spheres"};
   c.pareto.sweep.sizes = {"128x128"};
-  c.pareto.sweep.frames = 5;
+
   auto* pareto = app.add_subcommand(
       "pareto", "run time against error: bench every technique over its quality knobs (k, max_passes, ...); "
                 "plot with analysis/pareto.py");
-  // 128x128 and 5 frames: pareto runs every technique at every value of its
+  // 128x128: pareto runs every technique at every value of its
   // quality knobs, several times bench's runs; a quarter of the pixels keeps
   // that to minutes on software GL, and the error ranking holds at that size.
   add_bench_options(pareto, c.pareto, "; smaller than bench's default: pareto runs every knob value");
@@ -186,6 +190,16 @@ void add_stats_and_export_commands(CLI::App& app, Commands& c) {
   c.add(exports, [&c] { return oit::run_export(c.export_options); });
 }
 
+void add_compare_command(CLI::App& app, Commands& c) {
+  auto* compare = app.add_subcommand(
+      "compare", "did a change make it faster? compare BASE.csv NEW.csv per configuration and stage (ratio with "
+                 "95% interval, U test, verdict), or --builds DIR_A DIR_B -- <bench arguments>; --help lists the rest");
+  // Everything after `compare` goes to analysis/compare.py as it is.
+  compare->prefix_command();
+  compare->set_help_flag();
+  c.add(compare, [compare] { return oit::run_compare(compare->remaining()); });
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -204,6 +218,7 @@ int main(int argc, char** argv) {
   add_stress_command(app, c);
   add_check_order_command(app, c);
   add_stats_and_export_commands(app, c);
+  add_compare_command(app, c);
   c.add(oit::add_view_command(app, c.view), [&c] { return oit::run_view(c.common, c.view); });
 
   CLI11_PARSE(app, argc, argv);

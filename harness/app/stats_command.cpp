@@ -45,6 +45,7 @@ int run_stats(const CommonOptions& common, const StatsOptions& options) {
   const std::vector<std::string> cameras = expand_camera_spec(options.camera);
 
   auto context = create_headless_context(parse_device_choice(common.device), common.debug_gl);
+  parse_size(size_for(options.size, context->device()), width, height);
   const Scene scene = load_scene(options.scene, scene_params);
   const SceneGpu gpu(scene);
   const float aspect = float(width) / float(height);

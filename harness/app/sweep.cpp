@@ -67,7 +67,27 @@ bool has_param(const TechniqueDescriptor& t, const std::string& key) {
 
 }  // namespace
 
-void parse_size(const std::string& text, int& width, int& height) {
+void apply_repetition(const SweepOptions& options, RunSpec& spec) {
+  spec.warmup = options.warmup;
+  spec.warmup_ms = options.warmup_ms < 0.0 ? options.auto_warmup_ms : options.warmup_ms;
+  if (options.frames > 0) {
+    spec.frames = options.frames;
+    spec.precision = 0.0;
+    return;
+  }
+  spec.frames = options.min_frames;
+  spec.precision = options.precision;
+  spec.max_frames = std::max(options.max_frames, options.min_frames);
+  spec.max_seconds = options.max_seconds;
+}
+
+std::string size_for(const std::string& text, const DeviceProfile& device) {
+  return text == "auto" ? device.default_size : text;
+}
+
+void parse_size(const std::string& given, int& width, int& height) {
+  // Before the device is known (validation), auto stands for the smallest default.
+  const std::string text = given == "auto" ? "256x256" : given;
   const auto x = text.find('x');
   try {
     if (x == std::string::npos) throw std::invalid_argument("");
@@ -147,7 +167,7 @@ std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRe
       for (const auto& camera : cameras) {
         for (const auto& size : options.sizes) {
           int width = 0, height = 0;
-          parse_size(size, width, height);
+          parse_size(size == "auto" ? options.auto_size : size, width, height);
           for (const TechniqueDescriptor* t : techniques) {
             std::vector<Assignment> own;
             for (const auto& a : technique_assignments)
@@ -156,8 +176,7 @@ std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRe
               for (const bool scene_rect : scene_rects) {
                 RunSpec spec = run_of(t->id, params, scene, scene_params, width, height);
                 spec.camera = camera;
-                spec.frames = options.frames;
-                spec.warmup = options.warmup;
+                apply_repetition(options, spec);
                 spec.clock = clock;
                 spec.background = background;
                 spec.scene_rect = scene_rect;
@@ -229,6 +248,13 @@ std::string run_label(const RunResult& result) {
                                 : std::filesystem::path(spec.scene).filename().string();
   RunSpec named = spec;
   named.scene = scene;
+  // What ran: the given parameters at their resolved values, and every
+  // `auto` the resolution rule turned into a value.
+  const auto requested = csv_pairs(result.requested_params);
+  for (const auto& [key, value] : csv_pairs(result.technique_params)) {
+    const auto asked = std::find_if(requested.begin(), requested.end(), [&](const auto& p) { return p.first == key; });
+    if (named.params.count(key) || (asked != requested.end() && asked->second != value)) named.params[key] = value;
+  }
   std::string label = run_name(named, {"_", "-", "_", "_camera-", "_scene-rect-off"});
   for (char& c : label)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-' && c != '.') c = '-';

@@ -10,9 +10,11 @@
 namespace oit {
 
 // The image size of every command that renders (render, bench, stats,
-// adaptive, oitbench_gbench) unless --size says otherwise; pareto alone
-// defaults smaller (main.cpp says why).
-inline const std::string kDefaultSize = "256x256";
+// adaptive, oitbench_gbench) unless --size says otherwise: `auto`, the device
+// profile's default_size (256x256 on software GL, 1920x1080 on a GPU, where
+// the work must dominate the frame's fixed cost); pareto alone defaults
+// smaller (main.cpp says why).
+inline const std::string kDefaultSize = "auto";
 
 struct SweepOptions {
   std::vector<std::string> techniques{"all"};
@@ -26,8 +28,21 @@ struct SweepOptions {
   std::vector<std::string> cameras{"default"};
   // The harness's scene rectangle (RunSpec::scene_rect): "on", "off" or both.
   std::vector<std::string> scene_rects{"on"};
-  int frames = 10;
-  int warmup = 2;
+  // --frames N: exactly N timed frames (0: precision-driven: at least
+  // min_frames, more until `precision` or a cap, RunSpec).
+  int frames = 0;
+  int min_frames = 6;
+  int max_frames = 200;
+  double max_seconds = 2.0;
+  double precision = 0.05;
+  int warmup = 1;
+  // Least warm-up time; negative: the device profile's default_warmup_ms.
+  double warmup_ms = -1.0;
+  // What `auto` in sizes and warmup_ms become (expand_sweep): the device
+  // profile's, once the context is open; before that, for validation only,
+  // the software defaults.
+  std::string auto_size = "256x256";
+  double auto_warmup_ms = 0.0;
   std::string clock = "auto";
   std::string background = "0,0,0";
   // RunSpec::memory_budget as text ("512M", "2G"); empty: the device's default.
@@ -51,6 +66,12 @@ void validate_sweep(const std::vector<RunSpec>& runs, const TechniqueRegistry& r
 // a parameter is invalid (that run is an error row, never finished).
 std::optional<RunKey> resume_key(const RunSpec& spec, const TechniqueRegistry& registry);
 
+// The warm-up and timed-frame fields of `spec` from the options.
+void apply_repetition(const SweepOptions& options, RunSpec& spec);
+
+// `text`, or for "auto" the device's default size.
+std::string size_for(const std::string& text, const DeviceProfile& device);
+// WIDTHxHEIGHT; "auto" parses as 256x256 (use size_for once the device is known).
 void parse_size(const std::string& text, int& width, int& height);
 glm::vec3 parse_background(const std::string& text);
 // "on" -> true, "off" -> false; throws naming the text otherwise.

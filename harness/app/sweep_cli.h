@@ -19,12 +19,28 @@ inline void add_sweep_cli_options(CLI::App* command, SweepOptions& sweep, const 
                       "key=v1,v2 or technique.key=v1,v2: parameter values to sweep (repeatable)");
   command->add_option("--scene,-s", sweep.scenes, "scene ids or files (repeatable)");
   command->add_option("--scene-set", sweep.scene_sets, "scene key=v1,v2 to sweep (repeatable)");
-  command->add_option("--size", sweep.sizes, "WIDTHxHEIGHT (repeatable" + size_note + ")");
+  command->add_option("--size", sweep.sizes,
+                      "WIDTHxHEIGHT or auto: the device's default, 256x256 on software GL, 1920x1080 on a GPU "
+                      "(repeatable" + size_note + ")");
   command->add_option("--camera", sweep.cameras,
                       "default, random:N:SEED (one run per view), random:N:SEED@I or max_list[:N:SEED] (repeatable)");
-  command->add_option("--frames", sweep.frames, "timed frames per run")->check(CLI::Range(1, 100000));
-  command->add_option("--warmup", sweep.warmup, "untimed frames first (shader compilation)")
+  command->add_option("--frames", sweep.frames,
+                      "exactly this many timed frames per run, no precision target (default: precision-driven)")
+      ->check(CLI::Range(1, 100000));
+  command->add_option("--precision", sweep.precision,
+                      "stop a run once the 95% interval of its median total is within +-this fraction of it")
+      ->check(CLI::Range(0.001, 1.0));
+  command->add_option("--min-frames", sweep.min_frames, "timed frames at least, before the precision is judged")
+      ->check(CLI::Range(1, 100000));
+  command->add_option("--max-frames", sweep.max_frames, "timed frames at most per run")->check(CLI::Range(1, 1000000));
+  command->add_option("--max-seconds", sweep.max_seconds, "seconds of timed frames at most per run")
+      ->check(CLI::Range(0.001, 1e6));
+  command->add_option("--warmup", sweep.warmup, "untimed frames first, at least (shader compilation, caches)")
       ->check(CLI::Range(0, 1000));
+  command->add_option("--warmup-ms", sweep.warmup_ms,
+                      "untimed frames for at least this long and until the frame time is stable (default: the "
+                      "device's, 500 on a GPU, 0 on software GL; see `list`)")
+      ->check(CLI::Range(0.0, 600000.0));
   command->add_option("--clock", sweep.clock, "auto, gl, wall or both")
       ->check(CLI::IsMember({"auto", "gl", "wall", "both"}));
   command->add_option("--background", sweep.background, "r,g,b (linear)");

@@ -65,13 +65,18 @@ uint32_t ListLengthPass::read_back() {
   return uint32_t(longest);
 }
 
-bool fills_by_framebuffer_fetch(SlotFill fill) {
-  return fill == SlotFill::framebuffer_fetch ||
-         (fill == SlotFill::automatic && current_device_has_framebuffer_fetch());
+SlotFill resolve_slot_fill(SlotFill requested, const DeviceProfile& device) {
+  if (requested != SlotFill::automatic) return requested;
+  return device.framebuffer_fetch ? SlotFill::framebuffer_fetch : SlotFill::atomic;
 }
 
-std::string missing_slot_fill_feature(SlotFill fill) {
-  if (fill == SlotFill::framebuffer_fetch && !current_device_has_framebuffer_fetch())
+bool fills_by_framebuffer_fetch(SlotFill fill) {
+  if (fill == SlotFill::automatic) throw std::logic_error("fill=auto reached a technique unresolved (resolve_slot_fill)");
+  return fill == SlotFill::framebuffer_fetch;
+}
+
+std::string missing_slot_fill_feature(SlotFill fill, const DeviceProfile& device) {
+  if (fill == SlotFill::framebuffer_fetch && !device.framebuffer_fetch)
     return "fill=framebuffer_fetch needs GL_EXT_shader_framebuffer_fetch, which this device lacks (use fill=atomic or "
            "auto)";
   return "";

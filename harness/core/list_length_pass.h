@@ -64,14 +64,18 @@ void offsets_from_counts(const std::vector<uint32_t>& counts, std::vector<uint32
 // atomic on the pixel's cursor, or the cursor as the pixel's R32UI colour,
 // read and incremented in primitive order through framebuffer fetch
 // (GL_EXT_shader_framebuffer_fetch, no atomic); auto: framebuffer fetch
-// where the device has it.
+// where the device has it, resolved before the technique exists
+// (resolve_slot_fill, in the technique's resolution rule).
 enum class SlotFill { automatic, atomic, framebuffer_fetch };
 inline const Choices<SlotFill> kSlotFills{
     {SlotFill::automatic, "auto"}, {SlotFill::atomic, "atomic"}, {SlotFill::framebuffer_fetch, "framebuffer_fetch"}};
-// Whether `fill` takes slots by framebuffer fetch on the current device.
+// The fill `requested` becomes on `device`: auto resolved, the others as given.
+SlotFill resolve_slot_fill(SlotFill requested, const DeviceProfile& device);
+// Whether a resolved `fill` takes slots by framebuffer fetch; throws
+// std::logic_error for an unresolved auto.
 bool fills_by_framebuffer_fetch(SlotFill fill);
-// "" when the current device can run `fill`, else why not (naming fill=).
-std::string missing_slot_fill_feature(SlotFill fill);
+// "" when `device` can run `fill`, else why not (naming fill=).
+std::string missing_slot_fill_feature(SlotFill fill, const DeviceProfile& device);
 
 // The per-pixel cursors a linearized fill takes its slots from: with
 // framebuffer fetch the R32UI colour target of the fill's framebuffer, else

@@ -7,9 +7,19 @@
 namespace oit {
 
 PreparedRun::PreparedRun(const TechniqueRegistry& registry, const std::string& id, const RawParams& params)
-    : descriptor_(registry.get(id)), params_(descriptor_.params, params, "technique '" + id + "'") {}
+    : descriptor_(registry.get(id)),
+      given_(params),
+      requested_(descriptor_.params, params, "technique '" + id + "'"),
+      params_(requested_) {}
 
-std::string PreparedRun::unsupported(const DeviceInfo& device, const SceneFacts& facts) const {
+void PreparedRun::resolve(const DeviceProfile& device, const SceneFacts& scene, const FrameContent& content) {
+  if (!descriptor_.resolve) return;
+  RawParams resolved = given_;
+  for (const auto& [key, value] : descriptor_.resolve(requested_, {device, scene, content, given_})) resolved[key] = value;
+  params_ = ParamSet(descriptor_.params, resolved, "technique '" + id() + "' (as resolved for " + device.renderer + ")");
+}
+
+std::string PreparedRun::unsupported(const DeviceProfile& device, const SceneFacts& facts) const {
   return supports(descriptor_, params_, device, facts);
 }
 

@@ -23,11 +23,19 @@ class PreparedRun {
 
   const TechniqueDescriptor& descriptor() const { return descriptor_; }
   const std::string& id() const { return descriptor_.id; }
+  // The parameters as the user asked for them (defaults filled in), and as
+  // they run: equal until resolve().
+  const ParamSet& requested() const { return requested_; }
   const ParamSet& params() const { return params_; }
+
+  // Applies the technique's resolution rule (TechniqueDescriptor::resolve):
+  // every `auto` and device- or scene-dependent default becomes the value
+  // that runs. Before unsupported(), plan() and create().
+  void resolve(const DeviceProfile& device, const SceneFacts& scene, const FrameContent& content);
 
   // "" when the technique can run on `device` with the scene, otherwise why
   // not (supports()).
-  std::string unsupported(const DeviceInfo& device, const SceneFacts& facts) const;
+  std::string unsupported(const DeviceProfile& device, const SceneFacts& facts) const;
   // The fewest screen tiles whose storage fits `limits`, for a frame of
   // `complexity` (plan_tiles with the technique's storage need and halo).
   TilePlan plan(const DepthComplexity& complexity, const DeviceLimits& limits) const;
@@ -50,6 +58,8 @@ class PreparedRun {
 
  private:
   const TechniqueDescriptor& descriptor_;
+  RawParams given_;
+  ParamSet requested_;
   ParamSet params_;
   std::unique_ptr<Technique> technique_;
   std::unique_ptr<Tiling> tiling_;

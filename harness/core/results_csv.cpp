@@ -31,7 +31,11 @@ const std::vector<std::string>& csv_columns() {
       "fragments", "max_depth_complexity", "mean_depth_complexity", "psi",
       "bytes_allocated", "fragments_stored", "fragments_dropped", "passes", "overflow_retries",
       "error_max", "error_rmse", "psnr", "ssim", "flip", "pixels_over_1_255",
-      "other_cpu_load", "noisy", "clock_disagreement", "work_saved", "extra", "run_id", "run_rows"};
+      "other_cpu_load", "noisy", "clock_disagreement", "work_saved", "extra", "run_id", "run_rows",
+      // Added after run_rows so that every earlier column keeps its place.
+      "requested_params", "ci_low_ms", "ci_high_ms", "precision_reached", "rounds", "baseline", "ratio",
+      "ratio_ci_low", "ratio_ci_high", "warnings", "frame_overhead_ms", "gpu_sm_mhz_start", "gpu_sm_mhz_end",
+      "gpu_mem_mhz_start", "gpu_mem_mhz_end", "gpu_temp_c_end", "samples_ms"};
   return columns;
 }
 
@@ -110,7 +114,7 @@ std::vector<std::vector<std::string>> csv_rows(const RunResult& r, const RunCont
         r.spec.technique, r.technique_params, r.spec.scene, r.scene_params, r.spec.camera,
         std::to_string(r.spec.width), std::to_string(r.spec.height), r.spec.scene_rect ? "on" : "off", ran ? std::to_string(r.tiles) : "", clock, stage,
         s ? number(s->median) : "", s ? number(s->min) : "", s ? number(s->p05) : "", s ? number(s->p95) : "",
-        s ? number(s->mean) : "", s ? std::to_string(s->count) : "", std::to_string(r.spec.warmup),
+        s ? number(s->mean) : "", s ? std::to_string(s->count) : "", std::to_string(ran ? r.warmup_frames : r.spec.warmup),
         to_string(r.status), r.message,
         ran ? std::to_string(r.scene_fragments) : "", ran ? std::to_string(r.max_depth_complexity) : "",
         ran ? number(r.mean_depth_complexity) : "", ran ? number(r.psi) : "",
@@ -127,12 +131,49 @@ std::vector<std::vector<std::string>> csv_rows(const RunResult& r, const RunCont
     return row;
   };
   std::vector<std::vector<std::string>> rows;
-  if (!ran || r.stages.empty()) rows.push_back(per_run(to_string(r.clock), "", nullptr));
-  else
-    for (const auto& stage : r.stages) rows.push_back(per_run(stage.clock, stage.stage, &stage.summary));
-  for (auto& row : rows) {
+  std::vector<const StageResult*> stages;
+  if (!ran || r.stages.empty()) {
+    rows.push_back(per_run(to_string(r.clock), "", nullptr));
+    stages.push_back(nullptr);
+  } else {
+    for (const auto& stage : r.stages) {
+      rows.push_back(per_run(stage.clock, stage.stage, &stage.summary));
+      stages.push_back(&stage);
+    }
+  }
+  for (size_t i = 0; i < rows.size(); ++i) {
+    std::vector<std::string>& row = rows[i];
     row.push_back(run_id);
     row.push_back(std::to_string(rows.size()));
+    const StageResult* stage = stages[i];
+    const auto clock = [&](bool end, unsigned GpuClockReading::*field) {
+      const auto& reading = end ? r.gpu_end : r.gpu_start;
+      return reading ? std::to_string((*reading).*field) : std::string();
+    };
+    std::string warnings, samples;
+    for (const auto& warning : r.warnings) warnings += (warnings.empty() ? "" : "; ") + warning;
+    if (stage)
+      for (double ms : stage->samples_ms) samples += (samples.empty() ? "" : " ") + number(ms);
+    const bool measured = ran && stage;
+    const std::vector<std::string> added = {
+        r.requested_params,
+        measured ? number(stage->summary.interval.low) : "",
+        measured ? number(stage->summary.interval.high) : "",
+        ran && r.spec.precision > 0.0 ? (r.precision_reached ? "true" : "false") : "",
+        ran ? std::to_string(r.rounds) : "",
+        r.ratio ? r.baseline : "",
+        r.ratio ? number(r.ratio->ratio) : "",
+        r.ratio ? number(r.ratio->interval.low) : "",
+        r.ratio ? number(r.ratio->interval.high) : "",
+        warnings,
+        r.frame_overhead_ms ? number(*r.frame_overhead_ms) : "",
+        clock(false, &GpuClockReading::sm_mhz),
+        clock(true, &GpuClockReading::sm_mhz),
+        clock(false, &GpuClockReading::memory_mhz),
+        clock(true, &GpuClockReading::memory_mhz),
+        clock(true, &GpuClockReading::temperature_c),
+        samples};
+    row.insert(row.end(), added.begin(), added.end());
   }
   return rows;
 }
@@ -227,7 +268,8 @@ std::set<RunKey> finished_runs(const CsvContents& contents, const std::string& p
     const auto& f = run.front()->fields;
     if (f[column("status")] != "ok" && f[column("status")] != "skipped") continue;
     try {
-      finished.insert({f[column("technique")], f[column("params")], f[column("scene")], f[column("scene_params")],
+      // The parameters as asked for: a resumed sweep asks again for the same.
+      finished.insert({f[column("technique")], f[column("requested_params")], f[column("scene")], f[column("scene_params")],
                        f[column("camera")], std::stoi(f[column("width")]), std::stoi(f[column("height")]),
                        f[column("scene_rect")] != "off"});
     } catch (const std::exception&) {

@@ -23,7 +23,7 @@ struct RunContext {
 };
 
 // What tells runs apart across invocations of a sweep: technique, canonical
-// parameters, scene, canonical scene parameters, camera, size (the key of
+// parameters as requested (requested_params: auto stays auto), scene, canonical scene parameters, camera, size (the key of
 // analysis/reproduce.py's resume too, which never turns the scene rectangle
 // off), and whether the harness's scene rectangle was on.
 struct RunKey {

@@ -2,14 +2,18 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "base/params.h"
+#include "harness/core/gpu_clocks.h"
 #include "harness/core/memory_failure.h"
 #include "harness/core/prepared_run.h"
 #include "harness/core/system_load.h"
 #include "harness/gl/check.h"
+#include "harness/gl/shader_program.h"
 #include "scenes/model_files.h"
 #include "scenes/scene_library.h"
 
@@ -219,6 +223,9 @@ const Image& Harness::reference_image(const std::string& scene_spec, const RawPa
   spec.scene_rect = false;  // the reference does not depend on the harness's shortcuts
   spec.memory_budget = memory_budget;
   PreparedRun prepared(registry_, spec.technique, spec.params);
+  const DepthComplexity& depth = complexity(loaded, width, height);
+  prepared.resolve(device(), {loaded.scene.triangle_count(), loaded.scene.object_count, true},
+                   FrameContent{width, height, depth.fragments, depth.max});
   execute(prepared, loaded, result);
   ++references_rendered_;
   reference_cache_.store(key.str(), result.image);
@@ -237,14 +244,99 @@ void check_run_size(const RunSpec& spec) {
 
 }  // namespace
 
+namespace {
+
+// The stage rows of a run from its clock: wall and/or gl samples and their
+// summaries, and how far the two clocks' totals disagree when both ran.
+void record_stages(StageClock& clock, RunResult& result) {
+  result.stages.clear();
+  for (auto& [name, samples] : clock.results()) {
+    if (result.clock != ClockKind::gl)
+      result.stages.push_back({name, "wall", summarize(samples.wall_ms), samples.wall_ms});
+    if (result.clock != ClockKind::wall)
+      result.stages.push_back({name, "gl", summarize(samples.gl_ms), samples.gl_ms});
+  }
+  if (result.clock == ClockKind::both) {
+    const StageResult* wall = result.stage("total", "wall");
+    const StageResult* gl = result.stage("total", "gl");
+    if (wall && gl && wall->summary.median > 0.0)
+      result.clock_disagreement = std::abs(gl->summary.median - wall->summary.median) / wall->summary.median;
+  }
+}
+
+// The frame-overhead floor with the run, and a warning where the run's
+// median total is within 5x of it or a stage's median is below what the
+// clock resolves.
+void add_overhead_warnings(RunResult& result, double floor_ms) {
+  result.frame_overhead_ms = floor_ms;
+  const double total = result.median_total_ms();
+  char text[200];
+  if (floor_ms > 0.0 && total < 5.0 * floor_ms) {
+    std::snprintf(text, sizeof text,
+                  "the median total %.3g ms is under 5x the empty frame's %.3g ms: mostly fixed per-frame cost, "
+                  "use a larger size",
+                  total, floor_ms);
+    result.warnings.push_back(text);
+  }
+  // GL timestamps count nanoseconds, the steady clock too; a stage of a few
+  // microseconds is below what either resolves through the driver.
+  constexpr double kResolutionMs = 0.001;
+  for (const StageResult& stage : result.stages)
+    if (stage.stage != "total" && stage.summary.median > 0.0 && stage.summary.median < kResolutionMs) {
+      std::snprintf(text, sizeof text, "stage %s's median %.2g ms is under the clock's resolution (%g ms)",
+                    stage.stage.c_str(), stage.summary.median, kResolutionMs);
+      result.warnings.push_back(text);
+    }
+}
+
+}  // namespace
+
+struct ActiveRun::Parts {
+  std::unique_ptr<PreparedRun> prepared;
+  const SceneGpu* gpu = nullptr;
+  std::unique_ptr<RenderTarget> target;
+  std::unique_ptr<StageClock> clock;
+  std::unique_ptr<Frame> frame;
+  ScreenRect rect;
+  std::unique_ptr<OtherProcessLoad> load;
+};
+
+ActiveRun::ActiveRun(RunResult result) : result_(std::move(result)), parts_(std::make_unique<Parts>()) {}
+ActiveRun::~ActiveRun() = default;
+
+Summary ActiveRun::total_so_far() {
+  const std::string total = "total";
+  for (auto& [name, samples] : parts_->clock->results())
+    if (name == total) return summarize(result_.clock == ClockKind::gl ? samples.gl_ms : samples.wall_ms);
+  return {};
+}
+
+bool ActiveRun::wants_more() {
+  const RunSpec& spec = result_.spec;
+  if (frames() < spec.frames) return true;
+  if (spec.precision <= 0.0) return false;
+  if (spec.max_frames > 0 && frames() >= spec.max_frames) return false;
+  if (spec.max_seconds > 0.0 && timed_seconds_ >= spec.max_seconds) return false;
+  return !precision_reached(total_so_far(), spec.precision);
+}
+
 RunResult Harness::run(const RunSpec& spec) {
   RunResult result;
+  std::unique_ptr<ActiveRun> active = start(spec, result);
+  if (!active) return result;
+  while (active->wants_more())
+    if (!render_round(*active, 1, 0)) return std::move(active->result());
+  return finish(*active);
+}
+
+std::unique_ptr<ActiveRun> Harness::start(const RunSpec& spec, RunResult& result) {
+  result = RunResult{};
   result.spec = spec;
   result.clock = spec.clock.value_or(default_clock());
   try {
     // The one resolution of the technique: execute() and the viewer reuse it.
-    PreparedRun prepared(registry_, spec.technique, spec.params);
-    result.technique_params = prepared.params().canonical();
+    auto prepared = std::make_unique<PreparedRun>(registry_, spec.technique, spec.params);
+    result.technique_params = result.requested_params = prepared->requested().canonical();
     check_run_size(spec);
     // Known before the scene loads, so a skipped row (a model not
     // installed) carries it too and `bench --resume` can find it.
@@ -252,29 +344,42 @@ RunResult Harness::run(const RunSpec& spec) {
     LoadedScene& loaded = scene(spec.scene, spec.scene_params, spec.submission_order, spec.camera);
     result.scene_params = loaded.scene.params;
     const SceneFacts facts{loaded.scene.triangle_count(), loaded.scene.object_count, true};
-    if (std::string reason = prepared.unsupported(device(), facts); !reason.empty()) {
+    const DepthComplexity& depth = complexity(loaded, spec.width, spec.height);
+    prepared->resolve(device(), facts, FrameContent{spec.width, spec.height, depth.fragments, depth.max});
+    result.technique_params = prepared->params().canonical();
+    if (std::string reason = prepared->unsupported(device(), facts); !reason.empty()) {
       result.status = RunStatus::skipped;
       result.message = reason;
-      return result;
+      return nullptr;
     }
-    // The image first: at sizes the device cannot hold, this is what fails,
-    // before the counting pass spends time on them.
-    RenderTarget target(spec.width, spec.height);
-    const DepthComplexity& depth = complexity(loaded, spec.width, spec.height);
     result.scene_fragments = depth.fragments;
     result.max_depth_complexity = depth.max;
     result.mean_depth_complexity = depth.mean;
     result.psi = depth.psi;
-    OtherProcessLoad load;
-    load.start();
-    execute(prepared, loaded, result, &target);
-    result.other_process_load = load.stop();
-    result.noisy = result.other_process_load > kNoisyLoadThreshold;
-    // The scene's size goes with every row so plots against triangles or
-    // vertices (carnecky2013 Fig. 15, pastyrik2016 Fig. 9) need only the CSV.
-    result.counters.extra.push_back({"scene_triangles", double(loaded.scene.triangle_count()), Combine::max});
-    result.counters.extra.push_back({"scene_vertices", double(loaded.scene.vertices.size()), Combine::max});
-    compare_with_reference(spec, result);
+    auto active = std::unique_ptr<ActiveRun>(new ActiveRun(result));
+    ActiveRun::Parts& parts = *active->parts_;
+    parts.gpu = loaded.gpu.get();
+    // The image first: at sizes the device cannot hold, this is what fails,
+    // before the technique spends time on them.
+    parts.target = std::make_unique<RenderTarget>(spec.width, spec.height);
+    {
+      // The technique's programs are built for this scene's shading, here and
+      // in any pass it builds while rendering (gl/shader_program.h).
+      const SceneShadingScope shading(loaded.gpu->shading());
+      prepared->create(prepared->plan(depth, query_device_limits(spec.memory_budget)));
+    }
+    parts.prepared = std::move(prepared);
+    parts.clock = std::make_unique<StageClock>(result.clock, parts.prepared->descriptor().stages);
+    const float aspect = float(spec.width) / float(spec.height);
+    parts.frame = std::make_unique<Frame>(Frame{*loaded.gpu, loaded.scene.camera.view,
+                                                loaded.scene.camera.projection(aspect), spec.width, spec.height,
+                                                spec.background, parts.target->framebuffer.id(), *parts.clock});
+    warm_up(*active);
+    if (!gpu_clocks_) gpu_clocks_ = std::make_unique<GpuClocks>();
+    active->result_.gpu_start = gpu_clocks_->read();
+    parts.load = std::make_unique<OtherProcessLoad>();
+    parts.load->start();
+    return active;
   } catch (const MissingModel& e) {
     result.status = RunStatus::skipped;  // an optional model not installed here
     result.message = e.what();
@@ -284,7 +389,136 @@ RunResult Harness::run(const RunSpec& spec) {
     drain_gl_errors();
     reset_gl_state();
   }
-  return result;
+  return nullptr;
+}
+
+void Harness::warm_up(ActiveRun& run) {
+  ActiveRun::Parts& parts = *run.parts_;
+  const RunSpec& spec = run.result_.spec;
+  const SceneShadingScope shading(parts.gpu->shading());
+  const double cap_ms = std::max(4.0 * spec.warmup_ms, 1000.0);
+  std::vector<double> frame_ms;
+  double elapsed_ms = 0.0;
+  auto stable = [&] {
+    if (frame_ms.size() < 6) return false;
+    std::vector<double> last(frame_ms.end() - 3, frame_ms.end()), before(frame_ms.end() - 6, frame_ms.end() - 3);
+    const double a = summarize(last).median, b = summarize(before).median;
+    return std::abs(a - b) <= 0.10 * a;
+  };
+  while (int(frame_ms.size()) < spec.warmup ||
+         (elapsed_ms < spec.warmup_ms || (spec.warmup_ms > 0.0 && !stable())) && elapsed_ms < cap_ms) {
+    if (spec.warmup == 0 && spec.warmup_ms <= 0.0) break;
+    const auto begin = std::chrono::steady_clock::now();
+    parts.rect = parts.prepared->render_frame(*parts.frame, false, spec.scene_rect);
+    glFinish();
+    gl_check("warm-up frame " + std::to_string(frame_ms.size()) + " of " + spec.technique);
+    frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count());
+    elapsed_ms += frame_ms.back();
+  }
+  run.result_.warmup_frames = int(frame_ms.size());
+  if (spec.warmup_ms > 0.0 && frame_ms.size() >= 6 && !stable())
+    run.result_.warnings.push_back("warm-up ended at its cap (" + std::to_string(int(cap_ms)) +
+                                   " ms) before the frame time was stable");
+}
+
+bool Harness::render_round(ActiveRun& run, int frames, int round) {
+  ActiveRun::Parts& parts = *run.parts_;
+  RunResult& result = run.result_;
+  try {
+    const SceneShadingScope shading(parts.gpu->shading());
+    for (int i = 0; i < frames; ++i) {
+      const auto begin = std::chrono::steady_clock::now();
+      parts.rect = parts.prepared->render_frame(*parts.frame, true, result.spec.scene_rect);
+      gl_check("frame " + std::to_string(run.frames()) + " of " + result.spec.technique);
+      run.timed_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+      result.frame_rounds.push_back(round);
+    }
+    return true;
+  } catch (const std::exception& e) {
+    result.status = RunStatus::error;
+    result.message = explain_failure(e, result.spec.width, result.spec.height);
+    drain_gl_errors();
+    reset_gl_state();
+    return false;
+  }
+}
+
+RunResult Harness::finish(ActiveRun& run) {
+  ActiveRun::Parts& parts = *run.parts_;
+  RunResult& result = run.result_;
+  const RunSpec& spec = result.spec;
+  try {
+    result.other_process_load = parts.load->stop();
+    result.noisy = result.other_process_load > kNoisyLoadThreshold;
+    result.gpu_end = gpu_clocks_ ? gpu_clocks_->read() : std::nullopt;
+    if (result.gpu_start && result.gpu_end)
+      if (const std::string moved = clock_moved_warning(*result.gpu_start, *result.gpu_end); !moved.empty()) {
+        result.noisy = true;
+        result.warnings.push_back(moved);
+      }
+    {
+      const SceneShadingScope shading(parts.gpu->shading());
+      result.tiles = parts.prepared->tiling().plan().count();
+      // Counters describe the technique's last frame.
+      result.counters = parts.prepared->counters(*parts.frame, spec.scene_rect);
+    }
+    // The harness's own adaptive path: pixels every full-screen pass skipped.
+    if (spec.scene_rect) {
+      result.counters.work_saved.push_back(
+          {kPixelsOutsideSceneRect, double(uint64_t(spec.width) * uint64_t(spec.height) - parts.rect.pixels())});
+    }
+    result.image = read_texture_rgba32f(parts.target->color.id(), spec.width, spec.height);
+    gl_check("reading back the image of " + spec.technique);
+    record_stages(*parts.clock, result);
+    result.rounds = result.frame_rounds.empty() ? 0 : result.frame_rounds.back() + 1;
+    if (const StageResult* total = result.total()) {
+      result.precision_reached = spec.precision > 0.0 && precision_reached(total->summary, spec.precision);
+      for (std::string& warning : frame_warnings(total->samples_ms)) result.warnings.push_back(std::move(warning));
+      add_overhead_warnings(result, frame_overhead_ms(result.clock == ClockKind::gl ? ClockKind::gl : ClockKind::wall));
+    }
+    // The scene's size goes with every row so plots against triangles or
+    // vertices (carnecky2013 Fig. 15, pastyrik2016 Fig. 9) need only the CSV.
+    result.counters.extra.push_back({"scene_triangles", double(parts.gpu->scene().triangle_count()), Combine::max});
+    result.counters.extra.push_back({"scene_vertices", double(parts.gpu->scene().vertices.size()), Combine::max});
+    parts = ActiveRun::Parts{};  // the technique's storage goes before the reference's
+    compare_with_reference(spec, result);
+  } catch (const std::exception& e) {
+    result.status = RunStatus::error;
+    result.message = explain_failure(e, spec.width, spec.height);
+    drain_gl_errors();
+    reset_gl_state();
+  }
+  return std::move(result);
+}
+
+double Harness::frame_overhead_ms(ClockKind clock) {
+  if (auto found = frame_overhead_ms_.find(clock); found != frame_overhead_ms_.end()) return found->second;
+  // A target and a draw of one triangle with rasterizer discard: the frame's
+  // fixed cost (clear, state, the clock's own brackets), no fragment work.
+  RenderTarget target(64, 64);
+  const Program empty = build_fullscreen_program("shaders/empty_frame.frag");
+  StageClock stage_clock(clock);
+  const VertexArray vertex_array = make_vertex_array();
+  for (int i = 0; i < 25; ++i) {
+    begin_target(target.framebuffer.id(), glm::vec3(0.0f), nullptr);
+    stage_clock.begin_frame(i >= 5);
+    {
+      auto total = stage_clock.stage("total");
+      glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
+      glEnable(GL_RASTERIZER_DISCARD);
+      glUseProgram(empty.id());
+      glBindVertexArray(vertex_array.id());
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+      glDisable(GL_RASTERIZER_DISCARD);
+    }
+    stage_clock.end_frame();
+  }
+  reset_gl_state();
+  gl_check("the empty frames of the frame-overhead floor");
+  double median = 0.0;
+  for (auto& [name, samples] : stage_clock.results())
+    if (name == "total") median = summarize(clock == ClockKind::gl ? samples.gl_ms : samples.wall_ms).median;
+  return frame_overhead_ms_[clock] = median;
 }
 
 void Harness::compare_with_reference(const RunSpec& spec, RunResult& result) {
@@ -318,56 +552,23 @@ TilePlan Harness::tile_plan(const RunSpec& spec) {
   return prepared.plan(complexity(loaded, spec.width, spec.height), query_device_limits(spec.memory_budget));
 }
 
-namespace {
 
-// The stage rows of a run from its clock: wall and/or gl samples and their
-// summaries, and how far the two clocks' totals disagree when both ran.
-void record_stages(StageClock& clock, RunResult& result) {
-  result.stages.clear();
-  for (auto& [name, samples] : clock.results()) {
-    if (result.clock != ClockKind::gl)
-      result.stages.push_back({name, "wall", summarize(samples.wall_ms), samples.wall_ms});
-    if (result.clock != ClockKind::wall)
-      result.stages.push_back({name, "gl", summarize(samples.gl_ms), samples.gl_ms});
-  }
-  if (result.clock == ClockKind::both) {
-    const StageResult* wall = result.stage("total", "wall");
-    const StageResult* gl = result.stage("total", "gl");
-    if (wall && gl && wall->summary.median > 0.0)
-      result.clock_disagreement = std::abs(gl->summary.median - wall->summary.median) / wall->summary.median;
-  }
-}
-
-}  // namespace
-
-void Harness::execute(PreparedRun& prepared, LoadedScene& loaded, RunResult& result, RenderTarget* given_target) {
+void Harness::execute(PreparedRun& prepared, LoadedScene& loaded, RunResult& result) {
   const RunSpec& spec = result.spec;
-  // The technique's programs are built for this scene's shading, here and
-  // in any pass it builds while rendering (gl/shader_program.h).
   const SceneShadingScope shading(loaded.gpu->shading());
   prepared.create(
       prepared.plan(complexity(loaded, spec.width, spec.height), query_device_limits(spec.memory_budget)));
-  std::optional<RenderTarget> own_target;
-  if (!given_target) own_target.emplace(spec.width, spec.height);
-  RenderTarget& target = given_target ? *given_target : *own_target;
+  RenderTarget target(spec.width, spec.height);
   StageClock clock(result.clock, prepared.descriptor().stages);
   const float aspect = float(spec.width) / float(spec.height);
   const Frame frame{*loaded.gpu,  loaded.scene.camera.view,   loaded.scene.camera.projection(aspect),
                     spec.width,   spec.height,                spec.background,
                     target.framebuffer.id(), clock};
-  ScreenRect rect;
   for (int i = 0; i < spec.warmup + spec.frames; ++i) {
-    rect = prepared.render_frame(frame, i >= spec.warmup, spec.scene_rect);
+    prepared.render_frame(frame, i >= spec.warmup, spec.scene_rect);
     gl_check("frame " + std::to_string(i) + " of " + spec.technique);
   }
   result.tiles = prepared.tiling().plan().count();
-  // Counters describe the technique's last frame.
-  result.counters = prepared.counters(frame, spec.scene_rect);
-  // The harness's own adaptive path: pixels every full-screen pass skipped.
-  if (spec.scene_rect) {
-    result.counters.work_saved.push_back(
-        {kPixelsOutsideSceneRect, double(uint64_t(spec.width) * uint64_t(spec.height) - rect.pixels())});
-  }
   result.image = read_texture_rgba32f(target.color.id(), spec.width, spec.height);
   gl_check("reading back the image of " + spec.technique);
   record_stages(clock, result);

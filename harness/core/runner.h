@@ -36,9 +36,20 @@ struct RunSpec {
   std::string camera = "default";
   int width = 256;
   int height = 256;
+  // Warm-up: at least `warmup` frames and `warmup_ms` of them, and on until
+  // the frame time is stable (the median of the last three frames within 10%
+  // of the three before) or a cap of max(4 x warmup_ms, 1 s) is reached.
   int warmup = 2;
+  double warmup_ms = 0.0;
+  // Timed frames: at least `frames`; with `precision` > 0, more until the 95%
+  // interval of the median total lies within +-precision of it (relative),
+  // or `max_frames` or `max_seconds` of timed frames is reached (0: no cap
+  // of that kind; a run that stops there has precision_reached false).
   int frames = 10;
-  std::optional<ClockKind> clock;  // default: wall on software GL, gl on GPUs
+  double precision = 0.0;
+  int max_frames = 0;
+  double max_seconds = 0.0;
+  std::optional<ClockKind> clock;  // default: the device profile's trusted clock
   glm::vec3 background{0.0f};
   // Scissor the technique's frame to the scene's projected rectangle
   // (render_frame); off renders every pass over the full image. The image
@@ -73,9 +84,18 @@ struct StageResult {
   std::vector<double> samples_ms;
 };
 
+// The clocks of the GPU at a run's start and end (gpu_clocks.h), where NVML
+// reports them.
+struct GpuClockReading {
+  unsigned sm_mhz = 0, memory_mhz = 0, temperature_c = 0;
+};
+
 struct RunResult {
   RunSpec spec;
-  std::string technique_params;  // canonical "k=16 tail=drop"
+  // Canonical "k=16 tail=drop": as run, every auto resolved (params), and as
+  // asked for, defaults filled in (requested_params).
+  std::string technique_params;
+  std::string requested_params;
   std::string scene_params;      // canonical
   ClockKind clock = ClockKind::wall;
   RunStatus status = RunStatus::ok;
@@ -91,6 +111,20 @@ struct RunResult {
   int tiles = 1;
   double other_process_load = -1.0;  // share of all cores; -1 unknown
   bool noisy = false;
+  int warmup_frames = 0;        // the warm-up frames run
+  int rounds = 1;               // rounds its timed frames ran in (interleaved with others)
+  bool precision_reached = false;
+  // The median total over the baseline's, paired by round (bench --rounds).
+  std::string baseline;
+  std::optional<RatioEstimate> ratio;
+  // Why its time is suspect: drift, outlying frames, a clock that moved, a
+  // median near the frame-overhead floor... (statistics.h, runner.cpp).
+  std::vector<std::string> warnings;
+  // The median time of an empty frame on the run's clock (Harness::frame_overhead_ms).
+  std::optional<double> frame_overhead_ms;
+  std::optional<GpuClockReading> gpu_start, gpu_end;
+  // Per timed frame, the round it ran in.
+  std::vector<int> frame_rounds;
   // |gl - wall| / wall of the median total, when both clocks ran.
   std::optional<double> clock_disagreement;
   Image image;
@@ -146,17 +180,59 @@ ScreenRect render_frame(Technique& technique, const Frame& frame, bool record, b
 ScreenRect scene_rect_of(const Frame& frame);
 
 class PreparedRun;
+class GpuClocks;
+
+// A run in progress (Harness::start): its technique resolved, created and
+// warmed up, its timed frames added by Harness::render_round, alone or in
+// rounds interleaved with other runs, and its figures read by
+// Harness::finish.
+class ActiveRun {
+ public:
+  ~ActiveRun();
+  RunResult& result() { return result_; }
+  // Timed frames so far, and the seconds they took on the wall clock.
+  int frames() const { return int(result_.frame_rounds.size()); }
+  double timed_seconds() const { return timed_seconds_; }
+  // The median total of the frames so far and its interval.
+  Summary total_so_far();
+  // Whether it needs more frames: fewer than spec.frames, or a precision
+  // not reached and no cap hit.
+  bool wants_more();
+
+ private:
+  friend class Harness;
+  struct Parts;
+  explicit ActiveRun(RunResult result);
+  RunResult result_;
+  std::unique_ptr<Parts> parts_;
+  double timed_seconds_ = 0.0;
+};
 
 class Harness {
  public:
   Harness(GlContext& context, const TechniqueRegistry& registry);
   ~Harness();
 
-  const DeviceInfo& device() const { return context_.device(); }
+  const DeviceProfile& device() const { return context_.device(); }
   const TechniqueRegistry& registry() const { return registry_; }
-  ClockKind default_clock() const { return device().software ? ClockKind::wall : ClockKind::gl; }
+  ClockKind default_clock() const { return parse_clock_kind(device().trusted_clock); }
 
+  // start, render_round until wants_more() says enough, finish.
   RunResult run(const RunSpec& spec);
+  // Resolves the technique for the device and scene, checks it can run,
+  // creates it and warms it up. nullptr when the run cannot happen or fails:
+  // then `result` is its skipped or error row.
+  std::unique_ptr<ActiveRun> start(const RunSpec& spec, RunResult& result);
+  // `frames` timed frames of round `round`; false when they failed (the
+  // result is then an error row and the run is over).
+  bool render_round(ActiveRun& run, int frames, int round);
+  // Counters, image, stage statistics, warnings and the error against the
+  // reference; the run's result.
+  RunResult finish(ActiveRun& run);
+  // The median time of an empty frame (a clear and a draw that produces no
+  // fragment) on `clock`, measured once per harness: the floor under every
+  // run's total.
+  double frame_overhead_ms(ClockKind clock);
   // The exact image of a scene/size/background, computed once and cached in
   // memory and on disk (ReferenceCache::from_environment()).
   // Rendered in tiles when its storage exceeds the device's limits or
@@ -176,10 +252,11 @@ class Harness {
   struct LoadedScene;
   LoadedScene& scene(const std::string& spec, const RawParams& params, const std::string& order = "original",
                      const std::string& camera = "default");
-  // Renders result.spec with the technique `prepared` resolved, on the
-  // clock result.clock, into `target` (the run's image, width x height) or
-  // a target of its own.
-  void execute(PreparedRun& prepared, LoadedScene& loaded, RunResult& result, RenderTarget* target = nullptr);
+  // Renders result.spec's frames, warm-up included, with the technique
+  // `prepared` resolved, on the clock result.clock, into a target of its
+  // own: the reference's one frame.
+  void execute(PreparedRun& prepared, LoadedScene& loaded, RunResult& result);
+  void warm_up(ActiveRun& run);
   const DepthComplexity& complexity(LoadedScene& loaded, int width, int height);
   // Sets result.error, or says in result.message why there is no reference.
   void compare_with_reference(const RunSpec& spec, RunResult& result);
@@ -190,6 +267,8 @@ class Harness {
   std::map<std::string, Image> references_;
   ReferenceCache reference_cache_;
   int references_rendered_ = 0, references_loaded_ = 0;
+  std::map<ClockKind, double> frame_overhead_ms_;
+  std::unique_ptr<GpuClocks> gpu_clocks_;
 };
 
 }  // namespace oit

@@ -47,13 +47,13 @@ std::optional<double> find_figure(const std::vector<Figure>& figures, const std:
   return std::nullopt;
 }
 
-std::string supports(const TechniqueDescriptor& technique, const ParamSet& params, const DeviceInfo& device,
+std::string supports(const TechniqueDescriptor& technique, const ParamSet& params, const DeviceProfile& device,
                      const SceneFacts& scene) {
-  if (technique.needs.fp64 && !device.has_fp64) return "device has no double-precision shaders (GL_ARB_gpu_shader_fp64)";
-  if (technique.needs.int64 && !device.has_int64) return "device has no 64-bit integers in shaders (GL_ARB_gpu_shader_int64)";
+  if (technique.needs.fp64 && !device.fp64) return "device has no double-precision shaders (GL_ARB_gpu_shader_fp64)";
+  if (technique.needs.int64 && !device.int64) return "device has no 64-bit integers in shaders (GL_ARB_gpu_shader_int64)";
   if (technique.needs.indexed_geometry && !scene.indexed) return "scene has no shared vertex indices";
   if (technique.needs.multiple_objects && scene.objects < 2) return "scene has a single object";
-  return technique.extra_support_check ? technique.extra_support_check(params, scene) : "";
+  return technique.extra_support_check ? technique.extra_support_check(params, scene, device) : "";
 }
 
 void TechniqueRegistry::add(TechniqueDescriptor descriptor) {

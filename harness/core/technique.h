@@ -80,6 +80,18 @@ struct SceneFacts {
 
 enum class Exactness { exact, approximate };
 
+struct FrameContent;
+
+// What a resolution rule (TechniqueDescriptor::resolve) decides from: the
+// device's profile, the scene, what the frame holds (the harness's counting
+// pass) and the parameters the user set (the rest hold their defaults).
+struct ResolveInput {
+  const DeviceProfile& device;
+  SceneFacts scene;
+  const FrameContent& content;
+  const RawParams& given;
+};
+
 // One adaptive feature of a technique ("skip what the scene does not
 // need"), as the parameter settings that turn it on and off. `oitbench
 // adaptive` runs both on the same scenes and reports time and memory ratios
@@ -181,8 +193,16 @@ struct TechniqueDescriptor {
   std::vector<std::pair<std::string, std::vector<std::string>>> quality_sweep;
   std::vector<AdaptiveSwitch> adaptive_switches;
   bool is_reference = false;  // the exact technique the harness compares against
-  // Optional extra check; returns "" when the run can happen, else the reason.
-  std::function<std::string(const ParamSet&, const SceneFacts&)> extra_support_check;
+  // Optional extra check of the resolved parameters; returns "" when the run
+  // can happen, else the reason.
+  std::function<std::string(const ParamSet&, const SceneFacts&, const DeviceProfile&)> extra_support_check;
+  // The resolution rule: turns every `auto` and every device- or
+  // scene-dependent default into the value that will run, before the
+  // technique is created, and returns those assignments ({{"storage",
+  // "linked"}}); the harness applies them over what the user gave and
+  // validates the result. The technique is then built from concrete values
+  // and never asks what the device is. Empty: nothing to resolve.
+  std::function<RawParams(const ParamSet& requested, const ResolveInput&)> resolve;
   std::function<std::unique_ptr<Technique>(const ParamSet&)> create;
   // Storage for a frame of the given content, for techniques whose storage
   // grows with the frame beyond a few W x H textures; empty: never tiled.
@@ -202,7 +222,7 @@ std::unique_ptr<Technique> make_technique(const ParamSet& params) {
 
 // "" when a run can happen, otherwise the reason it cannot (device features,
 // scene facts, or the technique's own check).
-std::string supports(const TechniqueDescriptor& technique, const ParamSet& params, const DeviceInfo& device,
+std::string supports(const TechniqueDescriptor& technique, const ParamSet& params, const DeviceProfile& device,
                      const SceneFacts& scene);
 
 class TechniqueRegistry {

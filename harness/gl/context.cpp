@@ -13,17 +13,6 @@
 namespace oit {
 namespace {
 
-std::string gl_string(GLenum name) {
-  const auto* text = reinterpret_cast<const char*>(glGetString(name));
-  return text ? text : "";
-}
-
-bool contains(const std::string& haystack, const char* needle) { return haystack.find(needle) != std::string::npos; }
-
-bool is_software_renderer(const std::string& renderer) {
-  return contains(renderer, "llvmpipe") || contains(renderer, "softpipe") || contains(renderer, "swrast") ||
-         contains(renderer, "SwiftShader");
-}
 
 class EglContext final : public GlContext {
  public:
@@ -45,7 +34,7 @@ class EglContext final : public GlContext {
       eglTerminate(display_);
       throw std::runtime_error("eglMakeCurrent failed on " + platform);
     }
-    info_ = query_current_device(platform);
+    info_ = probe_current_device(platform);
     if (debug) enable_gl_debug_output();
   }
   ~EglContext() override {
@@ -53,12 +42,12 @@ class EglContext final : public GlContext {
     eglDestroyContext(display_, context_);
     eglTerminate(display_);
   }
-  const DeviceInfo& device() const override { return info_; }
+  const DeviceProfile& device() const override { return info_; }
 
  private:
   EGLDisplay display_;
   EGLContext context_ = EGL_NO_CONTEXT;
-  DeviceInfo info_;
+  DeviceProfile info_;
 };
 
 // An EGL device (EGL_EXT_device_enumeration) and what its extensions say about it.
@@ -163,25 +152,6 @@ std::vector<std::string> describe_egl_devices() {
   return lines;
 }
 
-bool current_device_is_software() { return is_software_renderer(gl_string(GL_RENDERER)); }
-
-bool current_device_has_framebuffer_fetch() { return epoxy_has_gl_extension("GL_EXT_shader_framebuffer_fetch"); }
-
-DeviceInfo query_current_device(const std::string& platform) {
-  DeviceInfo info;
-  info.renderer = gl_string(GL_RENDERER);
-  info.vendor = gl_string(GL_VENDOR);
-  info.version = gl_string(GL_VERSION);
-  info.platform = platform;
-  info.software = is_software_renderer(info.renderer);
-  info.has_fp64 = epoxy_has_gl_extension("GL_ARB_gpu_shader_fp64") || epoxy_gl_version() >= 40;
-  info.has_int64 = epoxy_has_gl_extension("GL_ARB_gpu_shader_int64");
-  if (epoxy_gl_version() < 45) {
-    throw std::runtime_error("OpenGL 4.5 is required, the context on " + platform + " offers " + info.version +
-                             " (" + info.renderer + ")");
-  }
-  return info;
-}
 
 std::unique_ptr<GlContext> create_headless_context(const DeviceChoice& choice, bool debug) {
   if (choice.preference == DevicePreference::egl_index) return open_indexed_device(choice.egl_index, debug);

@@ -3,18 +3,9 @@
 #include <string>
 #include <vector>
 
-namespace oit {
+#include "harness/gl/device_profile.h"
 
-// What a result must record about the device it ran on.
-struct DeviceInfo {
-  std::string renderer;   // GL_RENDERER
-  std::string vendor;     // GL_VENDOR
-  std::string version;    // GL_VERSION (includes the driver version on Mesa)
-  std::string platform;   // "egl-device", "egl-surfaceless", "glfw"
-  bool software = false;  // llvmpipe/softpipe/swrast: GL timer queries are unreliable
-  bool has_fp64 = false;  // GL_ARB_gpu_shader_fp64
-  bool has_int64 = false; // GL_ARB_gpu_shader_int64
-};
+namespace oit {
 
 enum class DevicePreference { automatic, gpu, software, egl_index };
 
@@ -34,7 +25,7 @@ std::vector<std::string> describe_egl_devices();
 class GlContext {
  public:
   virtual ~GlContext() = default;
-  virtual const DeviceInfo& device() const = 0;
+  virtual const DeviceProfile& device() const = 0;
 };
 
 // Headless context through EGL. auto and gpu: a hardware device of the EGL
@@ -45,17 +36,5 @@ class GlContext {
 // std::runtime_error saying what was tried.
 std::unique_ptr<GlContext> create_headless_context(const DeviceChoice& choice = {}, bool debug = false);
 
-
-DeviceInfo query_current_device(const std::string& platform);
-
-// Whether the current context renders in software (llvmpipe, softpipe,
-// swrast, SwiftShader): there the "GPU" is the CPU, so a technique may pick
-// the host for work a GPU would do in a shader (DeviceInfo::software).
-bool current_device_is_software();
-
-// Whether the current context has GL_EXT_shader_framebuffer_fetch: a
-// fragment reads and writes its pixel's colour in primitive order, which
-// lets a fill take per-pixel slots without atomics.
-bool current_device_has_framebuffer_fetch();
 
 }  // namespace oit

@@ -28,7 +28,7 @@ GlfwWindowContext::GlfwWindowContext(int width, int height, const std::string& t
     throw std::runtime_error("cannot create a 4.5 core window: " + reason);
   }
   glfwMakeContextCurrent(window_);
-  info_ = query_current_device("glfw");
+  info_ = probe_current_device("glfw");
 }
 
 GlfwWindowContext::~GlfwWindowContext() {

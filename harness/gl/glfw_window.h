@@ -16,14 +16,14 @@ class GlfwWindowContext final : public GlContext {
   GlfwWindowContext(const GlfwWindowContext&) = delete;
   GlfwWindowContext& operator=(const GlfwWindowContext&) = delete;
 
-  const DeviceInfo& device() const override { return info_; }
+  const DeviceProfile& device() const override { return info_; }
   GLFWwindow* window() const { return window_; }
   bool should_close() const;
   void swap_buffers_and_poll();
 
  private:
   GLFWwindow* window_ = nullptr;
-  DeviceInfo info_;
+  DeviceProfile info_;
 };
 
 }  // namespace oit

@@ -4,13 +4,16 @@
 
 namespace oit {
 
-LiveTechnique::LiveTechnique(const TechniqueRegistry& registry, const DeviceInfo& device, ClockKind clock)
+LiveTechnique::LiveTechnique(const TechniqueRegistry& registry, const DeviceProfile& device, ClockKind clock)
     : registry_(registry), device_(device), clock_kind_(clock) {}
 
 std::string LiveTechnique::configure(const std::string& id, const RawParams& params, const SceneFacts& facts,
                                      SceneShading shading, int width, int height) {
   try {
     auto prepared = std::make_unique<PreparedRun>(registry_, id, params);
+    // The frame's content is not known before its first frame; the rules
+    // that need it resolve against an empty frame.
+    prepared->resolve(device_, facts, FrameContent{width, height, 0, 0});
     if (std::string reason = prepared->unsupported(device_, facts); !reason.empty()) {
       return id + " cannot run here: " + reason;
     }

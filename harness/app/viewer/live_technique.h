@@ -17,7 +17,7 @@ struct StageTiming {
 
 class LiveTechnique {
  public:
-  LiveTechnique(const TechniqueRegistry& registry, const DeviceInfo& device, ClockKind clock);
+  LiveTechnique(const TechniqueRegistry& registry, const DeviceProfile& device, ClockKind clock);
 
   // Switches to technique `id` with `params` at `width` x `height`, its
   // programs built for scenes of `shading` (gl/shader_program.h). Returns
@@ -72,7 +72,7 @@ class LiveTechnique {
   void restart_clock();  // a new window: the clock's frames so far are dropped
 
   const TechniqueRegistry& registry_;
-  const DeviceInfo& device_;
+  const DeviceProfile& device_;
   ClockKind clock_kind_;
   // Plans tiles for this view and resizes the technique when the plan changes.
   void plan_for(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection);

@@ -28,7 +28,7 @@ std::string background_text(const glm::vec3& c) {
 
 Viewer::Viewer(GlfwWindowContext& window, const ViewOptions& options)
     : window_(window), registry_(builtin_techniques()), options_(options) {
-  parse_size(options.size, width_, height_);
+  parse_size(size_for(options.size, window_.device()), width_, height_);
   background_ = parse_background(options.background);
   sweep_file_ = options.sweep_file;
   sweep_csv_ = options.sweep_csv;
