@@ -14,7 +14,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from analysis import common, figure_notes  # noqa: E402
+from analysis import common, figure_notes, presentation  # noqa: E402
 from analysis.pastyrik_fig8 import model_rows  # noqa: E402
 
 PEELINGS = ["depth_peeling", "dual_depth_peeling"]
@@ -42,10 +42,12 @@ def draw(runs, args=None):
     positions = np.arange(len(order))
     for i, technique in enumerate([t for t in PEELINGS if t in total]):
         offset = (i - 0.5) * 0.4
-        top.bar(positions + offset, total.loc[order, technique], 0.4, label=technique)
+        style = presentation.technique_style(technique)
+        look = dict(color=style.colour, hatch=style.hatch, edgecolor="white", linewidth=0.5, label=technique)
+        top.bar(positions + offset, total.loc[order, technique], 0.4, **look)
         if technique in peel and technique in passes:
             per_pass = peel.reindex(order)[technique] / passes.reindex(order)[technique]
-            bottom.bar(positions + offset, per_pass, 0.4, label=technique)
+            bottom.bar(positions + offset, per_pass, 0.4, **look)
             for x, n in zip(positions + offset, passes.reindex(order)[technique]):
                 if np.isfinite(n):
                     # x in data, y in axes units: the foot of the bar on a log axis.
