@@ -13,7 +13,7 @@ import matplotlib.patches as mpatches  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from analysis import common, presentation  # noqa: E402
+from analysis import common, figure_notes, presentation  # noqa: E402
 from analysis.pastyrik_fig8 import model_rows  # noqa: E402
 
 # The paper's green, blue and red, as Okabe-Ito's colour-blind-safe ones.
@@ -33,7 +33,8 @@ def thirds(times):
 
 def draw(runs, args=None):
     rows = model_rows(runs, None)
-    rows = rows[(rows["stage"] == "total") & (rows["technique"] != "reference")]
+    # One bar per technique: the peelings' canonical variant (peeling_stages shows both).
+    rows = figure_notes.canonical_peels(rows[(rows["stage"] == "total") & (rows["technique"] != "reference")])
     if rows.empty:
         raise common.NoData("no total rows on the model scene")
     # Both camera positions of a model are groups of their own.

@@ -33,7 +33,7 @@ LOG_AXES = {"extra_scene_vertices", "fragments", "median_ms"}
 
 def model_table(runs, technique):
     """One row per model position (index 'model (view)'), the AXES columns."""
-    rows = model_rows(runs, technique)
+    rows = figure_notes.canonical_peels(model_rows(runs, technique))
     rows = rows[rows["stage"] == "total"]
     rows = rows.assign(model=[m if v == "general" else f"{m} ({v})" for m, v in zip(rows["model"], rows["view"])])
     columns = [c for _, c in AXES if c in rows]

@@ -239,6 +239,24 @@ class FigureStyleTest(unittest.TestCase):
         self.assertIn("10", texts)  # the time axis' ends
         self.assertIn("30", texts)
 
+    def test_both_tie_breaks_are_bars_of_their_own_and_the_comparison_takes_the_canonical_one(self):
+        rows = [dict(r, params="tie_break=submission") if "peeling" in r["technique"] else r for r in model_rows()]
+        rows += [dict(r, params="tie_break=triangle_id", median_ms=str(float(r["median_ms"]) * 10))
+                 for r in model_rows() if "peeling" in r["technique"]]
+        path = os.path.join(self.tmp.name, "ties.csv")
+        fx.write_csv(path, rows)
+        runs = common.load(path)
+        top = peeling_stages.draw(runs).axes[0]
+        self.assertEqual([c.get_label() for c in top.containers],
+                         ["depth_peeling tie_break=submission", "depth_peeling tie_break=triangle_id",
+                          "dual_depth_peeling tie_break=submission", "dual_depth_peeling tie_break=triangle_id"])
+        exact = top.containers[1]
+        self.assertEqual({mcolors.to_hex(p.get_facecolor()) for p in exact}, {"#ffffff"})  # hollow
+        np.testing.assert_allclose(sorted(p.get_height() for p in top.containers[0]), [20, 40, 60])
+        np.testing.assert_allclose(sorted(p.get_height() for p in exact), [200, 400, 600])
+        bars = {c.get_label(): c for c in oit_comparison.draw(runs).axes[0].containers}
+        np.testing.assert_allclose(sorted(p.get_height() for p in bars["depth_peeling"]), [20, 40, 60])
+
     def test_no_peeling_list_or_buffer_rows_is_no_data(self):
         path = os.path.join(self.tmp.name, "k.csv")
         fx.write_csv(path, [r for r in model_rows() if r["technique"] == "kbuffer"])
