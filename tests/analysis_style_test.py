@@ -26,8 +26,8 @@ REPO = os.path.dirname(HERE)
 sys.path.insert(0, REPO)
 sys.path.insert(0, HERE)
 import analysis_fixtures as fx  # noqa: E402
-from analysis import (common, oit_comparison, pareto, pastyrik_fig11_14, peeling_stages, plot_stages,  # noqa: E402
-                      presentation)
+from analysis import (approximate_oit, common, oit_comparison, pareto, pastyrik_fig11_14,  # noqa: E402
+                      peeling_stages, plot_stages, presentation)
 
 OITBENCH = sys.argv.pop(1) if len(sys.argv) > 1 and not sys.argv[1].startswith("-") else None
 
@@ -176,6 +176,27 @@ class ParetoIntervalsTest(unittest.TestCase):
 
     def tearDown(self):
         plt.close("all")
+
+
+class ImageGridTest(unittest.TestCase):
+    """approximate_oit's grid follows the harness's image conventions."""
+
+    def test_reference_first_srgb_display_and_log_viridis_error_with_a_colour_bar(self):
+        reference = np.full((4, 4, 3), 0.2, dtype=np.float32)
+        image = reference.copy()
+        image[0, 0] = [0.7, 0.2, 0.2]  # error 0.5 in one pixel, 0 elsewhere
+        fig, errors = approximate_oit.draw_grid(reference, [image], ["kbuffer:k=4"], "t")
+        top, bottom = fig.axes[0], fig.axes[3]  # row by row: reference, image; its cell, the error
+        self.assertEqual(top.get_title(), "reference (exact)")
+        # Linear 0.2 is shown as sRGB 0.484, as the harness's display PNGs.
+        self.assertAlmostEqual(float(top.images[0].get_array()[1, 1, 0]), 0.4845, places=3)
+        heat = bottom.images[0]
+        self.assertEqual(heat.get_cmap().name, "viridis")
+        self.assertIsInstance(heat.norm, matplotlib.colors.LogNorm)
+        self.assertEqual((heat.norm.vmin, heat.norm.vmax), (1e-4, 1.0))
+        self.assertAlmostEqual(float(errors[0].max()), 0.5)
+        self.assertTrue(any("reference|" in ax.get_ylabel() for ax in fig.axes))  # the colour bar
+        plt.close(fig)
 
 
 def model_rows():
