@@ -31,6 +31,7 @@ TECHNIQUE = "illustration_buffer"
 PAPER_PASSES = [("clear", ["clear", "count"]), ("fill", ["fill"]), ("sort", ["sort"]),
                 ("connect", ["neighbors", "stylize_init"]), ("solve", ["diffuse"]),
                 ("connect 5.2-5.3 + solve, older CSV", ["stylize", "init"]), ("compose", ["compose"])]
+PATH_KEYS = ["iterations", "neighbors", "storage", "diffusion", "skip_converged", "sort"]
 PAPER_FIG14 = ["carnecky2013 (GeForce 470, 1000 random views):",
                "every pass linear in the fragments; solve = one",
                "diffusion iteration (10-50 in practice)"]
@@ -76,9 +77,12 @@ def scaling_figure(runs, key, x_column, x_label, what, paper):
     ax.legend(fontsize=7, loc="upper left")
     figure_notes.paper_box(ax, paper)
     views = rows.groupby("point")["camera"].nunique().max()
-    iterations = sorted({common.tokens(p).get("iterations", "?") for p in rows["params"]})
+    # The knobs that decide whether the run took the paper's path
+    # (figure_configs.CARNECKY), as the rows record them.
+    path = [f"{key}={','.join(values)}" for key in PATH_KEYS
+            if (values := sorted({common.tokens(p)[key] for p in rows["params"] if key in common.tokens(p)}))]
     return figure_notes.finish(fig, ax, rows, f"{what}\n{rows['scene'].iloc[0]}, mean over {views} camera view(s), "
-                                              f"iterations={','.join(iterations)}")
+                                              f"{' '.join(path)}")
 
 
 def draw(runs, args=None):

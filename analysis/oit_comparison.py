@@ -61,8 +61,11 @@ def draw(runs, args=None):
     legend += [mpatches.Patch(color=c, label=f"{name} third of its range")
                for c, name in zip(THIRD_COLOURS, ["fastest", "middle", "slowest"])]
     ax.legend(handles=legend, fontsize=6, ncol=2, loc="upper left")
-    ax.set_title(common.title(rows, "pastyrik2016 section 5: OIT techniques per model (colour: thirds per technique)"),
-                 fontsize=8)
+    peels = sorted({figure_notes.tie_break(p) for p in rows.loc[rows["technique"].str.contains("peeling"), "params"]}
+                   - {""})
+    ties = f", peelings tie_break={','.join(peels)}" if peels else ""
+    ax.set_title(common.title(rows, "pastyrik2016 section 5: OIT techniques per model (colour: thirds per technique"
+                                    f"{ties})"), fontsize=8)
     fig.tight_layout()
     return fig
 

@@ -25,12 +25,11 @@ PAPER = ["pastyrik2016 (GTX 660): dual depth peeling 'much slower'",
 
 
 def series_names(rows):
-    """Per row its series: the technique, with its tie_break where the rows
-    hold both variants (figure_configs times the canonical submission order
-    and the exact triangle_id ties, labelled)."""
+    """Per row its series: the technique and its tie_break where the row's
+    params record one (figure_configs times the canonical submission order
+    and the exact triangle_id ties; a CSV may hold either or both)."""
     variant = rows["params"].map(figure_notes.tie_break)
-    both = {t for t, v in variant.groupby(rows["technique"]) if v.nunique() > 1}
-    return [f"{t} tie_break={v}" if t in both else t for t, v in zip(rows["technique"], variant)]
+    return [f"{t} tie_break={v}" if v else t for t, v in zip(rows["technique"], variant)]
 
 
 def peel_table(runs):

@@ -587,7 +587,9 @@ def draw_plots(sweep, args):
     drawn = []
     for module_name, options in sweep.plots:
         module = importlib.import_module(f"analysis.{module_name}")
-        plot_args = argparse.Namespace(heatmaps=os.path.join(args.out, "heatmaps")) if options.get("heatmaps") else None
+        # The build's defaults: labels name the parameters a run has off them.
+        plot_args = argparse.Namespace(heatmaps=os.path.join(args.out, "heatmaps") if options.get("heatmaps") else None,
+                                       defaults=getattr(args, "defaults", None))
         for suffix, runs in groups:
             out = os.path.join(args.out, f"{module_name}{suffix}.png")
             draw_and_save(lambda: module.draw(runs, plot_args), out, f"{module_name}{suffix}", drawn)
@@ -659,7 +661,9 @@ def main(argv=None):
     if not os.access(args.oitbench, os.X_OK):
         sys.exit(f"reproduce: {args.oitbench} is not an executable (build first: bash setup.sh build)")
     env = oitbench_environment(args.oitbench)
-    sweeps = plan(catalogue_of(args.oitbench, env), args.quick, args.views)
+    catalogue = catalogue_of(args.oitbench, env)
+    args.defaults = catalogue.techniques
+    sweeps = plan(catalogue, args.quick, args.views)
     for sweep in sweeps:
         if sweep.points:
             sweep.frames = args.frames if args.frames is not None else sweep.frames
