@@ -11,7 +11,6 @@ The one visual identity of the plots is here too: technique_style gives
 every registered technique its own colour, marker and hatch (the same in
 every plot), stage_colours every stage of a plot its own colour."""
 import collections
-import functools
 import os
 import re
 import subprocess
@@ -184,13 +183,6 @@ def run_labels(runs, defaults):
     technique's runs where no defaults are known)."""
     short = short_params(runs, defaults)
     return runs["technique"] + short.map(lambda s: f" {s}" if s else "")
-
-
-@functools.lru_cache(maxsize=None)
-def build_defaults(oitbench=None):
-    """technique_defaults, asked once per process (every figure of a run
-    labels from the same build)."""
-    return technique_defaults(oitbench)
 
 
 def label_note(defaults):
