@@ -117,9 +117,12 @@ def time_intervals(points):
 def indistinguishable_from_front(points, front, low, high):
     """Index of the points off the front that no front point beats for sure:
     none is at least as accurate AND faster with its whole interval below
-    this point's interval. Their times could put them on the front."""
+    this point's interval. Their times could put them on the front. A
+    point without an interval (a CSV without p05/p95) is not judged."""
     close = []
     for index, row in points.drop(index=front.index).iterrows():
+        if pd.isna(low.loc[index]) or pd.isna(high.loc[index]):
+            continue
         better = front[front["error"] <= row["error"]]
         if not (high.loc[better.index] < low.loc[index]).any():
             close.append(index)

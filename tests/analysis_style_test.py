@@ -168,6 +168,14 @@ class ParetoIntervalsTest(unittest.TestCase):
         legend = [t.get_text() for t in ax.get_legend().get_texts()]
         self.assertIn("whisker: p05..p95 of the frames (no CI in this CSV)", legend)
 
+    def test_a_point_without_an_interval_is_not_judged(self):
+        points = pareto.pd.DataFrame({"time_ms": [1.0, 2.0], "error": [0.0, 0.5]})
+        low, high = pareto.pd.Series([0.9, float("nan")]), pareto.pd.Series([1.1, float("nan")])
+        self.assertEqual(pareto.indistinguishable_from_front(points, points.iloc[:1], low, high), [])
+        # With an interval [1.0, 2.5] overlapping the front point's [0.9, 1.1] it is ringed.
+        low, high = pareto.pd.Series([0.9, 1.0]), pareto.pd.Series([1.1, 2.5])
+        self.assertEqual(pareto.indistinguishable_from_front(points, points.iloc[:1], low, high), [1])
+
     def test_points_take_their_technique_colour_and_marker(self):
         ax, _ = self.draw(with_ci=True)
         dots = {c.get_label(): c for c in ax.collections if c.get_label() in ("kbuffer", "unsorted")}
