@@ -12,8 +12,10 @@ Usage:
 configuration's median total time and error, `front` marking the runs no other
 run of that scene beats in both (analysis/pareto.py's front). `grid` renders
 each technique with `oitbench render` to a float PFM, the exact reference
-likewise, and draws the images in one row and |image - reference| (largest
-over RGB) under them on one shared colour scale, so the heatmaps compare.
+likewise, and draws the reference and the images in one row (sRGB, as the
+harness displays linear values) and |image - reference| (largest over RGB)
+under them on the harness's error scale (viridis, log, 1e-4 .. 1, one colour
+bar), so the heatmaps compare.
 """
 import argparse
 import os
@@ -96,26 +98,59 @@ def render(oitbench, technique_spec, args, out_dir):
     return path
 
 
+# The harness's error images (`oitbench bench --images`): the largest
+# channel error per pixel on one absolute log scale, viridis, 1e-4 .. 1.
+ERROR_FLOOR, ERROR_CEILING = 1e-4, 1.0
+
+
+def srgb(linear):
+    """Linear RGB in [0, 1] as sRGB for display (IEC 61966-2-1, as the
+    harness's display PNGs: harness/core/image.h srgb_encode)."""
+    c = np.clip(linear, 0.0, 1.0)
+    return np.where(c <= 0.0031308, 12.92 * c, 1.055 * np.power(c, 1 / 2.4) - 0.055)
+
+
+def draw_grid(reference, images, names, title):
+    """The exact reference, then each technique's image (top row, sRGB) and
+    its |image - reference| (largest over RGB) under it, viridis on the
+    harness's log scale with one colour bar. Returns (figure, errors)."""
+    from matplotlib.colors import LogNorm
+
+    errors = [np.abs(image - reference).max(axis=2) for image in images]
+    columns = len(images) + 1
+    fig, axes = plt.subplots(2, columns, figsize=(2.1 * columns + 0.8, 4.6), squeeze=False, layout="constrained")
+    axes[0][0].imshow(srgb(reference), interpolation="nearest")
+    axes[0][0].set_title("reference (exact)", fontsize=7)
+    axes[1][0].text(0.5, 0.5, "each technique's\nerror against\nthe reference\nunder its image", ha="center",
+                    va="center", fontsize=7, transform=axes[1][0].transAxes)
+    norm = LogNorm(vmin=ERROR_FLOOR, vmax=ERROR_CEILING)
+    for column, (name, image, error) in enumerate(zip(names, images, errors), start=1):
+        axes[0][column].imshow(srgb(image), interpolation="nearest")
+        axes[0][column].set_title(name.replace(":", "\n"), fontsize=7)
+        heat = axes[1][column].imshow(np.clip(error, ERROR_FLOOR, ERROR_CEILING), cmap="viridis", norm=norm,
+                                      interpolation="nearest")
+        axes[1][column].set_title(f"max {error.max():.3g}, rmse {np.sqrt((error ** 2).mean()):.2g}", fontsize=6)
+    for ax in axes.flat:
+        ax.set_xticks([])
+        ax.set_yticks([])
+    axes[1][0].axis("off")
+    if images:
+        fig.colorbar(heat, ax=axes[1].tolist(), fraction=0.02, pad=0.01,
+                     label="|image - reference|, max of RGB")
+    fig.suptitle(title, fontsize=8)
+    return fig, errors
+
+
 def grid(args):
     techniques = args.technique or DEFAULT_TECHNIQUES
     with tempfile.TemporaryDirectory() as scratch:
         reference = read_pfm(render(args.oitbench, "reference", args, scratch))
         images = [read_pfm(render(args.oitbench, t, args, scratch)) for t in techniques]
-    errors = [np.abs(image - reference).max(axis=2) for image in images]
-    top = max(max(float(e.max()) for e in errors), 1e-6)
-    fig, axes = plt.subplots(2, len(techniques), figsize=(2.1 * len(techniques), 4.6), squeeze=False)
-    for column, (name, image, error) in enumerate(zip(techniques, images, errors)):
-        axes[0][column].imshow(np.clip(image, 0.0, 1.0), interpolation="nearest")
-        axes[0][column].set_title(name.replace(":", "\n"), fontsize=7)
-        heat = axes[1][column].imshow(error, cmap="jet", vmin=0.0, vmax=top, interpolation="nearest")
-        axes[1][column].set_title(f"max {error.max():.3g}, rmse {np.sqrt((error ** 2).mean()):.2g}", fontsize=6)
-        for row in (0, 1):
-            axes[row][column].set_xticks([])
-            axes[row][column].set_yticks([])
-    fig.colorbar(heat, ax=axes[1].tolist(), fraction=0.02, pad=0.01, label="|image - reference|, max over RGB")
     scene = " ".join([args.scene] + args.scene_set)
-    fig.suptitle(f"{scene} {args.size}: image (top), error against the exact reference (bottom, shared scale)",
-                 fontsize=8)
+    fig, errors = draw_grid(reference, images, techniques,
+                            f"{scene} {args.size}: the exact reference, each technique (top, sRGB) and its error "
+                            f"against the reference (bottom, one log scale)")
+    top = max(max(float(e.max()) for e in errors), 0.0)
     fig.savefig(args.out, dpi=130)
     plt.close(fig)
     print(f"wrote {args.out}: largest error {top:.3g}")

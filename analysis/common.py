@@ -132,18 +132,23 @@ def cli(description, draw, extra_arguments=None):
 def stacked_stages(ax, x, table, groups=None):
     """Cumulative stage times as stacked areas over x (the papers draw each
     stage's time on top of the preceding ones). `groups` maps an area label to
-    the stages summed into it; by default one area per stage. Returns the
-    labels drawn, bottom to top."""
+    the stages summed into it; by default one area per stage. Each area has
+    the colour of its first stage. Returns the labels drawn, bottom to top."""
     if groups is None:
         groups = [(s, [s]) for s in table.columns if s != "total"]
-    labels, series = [], []
+    from analysis import presentation  # here: presentation imports this module
+
+    labels, series, firsts = [], [], []
     for label, members in groups:
         present = [m for m in members if m in table.columns]
         if not present:
             continue
         labels.append(label)
+        firsts.append(present[0])
         series.append(table[present].fillna(0.0).sum(axis=1).to_numpy())
     if not series:
         raise NoData("no stage rows besides total")
-    ax.stackplot(x, *series, labels=labels, alpha=0.85)
+    # An area takes the colour of its first stage (presentation.stage_colours).
+    colours = presentation.stage_colours(firsts)
+    ax.stackplot(x, *series, labels=labels, colors=[colours[f] for f in firsts], alpha=0.85)
     return labels

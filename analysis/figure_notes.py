@@ -31,6 +31,21 @@ def noisy_note(rows):
     return f", {noisy} of {len(runs)} runs noisy (other load > 25%)" if noisy else ""
 
 
+def tie_break(params):
+    """A peeling run's tie_break ('' where its params do not say)."""
+    return common.tokens(params).get("tie_break", "")
+
+
+def canonical_peels(rows):
+    """`rows` with each peeling technique's runs at tie_break=submission
+    only (the canonical peel, figure_configs.PEELING_CANONICAL), where the
+    rows hold that variant; other techniques' rows untouched. Figures that
+    show one bar or line per technique compare the canonical peels."""
+    variant = rows["params"].map(tie_break)
+    canonical = set(rows.loc[variant == "submission", "technique"])
+    return rows[~rows["technique"].isin(canonical) | (variant == "submission")]
+
+
 def paper_box(ax, lines, loc="lower right"):
     """The paper's claims as a small text box inside the axes."""
     corners = {"lower right": (0.98, 0.02, "right", "bottom"), "upper right": (0.98, 0.98, "right", "top"),

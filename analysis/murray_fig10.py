@@ -18,7 +18,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from analysis import common, figure_notes  # noqa: E402
+from analysis import common, figure_notes, presentation  # noqa: E402
 
 TECHNIQUE = "bucketed_kbuffer"
 # The paper's areas: everything that builds the buckets, then the three
@@ -42,8 +42,9 @@ def totals_by_objects(rows):
 def stage_lines(ax, rows, linestyle, suffix):
     """Each stage's own median (and the total, black) over the object counts."""
     table = common.stage_table(rows.assign(objects=objects_of(rows)), "objects").sort_index()
-    for i, stage in enumerate(table.columns):
-        colour = "black" if stage == "total" else f"C{i}"
+    colours = presentation.stage_colours([s for s in table.columns if s != "total"])
+    for stage in table.columns:
+        colour = "black" if stage == "total" else colours[stage]
         ax.plot(table.index, table[stage].to_numpy(), linestyle=linestyle, marker="o", markersize=2.5,
                 color=colour, label=f"{stage}{suffix}")
 

@@ -5,12 +5,17 @@ Usage: python3 -m analysis.pareto runs.csv [--out-dir DIR] [--prefix NAME] [--me
                                   [--oitbench build/harness/oitbench]
 
 Input: the CSV of `oitbench pareto` (or any bench). x = median total time
-per frame (log) with a whisker from p05 to p95 of the timed frames, y = the
+per frame (log) with a whisker over the 95% confidence interval of the
+median (ci_low_ms..ci_high_ms; p05..p95 of the timed frames in a CSV
+without them, and the legend says which), y = the
 error against the exact reference (symlog, so exact runs sit on the zero
 line). A run is on the Pareto front when no other run of the same scene
 configuration (scene and parameters, size, camera set, clock, device) is
 both at least as fast and at least as accurate; front points are labelled
-with the parameters off their technique's defaults.
+with the parameters off their technique's defaults. A point off the front
+that no front point beats for sure (as accurate or better, and faster with
+the whole interval) is ringed: its time is not distinguishable from the
+front's. Each technique has its colour and marker (presentation.technique_style).
 
 One PNG and one SVG per configuration, named PREFIX_SCENE_SIZE.png (PREFIX:
 the CSV's name, so sweeps written to one directory keep apart); a scene
@@ -40,12 +45,14 @@ def load_totals(path, metric):
     """One row per run configuration (the facet columns of presentation,
     technique, params, scene_rect where present): the median over repeated
     runs of the median total time and of `metric`, the p05..p95 envelope,
-    and `label` = technique and its full params."""
+    the envelope of the 95% confidence intervals of the median
+    (ci_low_ms..ci_high_ms; NaN in a CSV written before the harness
+    recorded them), and `label` = technique and its full params."""
     runs = read_results(path, keep_default_na=False, dtype=str)
     runs = runs[(runs["status"] == "ok") & (runs["stage"] == "total")].copy()
     if runs.empty:
         sys.exit(f"{path}: no successful runs with a total stage")
-    for column in ["median_ms", "p05_ms", "p95_ms", metric]:
+    for column in ["median_ms", "p05_ms", "p95_ms", "ci_low_ms", "ci_high_ms", metric]:
         runs[column] = pd.to_numeric(runs[column], errors="coerce") if column in runs else float("nan")
     runs["label"] = runs["technique"] + runs["params"].map(lambda p: f" {p}" if p else "")
     runs = presentation.with_facets(runs)
@@ -53,6 +60,7 @@ def load_totals(path, metric):
         ["scene_rect"] if "scene_rect" in runs else [])
     return runs.groupby(group, as_index=False).agg(time_ms=("median_ms", "median"), error=(metric, "median"),
                                                    p05=("p05_ms", "min"), p95=("p95_ms", "max"),
+                                                   ci_low=("ci_low_ms", "min"), ci_high=("ci_high_ms", "max"),
                                                    timestamp=("timestamp", "min"))
 
 
@@ -97,17 +105,51 @@ def file_names(totals, prefix):
     return names
 
 
+def time_intervals(points):
+    """(low, high, what) of each point's time: the 95% confidence interval
+    of the median where every point has one (ci_low..ci_high), else the
+    p05..p95 of the timed frames (an older CSV), `what` naming which."""
+    if {"ci_low", "ci_high"} <= set(points) and points[["ci_low", "ci_high"]].notna().all(axis=None):
+        return points["ci_low"], points["ci_high"], "95% CI of the median"
+    return points["p05"], points["p95"], "p05..p95 of the frames (no CI in this CSV)"
+
+
+def indistinguishable_from_front(points, front, low, high):
+    """Index of the points off the front that no front point beats for sure:
+    none is at least as accurate AND faster with its whole interval below
+    this point's interval. Their times could put them on the front. A
+    point without an interval (a CSV without p05/p95) is not judged."""
+    close = []
+    for index, row in points.drop(index=front.index).iterrows():
+        if pd.isna(low.loc[index]) or pd.isna(high.loc[index]):
+            continue
+        better = front[front["error"] <= row["error"]]
+        if not (high.loc[better.index] < low.loc[index]).any():
+            close.append(index)
+    return close
+
+
 def draw_configuration(points, title, metric):
+    low, high, interval = time_intervals(points)
     with plt.rc_context(presentation.READABLE):
         fig, ax = plt.subplots(figsize=(9, 6), layout="constrained")
         for technique, rows in points.groupby("technique"):
-            dots = ax.scatter(rows["time_ms"], rows["error"], label=technique, s=30, zorder=3)
-            spread = rows.dropna(subset=["p05", "p95"])
-            ax.errorbar(spread["time_ms"], spread["error"], xerr=[(spread["time_ms"] - spread["p05"]).clip(lower=0),
-                                                                  (spread["p95"] - spread["time_ms"]).clip(lower=0)],
-                        fmt="none", ecolor=dots.get_facecolor()[0], elinewidth=0.8, alpha=0.6)
+            style = presentation.technique_style(technique)
+            ax.scatter(rows["time_ms"], rows["error"], label=technique, s=36, zorder=3, color=style.colour,
+                       marker=style.marker, edgecolors="black", linewidths=0.4)
+            spread = rows[low.loc[rows.index].notna() & high.loc[rows.index].notna()]
+            ax.errorbar(spread["time_ms"], spread["error"],
+                        xerr=[(spread["time_ms"] - low.loc[spread.index]).clip(lower=0),
+                              (high.loc[spread.index] - spread["time_ms"]).clip(lower=0)],
+                        fmt="none", ecolor=style.colour, elinewidth=1, capsize=2, alpha=0.8)
         front = pareto_front(points)
         ax.step(front["time_ms"], front["error"], where="post", color="black", linewidth=1, label="Pareto front")
+        close = points.loc[indistinguishable_from_front(points, front, low, high)]
+        if not close.empty:
+            ax.scatter(close["time_ms"], close["error"], s=140, facecolors="none", edgecolors="black",
+                       linewidths=1, linestyle="--", zorder=4,
+                       label="off the front, not distinguishable\nfrom it (intervals overlap)")
+        ax.errorbar([], [], xerr=[], fmt="none", ecolor="grey", capsize=2, label=f"whisker: {interval}")
         # Front points carry numbers (staggered: several often sit on the
         # zero line side by side); their labels are listed beside the plot.
         for i, (_, row) in enumerate(front.iterrows(), start=1):
@@ -118,7 +160,7 @@ def draw_configuration(points, title, metric):
         ax.set_xscale("log")
         ax.set_yscale("symlog", linthresh=1e-4)
         ax.set_ylim(0.0, max(points["error"].max(), 1e-4) * 3)  # room above the worst run
-        ax.set_xlabel("median total time per frame (ms, log); whisker: p05..p95 of the timed frames")
+        ax.set_xlabel(f"median total time per frame (ms, log); whisker: {interval}")
         ax.set_ylabel(f"{metric} against the exact reference")
         ax.set_title(title, loc="left")
         ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))

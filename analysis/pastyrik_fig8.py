@@ -13,7 +13,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from analysis import common, figure_notes  # noqa: E402
+from analysis import common, figure_notes, presentation  # noqa: E402
 
 TECHNIQUE = "illustration_buffer"
 MESH_EXTENSIONS = (".obj", ".off", ".ply", ".stl", ".gltf", ".glb")
@@ -64,9 +64,11 @@ def draw(runs, args=None):
         table = common.stage_table(part, "model").loc[order]
         positions = range(len(order))
         cumulative = 0.0
-        for stage in [s for s in table.columns if s != "total"]:
+        stages = [s for s in table.columns if s != "total"]
+        colours = presentation.stage_colours(stages)
+        for stage in stages:
             cumulative = cumulative + table[stage].fillna(0.0)
-            ax.plot(positions, cumulative.to_numpy(), marker="o", markersize=3, label=stage)
+            ax.plot(positions, cumulative.to_numpy(), marker="o", markersize=3, color=colours[stage], label=stage)
         if "total" in table:
             ax.plot(positions, table["total"].to_numpy(), color="black", linestyle="--", marker="s", markersize=3,
                     label="total")

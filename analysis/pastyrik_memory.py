@@ -11,7 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from analysis import common, figure_notes  # noqa: E402
+from analysis import common, figure_notes, presentation  # noqa: E402
 from analysis.pastyrik_fig8 import model_rows  # noqa: E402
 
 BYTES_PER_FRAGMENT, BYTES_PER_PIXEL = 208, 12
@@ -33,8 +33,9 @@ def draw(runs, args=None):
     fig, ax = plt.subplots(figsize=(8, 5))
     for technique in [t for t in SHOWN if t in set(rows["technique"])]:
         part = rows[rows["technique"] == technique].sort_values("fragments")
-        ax.plot(part["fragments"], part["bytes_allocated"] / 2**20, marker="o", markersize=3, linestyle="",
-                label=technique)
+        style = presentation.technique_style(technique)
+        ax.plot(part["fragments"], part["bytes_allocated"] / 2**20, marker=style.marker, markersize=4, linestyle="",
+                color=style.colour, label=technique)
     fragments = np.array(sorted(rows["fragments"]))
     pixels = int(rows["width"].iloc[0]) * int(rows["height"].iloc[0])
     ax.plot(fragments, paper_bytes(fragments, pixels) / 2**20, color="black", linestyle="--",

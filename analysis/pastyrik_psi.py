@@ -13,7 +13,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from analysis import common, figure_notes  # noqa: E402
+from analysis import common, figure_notes, presentation  # noqa: E402
 
 TECHNIQUES = ["illustration_buffer", "linked_list"]
 PAPER = ["pastyrik2016 (GTX 660): only the illustration buffer",
@@ -25,9 +25,11 @@ def per_fragment(rows, stage):
     return part.assign(ns=part["median_ms"] * 1e6 / part["fragments"]).sort_values("psi")
 
 
-def plot_series(ax, part, label):
+def plot_series(ax, part, technique, label):
     rho = part[["ns", "psi"]].corr(method="spearman").iloc[0, 1] if len(part) > 2 else float("nan")
-    ax.plot(part["psi"], part["ns"], marker="o", linestyle="", label=f"{label} (Spearman {rho:.2f})")
+    style = presentation.technique_style(technique)
+    ax.plot(part["psi"], part["ns"], marker=style.marker, color=style.colour, linestyle="",
+            label=f"{label} (Spearman {rho:.2f})")
     for _, row in part.iterrows():
         ax.annotate(row["scene"], (row["psi"], row["ns"]), fontsize=5, xytext=(3, 2), textcoords="offset points")
 
@@ -38,10 +40,10 @@ def draw(runs, args=None):
         raise common.NoData("no illustration_buffer or linked_list rows with psi")
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
     for technique in [t for t in TECHNIQUES if t in set(rows["technique"])]:
-        plot_series(top, per_fragment(rows[rows["technique"] == technique], "total"), f"{technique}, total")
+        plot_series(top, per_fragment(rows[rows["technique"] == technique], "total"), technique, f"{technique}, total")
     neighbors = per_fragment(rows[rows["technique"] == "illustration_buffer"], "neighbors")
     if not neighbors.empty:
-        plot_series(bottom, neighbors, "illustration_buffer, neighbors stage")
+        plot_series(bottom, neighbors, "illustration_buffer", "illustration_buffer, neighbors stage")
     top.set_yscale("log")
     top.set_ylabel("total ns per fragment (log)")
     bottom.set_ylabel("neighbour stage ns per fragment")

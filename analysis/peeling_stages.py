@@ -1,7 +1,9 @@
 """pastyrik2016 Figures 11-14: depth peeling against dual depth peeling, from stage times.
 
 Per model and camera position: the total time of both peelings (top) and
-the time per geometry pass (`peel` stage / `passes`, bottom). Dual depth
+the time per geometry pass (`peel` stage / `passes`, bottom); where the CSV
+holds both tie_break variants (the canonical submission order, solid, and
+exact triangle-id ties, hollow), each is a bar of its own, labelled. Dual depth
 peeling needs about half the geometry passes (ceil(d/2) + 2 against d + 2)
 but each of its passes blends two layers into several float targets with
 MAX blending. Which wins depends on what a pass costs: where the vertex work
@@ -14,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from analysis import common, figure_notes  # noqa: E402
+from analysis import common, figure_notes, presentation  # noqa: E402
 from analysis.pastyrik_fig8 import model_rows  # noqa: E402
 
 PEELINGS = ["depth_peeling", "dual_depth_peeling"]
@@ -22,17 +24,37 @@ PAPER = ["pastyrik2016 (GTX 660): dual depth peeling 'much slower'",
          "than depth peeling on its models (Figs. 11-14)"]
 
 
+def series_names(rows):
+    """Per row its series: the technique and its tie_break where the row's
+    params record one (figure_configs times the canonical submission order
+    and the exact triangle_id ties; a CSV may hold either or both)."""
+    variant = rows["params"].map(figure_notes.tie_break)
+    return [f"{t} tie_break={v}" if v else t for t, v in zip(rows["technique"], variant)]
+
+
 def peel_table(runs):
-    """model x (technique, quantity): total ms, peel ms, passes."""
+    """model x (series, quantity): total ms, peel ms, passes; the series in
+    PEELINGS order, canonical tie_break first."""
     rows = model_rows(runs, None)
     rows = rows[rows["technique"].isin(PEELINGS)]
     if rows.empty:
         raise common.NoData("no depth_peeling or dual_depth_peeling rows on the models")
-    rows = rows.assign(model=[m if v == "general" else f"{m} ({v})" for m, v in zip(rows["model"], rows["view"])])
-    total = rows[rows["stage"] == "total"].pivot_table(index="model", columns="technique", values="median_ms")
-    peel = rows[rows["stage"] == "peel"].pivot_table(index="model", columns="technique", values="median_ms")
-    passes = rows[rows["stage"] == "total"].pivot_table(index="model", columns="technique", values="passes")
-    return rows, total, peel, passes
+    rows = rows.assign(model=[m if v == "general" else f"{m} ({v})" for m, v in zip(rows["model"], rows["view"])],
+                       series=series_names(rows))
+    total = rows[rows["stage"] == "total"].pivot_table(index="model", columns="series", values="median_ms")
+    peel = rows[rows["stage"] == "peel"].pivot_table(index="model", columns="series", values="median_ms")
+    passes = rows[rows["stage"] == "total"].pivot_table(index="model", columns="series", values="passes")
+    order = sorted(total.columns, key=lambda s: (PEELINGS.index(s.split()[0]), "submission" not in s, s))
+    return rows, total[order], peel, passes
+
+
+def bar_look(series):
+    """The technique's colour and hatch; its exact-ties variant hollow, in
+    the technique's colour."""
+    style = presentation.technique_style(series.split()[0])
+    if series.endswith("tie_break=triangle_id"):
+        return dict(color="white", hatch=style.hatch, edgecolor=style.colour, linewidth=0.8, label=series)
+    return dict(color=style.colour, hatch=style.hatch, edgecolor="white", linewidth=0.5, label=series)
 
 
 def draw(runs, args=None):
@@ -40,12 +62,14 @@ def draw(runs, args=None):
     order = list(total.mean(axis=1).sort_values().index)
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(max(8.5, 0.5 * len(order)), 7.5), sharex=True)
     positions = np.arange(len(order))
-    for i, technique in enumerate([t for t in PEELINGS if t in total]):
-        offset = (i - 0.5) * 0.4
-        top.bar(positions + offset, total.loc[order, technique], 0.4, label=technique)
+    width = 0.8 / len(total.columns)
+    for i, technique in enumerate(total.columns):
+        offset = (i - (len(total.columns) - 1) / 2) * width
+        look = bar_look(technique)
+        top.bar(positions + offset, total.loc[order, technique], width, **look)
         if technique in peel and technique in passes:
             per_pass = peel.reindex(order)[technique] / passes.reindex(order)[technique]
-            bottom.bar(positions + offset, per_pass, 0.4, label=technique)
+            bottom.bar(positions + offset, per_pass, width, **look)
             for x, n in zip(positions + offset, passes.reindex(order)[technique]):
                 if np.isfinite(n):
                     # x in data, y in axes units: the foot of the bar on a log axis.

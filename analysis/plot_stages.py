@@ -56,8 +56,7 @@ def with_labels(runs, defaults):
     """`runs` with a `label` per row: technique, its parameters off the
     defaults, and scene_rect where the CSV holds both values."""
     runs = runs.copy()
-    short = presentation.short_params(runs, defaults)
-    runs["label"] = runs["technique"] + short.map(lambda s: f" {s}" if s else "")
+    runs["label"] = presentation.run_labels(runs, defaults)
     if "scene_rect" in runs and runs["scene_rect"].nunique() > 1:
         runs["label"] += " scene_rect=" + runs["scene_rect"]
     return runs
@@ -93,7 +92,7 @@ def draw_facet(ax, table, stages, colors, title):
     for stage in stages:
         if stage in table:
             values = table[stage].fillna(0.0).to_numpy()
-            ax.barh(y, values, left=left, height=0.7, color=colors[stage])
+            ax.barh(y, values, left=left, height=0.7, color=colors[stage], edgecolor="white", linewidth=0.5)
             left += values
     totals = table["total"].to_numpy()
     ax.scatter(totals, y, marker="|", s=300, color="black", zorder=3)
@@ -117,8 +116,7 @@ def draw(runs, defaults):
     runs = presentation.with_facets(with_labels(runs, defaults))
     facets = [(key, bars(rows)) for key, rows in runs.groupby(presentation.FACET_COLUMNS, sort=True)]
     stages = stage_order(runs)
-    palette = plt.get_cmap("tab10" if len(stages) <= 10 else "tab20").colors
-    colors = {stage: palette[i % len(palette)] for i, stage in enumerate(stages)}
+    colors = presentation.stage_colours(stages)
     lines = [sum(bar_label(label, row).count("\n") + 1 for label, row in table.iterrows()) for _, table in facets]
     heights = [0.2 * n + 0.25 * len(table) for n, (_, table) in zip(lines, facets)]
     legend_rows = math.ceil((len(stages) + 1) / 5)

@@ -7,7 +7,10 @@ beside every PNG.
 
 The defaults are the build's own: `oitbench list --markdown` prints every
 technique's parameters with their defaults from the registry, without GL.
-Nothing here knows a technique."""
+The one visual identity of the plots is here too: technique_style gives
+every registered technique its own colour, marker and hatch (the same in
+every plot), stage_colours every stage of a plot its own colour."""
+import collections
 import os
 import re
 import subprocess
@@ -31,6 +34,80 @@ READABLE = {"font.size": 9, "axes.titlesize": 10, "axes.labelsize": 9, "xtick.la
             "ytick.labelsize": 9, "legend.fontsize": 9, "legend.title_fontsize": 9, "figure.titlesize": 10}
 SMALLEST_POINTS = 9
 LABEL_WIDTH = 40  # characters of a label line; longer labels wrap at spaces
+
+
+# Colour-blind-safe colours: Okabe & Ito's eight and seven of Paul Tol's
+# "muted" set (its cyan and sand are left out: too close to Okabe-Ito's sky
+# blue and yellow). Markers and hatches are unique too, so a technique is
+# told apart in grey print and by readers who confuse two of the colours.
+OKABE_ITO = {"blue": "#0072B2", "sky_blue": "#56B4E9", "bluish_green": "#009E73", "vermillion": "#D55E00",
+             "orange": "#E69F00", "reddish_purple": "#CC79A7", "black": "#000000", "yellow": "#F0E442"}
+TOL_MUTED = {"rose": "#CC6677", "indigo": "#332288", "green": "#117733", "wine": "#882255", "teal": "#44AA99",
+             "olive": "#999933", "purple": "#AA4499", "cyan": "#88CCEE", "sand": "#DDCC77", "grey": "#BBBBBB"}
+TechniqueStyle = collections.namedtuple("TechniqueStyle", "colour marker hatch")
+# Every registered technique (algorithms/<id>/, `oitbench list`): the paper's
+# four comparison techniques take the most distinct colours. A technique
+# added to the build gets its line here (tests/analysis_plots_test.py checks
+# that every listed technique has one and that no two share a colour, a
+# marker or a hatch).
+TECHNIQUE_STYLES = {
+    "depth_peeling": TechniqueStyle(OKABE_ITO["blue"], "o", "//"),
+    "dual_depth_peeling": TechniqueStyle(OKABE_ITO["sky_blue"], "s", "\\\\"),
+    "linked_list": TechniqueStyle(OKABE_ITO["bluish_green"], "^", "xx"),
+    "illustration_buffer": TechniqueStyle(OKABE_ITO["vermillion"], "D", ".."),
+    "kbuffer": TechniqueStyle(OKABE_ITO["orange"], "v", "++"),
+    "bucketed_kbuffer": TechniqueStyle(OKABE_ITO["reddish_purple"], "P", "oo"),
+    "reference": TechniqueStyle(OKABE_ITO["black"], "*", ""),
+    "unsorted": TechniqueStyle(OKABE_ITO["yellow"], "X", "--"),
+    "linearized_fragment_buffer": TechniqueStyle(TOL_MUTED["green"], "h", "||"),
+    "multi_layer_alpha_blending": TechniqueStyle(TOL_MUTED["indigo"], "<", "/"),
+    "weighted_blended": TechniqueStyle(TOL_MUTED["rose"], ">", "\\\\\\"),
+    "moment_oit": TechniqueStyle(TOL_MUTED["wine"], "p", "x"),
+    "hybrid_transparency": TechniqueStyle(TOL_MUTED["teal"], "d", "."),
+    "stochastic_transparency": TechniqueStyle(TOL_MUTED["olive"], "8", "+"),
+    "adaptive_transparency": TechniqueStyle(TOL_MUTED["purple"], "H", "O"),
+}
+# A technique missing from the table (a build newer than this file): grey,
+# its own marker, and stderr says so once.
+UNLISTED_STYLE = TechniqueStyle("#777777", "1", "**")
+
+
+def technique_style(technique):
+    """The colour, marker and hatch of `technique` in every plot."""
+    style = TECHNIQUE_STYLES.get(technique)
+    if style is None:
+        if technique not in _unlisted_told:
+            _unlisted_told.add(technique)
+            print(f"presentation: no style for technique '{technique}' (add it to TECHNIQUE_STYLES in "
+                  f"analysis/presentation.py); drawn grey", file=sys.stderr)
+        return UNLISTED_STYLE
+    return style
+
+
+_unlisted_told = set()
+
+# Stage colours: each stage name has its own (so a stage reads the same in
+# every plot); a stage the table does not know takes the first spare colour
+# no other stage of the plot has. Tol's muted set and three of Okabe-Ito's.
+STAGE_COLOURS = {"count": TOL_MUTED["cyan"], "clear": TOL_MUTED["grey"], "fill": TOL_MUTED["sand"],
+                 "sort": TOL_MUTED["green"], "bucket": TOL_MUTED["olive"], "store": TOL_MUTED["teal"],
+                 "neighbors": TOL_MUTED["rose"], "stylize_init": TOL_MUTED["purple"], "diffuse": TOL_MUTED["wine"],
+                 "stylize": OKABE_ITO["vermillion"], "peel": OKABE_ITO["orange"], "compose": TOL_MUTED["indigo"]}
+SPARE_STAGE_COLOURS = [OKABE_ITO["blue"], OKABE_ITO["sky_blue"], OKABE_ITO["bluish_green"], OKABE_ITO["reddish_purple"],
+                       OKABE_ITO["yellow"], OKABE_ITO["black"], "#777777", "#DDDDDD"]
+
+
+def stage_colours(stages):
+    """{stage: colour} for the stages of one plot, no two alike; a plot with
+    more unknown stages than spare colours is an error naming them."""
+    colours = {s: STAGE_COLOURS[s] for s in stages if s in STAGE_COLOURS}
+    spare = [c for c in SPARE_STAGE_COLOURS if c not in colours.values()]
+    unknown = [s for s in dict.fromkeys(stages) if s not in colours]
+    if len(unknown) > len(spare):
+        raise ValueError(f"stages {', '.join(unknown)}: more stages without a colour than spare colours; add them "
+                         f"to STAGE_COLOURS in analysis/presentation.py")
+    colours.update(zip(unknown, spare))
+    return colours
 
 
 def parse_technique_table(markdown):
@@ -97,6 +174,15 @@ def non_default_params(runs, defaults):
 def short_params(runs, defaults):
     """non_default_params where the defaults are known, else varying_params."""
     return varying_params(runs) if defaults is None else non_default_params(runs, defaults)
+
+
+def run_labels(runs, defaults):
+    """Per row of `runs`: its technique and every parameter off the
+    technique's default ("kbuffer k=16 tail=blend"), the one label of a run
+    in every plot (short_params: the parameters that differ between a
+    technique's runs where no defaults are known)."""
+    short = short_params(runs, defaults)
+    return runs["technique"] + short.map(lambda s: f" {s}" if s else "")
 
 
 def label_note(defaults):

@@ -37,6 +37,7 @@ import sys
 import time
 from collections import OrderedDict, namedtuple
 
+from analysis import figure_configs
 from analysis.results_io import read_rows, save_figure
 
 # A run: technique parameters and scene parameters are tuples of (key, value)
@@ -58,19 +59,11 @@ CAD_FILES = ["/usr/share/assimp/models/OBJ/regr01.obj"]
 # pastyrik2016 section 4: "each model is tested in two positions - one
 # general and one where the length of linked list is maximum possible".
 MODEL_CAMERAS = ["default", "max_list:16:1"]
-# The papers' sizes and parameters (--full): carnecky2013 section 7,
-# murray2016 section 6, pastyrik2016 section 4.
-PAPER = {
-    "murray_fig10": "512x512, 32 layers, k = 32, 1..32 objects (murray2016 section 6)",
-    "carnecky_fig14": "toroid, 128^2..2048^2, one diffusion iteration, random cameras (carnecky2013 section 7)",
-    "carnecky_fig15": "toroid up to 500k triangles at 1024^2, one diffusion iteration (carnecky2013 section 7)",
-    "models": "600x600, two positions per model: general and longest list (pastyrik2016 section 4)",
-    "pastyrik_fig7": "600x600, sort variants inside the illustration buffer (pastyrik2016 Fig. 7)",
-    "murray_models": "1000x1000, 16 layers: OIT k-buffer against stylised bucketed k-buffer (murray2016 Figs. 1, 8, 9)",
-    "psi_scenes": "600x600: synthetic scenes of Psi 0..1, illustration buffer and linked lists (pastyrik2016 section 5)",
-    "layers": "no paper figure: 4..64 layers at 512^2",
-    "carnecky_images": "carnecky2013 Figs. 9-13 at 512^2 (Fig. 12(b): 512x512, 20 iterations)",
-}
+# The papers' sizes and parameters (--full), pinned per figure in
+# analysis/figure_configs.py: carnecky2013 section 7, murray2016 section 6,
+# pastyrik2016 section 4.
+PAPER = dict({name: figure.paper for name, figure in figure_configs.FIGURES.items()},
+             carnecky_images="carnecky2013 Figs. 9-13 at 512^2 (Fig. 12(b): 512x512, 20 iterations)")
 
 
 class Catalogue:
@@ -126,10 +119,40 @@ class Catalogue:
 
 
 class Sweep:
-    def __init__(self, name, points, plots, warmup, frames, skip_reason="", renders=()):
-        self.name, self.points, self.plots = name, points, plots
+    def __init__(self, name, points, plots, warmup, frames, skip_reason="", renders=(), notes=()):
+        self.name, self.points, self.plots = name, list(dict.fromkeys(points)), plots
         self.warmup, self.frames, self.skip_reason = warmup, frames, skip_reason
         self.renders = list(renders)
+        self.notes = list(dict.fromkeys(notes))  # pins this build lacks, techniques without pins
+
+
+def pins_for(catalogue, technique, pins, notes):
+    """`pins` (figure_configs) as Point tparams for this build: where the
+    illustration buffer has `preset=paper`, it stands for the papers' path;
+    a pinned parameter the build does not list is left out and named in
+    `notes` (an older build: it has no such knob)."""
+    pins = dict(pins)
+    if technique == "illustration_buffer" and "paper" in catalogue.choices(technique, "preset") and all(
+            pins.get(k) == v for k, v in figure_configs.ILLUSTRATION_BUFFER_PAPER.items()):
+        pins = {"preset": "paper", **{k: v for k, v in pins.items()
+                                      if k not in figure_configs.ILLUSTRATION_BUFFER_PAPER}}
+    known = catalogue.techniques.get(technique, {})
+    missing = [k for k in pins if k not in known]
+    if missing:
+        notes.append(f"{technique} has no {', '.join(missing)} in this build (pinned in analysis/figure_configs.py): "
+                     f"left out")
+    return tuple((k, v) for k, v in pins.items() if k in known)
+
+
+def series_points(catalogue, series, scene, scene_sets, cameras, sizes, notes):
+    """Points of the figure_configs series whose technique the build has."""
+    return [p for s in series if s.technique in catalogue.techniques
+            for p in cross([s.technique], scene, scene_sets, cameras, sizes,
+                           pins_for(catalogue, s.technique, s.pins, notes))]
+
+
+def sizes_of(sweep, quick):
+    return figure_configs.FIGURES[sweep].sizes["quick" if quick else "full"]
 
 
 def cross(techniques, scene, scene_sets, cameras, sizes, tparams=()):
@@ -143,59 +166,45 @@ def random_views(count, seed):
 
 
 def murray_fig10(catalogue, quick, warmup, frames):
-    """murray2016 Fig. 10: 32 stacked quads, 1..32 objects, k = 32, 512^2."""
+    """murray2016 Fig. 10: 32 stacked quads, 1..32 objects, k = 32, 512^2:
+    the kbuffer alone, the paper's bucket query (buckets on even on one
+    object), the brute force (buckets=off) and the merge search (not in
+    the paper), each pinned in figure_configs."""
     objects = [1, 2, 4, 8, 16, 32]
-    size = [(64, 64)] if quick else [(512, 512)]
     scene_sets = [[("layers", "32"), ("objects", str(n))] for n in objects]
-    bkb = catalogue.techniques.get("bucketed_kbuffer")
-    if bkb is None:
+    if "bucketed_kbuffer" not in catalogue.techniques:
         return Sweep("murray_fig10", [], [("murray_fig10", {})], warmup, frames,
                      "bucketed_kbuffer is not in this build (`oitbench list`): murray2016 Fig. 10 left out")
-    # k = 32 covers the 32 layers, as in the paper; buckets=on even on one
-    # object (the default `auto` would fall back to brute force there). The
-    # paper's neighbour search ends with a reverse check (its Fig. 5): where
-    # the build has that switch, it is on. The figure times the paper's
-    # bucket query, not the default merge search.
-    k = [("k", "32")] + [(p, "true") for p in bkb if "reverse" in p and catalogue.is_switch("bucketed_kbuffer", p)]
-    k += [("neighbor_search", "bucket")] if "neighbor_search" in bkb else []
-    points = cross(["kbuffer"], "quads", scene_sets, ["default"], size, [("k", "32")])
-    points += cross(["bucketed_kbuffer"], "quads", scene_sets, ["default"], size,
-                    k + ([("buckets", "on")] if "buckets" in bkb else []))
-    if "buckets" in bkb:
-        points += cross(["bucketed_kbuffer"], "quads", scene_sets, ["default"], size, k + [("buckets", "off")])
-    if "neighbor_search" in bkb:
-        # The merge search (issue 18, the default since), a series of its
-        # own beside the paper's bucket query, with the same buckets.
-        merge = [(p, v) for p, v in k if p != "neighbor_search"] + [("neighbor_search", "merge")]
-        points += cross(["bucketed_kbuffer"], "quads", scene_sets, ["default"], size,
-                        merge + ([("buckets", "on")] if "buckets" in bkb else []))
-    return Sweep("murray_fig10", points, [("murray_fig10", {})], warmup, frames)
+    notes = []
+    points = series_points(catalogue, figure_configs.FIGURES["murray_fig10"].series, "quads", scene_sets, ["default"],
+                           sizes_of("murray_fig10", quick), notes)
+    return Sweep("murray_fig10", points, [("murray_fig10", {})], warmup, frames, notes=notes)
 
 
 def carnecky_sweeps(catalogue, quick, warmup, frames, views=None):
     """carnecky2013 Figs. 14 and 15: the toroid under random cameras, its
-    stages with ONE diffusion iteration (the paper's solve pass is one
-    iteration) and its own neighbour search (Algorithm 2); without the
-    accuracy bookkeeping (surface id and uv per fragment), which the paper's
-    buffer does not hold. `views`: random views per point instead of the
+    stages on the paper's path (figure_configs.CARNECKY: linked lists, every
+    fragment diffused every step, ONE diffusion iteration: the paper's solve
+    pass is one iteration, its own neighbour search, Algorithm 2); without
+    the accuracy bookkeeping (surface id and uv per fragment), which the
+    paper's buffer does not hold. `views`: random views per point instead of the
     mode's (3 quick; 32 and 16 full)."""
-    ib = [("iterations", "1"), ("neighbors", "heuristic")]
-    if catalogue.is_switch("illustration_buffer", "measure_accuracy"):
-        ib.append(("measure_accuracy", "false"))
-    sides = [128, 192, 256, 384, 512] if quick else [128, 256, 512, 1024, 2048]
+    notes = []
+    ib = pins_for(catalogue, "illustration_buffer", figure_configs.CARNECKY, notes)
     views14 = random_views(views or (3 if quick else 32), 1)
-    fig14 = Sweep("carnecky_fig14", cross(["illustration_buffer"], "torus", [[]], views14, [(s, s) for s in sides], ib),
-                  [("carnecky_fig14", {})], warmup, frames)
+    fig14 = Sweep("carnecky_fig14", cross(["illustration_buffer"], "torus", [[]], views14,
+                                          sizes_of("carnecky_fig14", quick), ib),
+                  [("carnecky_fig14", {})], warmup, frames, notes=notes)
     # slices x stacks x 2 triangles: 64 .. 65k (quick), 256 .. 1M (full; the
     # paper's axis ends at 500k).
     tessellations = [(8, 4), (16, 8), (32, 16), (64, 32), (128, 64), (256, 128)] if quick else \
         [(16, 8), (64, 32), (128, 64), (256, 128), (512, 256), (512, 512), (1024, 512)]
-    side = 256 if quick else 1024
     views15 = random_views(views or (3 if quick else 16), 1)
     fig15 = Sweep("carnecky_fig15",
                   cross(["illustration_buffer"], "torus", [[("slices", str(a)), ("stacks", str(b))]
-                                                           for a, b in tessellations], views15, [(side, side)], ib),
-                  [("carnecky_fig15", {})], warmup, frames)
+                                                           for a, b in tessellations], views15,
+                        sizes_of("carnecky_fig15", quick), ib),
+                  [("carnecky_fig15", {})], warmup, frames, notes=notes)
     return [fig14, fig15]
 
 
@@ -207,22 +216,39 @@ def model_scenes(catalogue, quick):
             + [(path, ()) for path in CAD_FILES if os.path.exists(path)])
 
 
-def model_points(techniques, scenes, cameras, size, tparams=()):
-    return [p for scene, sparams in scenes for p in cross(techniques, scene, [sparams], cameras, [size], tparams)]
+def model_points(catalogue, series, scenes, cameras, sizes, notes):
+    return [p for scene, sparams in scenes
+            for p in series_points(catalogue, series, scene, [sparams], cameras, sizes, notes)]
 
 
-def pastyrik_fig7(catalogue, scenes, size, warmup, frames):
-    """pastyrik2016 Fig. 7: the sort variants inside the illustration buffer
-    (`sort` choices where the build has them); else the same sorts in the
-    linked lists the buffer is built on (linked_list `sort`)."""
-    for technique in ("illustration_buffer", "linked_list"):
-        variants = catalogue.choices(technique, "sort")
-        # The paper sorts linked lists (its dynamic sort needs them).
-        lists = [("storage", "linked")] if "linked" in catalogue.choices(technique, "storage") else []
-        if variants:
-            points = [p for v in variants
-                      for p in model_points([technique], scenes, MODEL_CAMERAS, size, [("sort", v)] + lists)]
-            return Sweep("pastyrik_fig7", points, [("pastyrik_fig7", {})], warmup, frames)
+def comparison(catalogue, series, notes):
+    """`series` (figure_configs) of the techniques the build times, and a
+    series at its defaults, named in `notes`, for a technique the table
+    does not pin yet."""
+    pinned = {s.technique for s in series}
+    extra = [t for t in catalogue.timed() if t not in pinned]
+    notes += [f"{t}: no pins in analysis/figure_configs.py, run at this build's defaults" for t in extra]
+    return ([s for s in series if s.technique in catalogue.timed()]
+            + [figure_configs.Series(t, {}, t) for t in extra])
+
+
+def pastyrik_fig7(catalogue, scenes, quick, warmup, frames):
+    """pastyrik2016 Fig. 7: the illustration buffer's dynamic sort of the
+    list against the static array (figure_configs); a build whose buffer has
+    no `sort` times the same sorts in the linked lists the buffer is built
+    on (every linked_list `sort` choice, the rest at its defaults)."""
+    notes = []
+    sizes = sizes_of("pastyrik_fig7", quick)
+    if catalogue.choices("illustration_buffer", "sort"):
+        points = model_points(catalogue, figure_configs.FIGURES["pastyrik_fig7"].series, scenes, MODEL_CAMERAS, sizes,
+                              notes)
+        return Sweep("pastyrik_fig7", points, [("pastyrik_fig7", {})], warmup, frames, notes=notes)
+    variants = catalogue.choices("linked_list", "sort")
+    if variants:
+        series = [figure_configs.Series("linked_list", {"sort": v}, f"linked_list sort={v}") for v in variants]
+        notes.append("illustration_buffer has no `sort` in this build: linked_list's sorts instead")
+        return Sweep("pastyrik_fig7", model_points(catalogue, series, scenes, MODEL_CAMERAS, sizes, notes),
+                     [("pastyrik_fig7", {})], warmup, frames, notes=notes)
     return Sweep("pastyrik_fig7", [], [("pastyrik_fig7", {})], warmup, frames,
                  "neither illustration_buffer nor linked_list has a `sort` choice in this build")
 
@@ -230,14 +256,15 @@ def pastyrik_fig7(catalogue, scenes, size, warmup, frames):
 def murray_models(catalogue, scenes, quick, warmup, frames):
     """murray2016 Figs. 1, 8, 9: frame rate of OIT (dual-pass k-buffer,
     constant transparency) against mean curvature transparency (bucketed
-    k-buffer), 16 layers, 1000x1000."""
+    k-buffer with the paper's bucket query), 16 layers, 1000x1000 and (full)
+    Fig. 8's 1200x800."""
     if "bucketed_kbuffer" not in catalogue.techniques or "kbuffer" not in catalogue.techniques:
         return Sweep("murray_models", [], [("murray_fps_ratio", {})], warmup, frames,
                      "kbuffer or bucketed_kbuffer is not in this build: murray2016 Figs. 1/8/9 left out")
-    size = (256, 256) if quick else (1000, 1000)
-    points = [p for t in ("kbuffer", "bucketed_kbuffer") for p in model_points([t], scenes, ["default"], size,
-                                                                             [("k", "16")])]
-    return Sweep("murray_models", points, [("murray_fps_ratio", {})], warmup, frames)
+    notes = []
+    points = model_points(catalogue, figure_configs.FIGURES["murray_models"].series, scenes, ["default"],
+                          sizes_of("murray_models", quick), notes)
+    return Sweep("murray_models", points, [("murray_fps_ratio", {})], warmup, frames, notes=notes)
 
 
 # Synthetic scenes whose complexity coverage Psi spans 0..1 at similar
@@ -248,25 +275,25 @@ PSI_SCENES = [("quads", (("layers", "8"), ("objects", "8"))), ("nested_spheres",
 
 
 def psi_scenes(catalogue, quick, warmup, frames):
-    techniques = [t for t in ("illustration_buffer", "linked_list") if t in catalogue.techniques]
-    side = 256 if quick else 600
-    points = [p for scene, sparams in PSI_SCENES for p in cross(techniques, scene, [sparams], ["default"],
-                                                                   [(side, side)])]
+    series = figure_configs.FIGURES["psi_scenes"].series
+    notes = []
+    points = model_points(catalogue, series, PSI_SCENES, ["default"], sizes_of("psi_scenes", quick), notes)
     return Sweep("psi_scenes", points, [("pastyrik_psi", {})], warmup, frames,
-                 "" if techniques else "neither illustration_buffer nor linked_list is in this build")
+                 "" if points else "neither illustration_buffer nor linked_list is in this build", notes=notes)
 
 
 def layers_sweep(catalogue, quick, warmup, frames):
     """Time per fragment against depth complexity; the k-buffers at k=auto
     (k = the view's depth complexity: no fragment dropped) where they accept it."""
     layers = [4, 8, 16, 32, 64]
-    side = 128 if quick else 512
     sets = [[("layers", str(n))] for n in layers]
-    auto = [t for t in catalogue.timed() if catalogue.accepts_auto(t, "k")]
-    points = cross([t for t in catalogue.timed() if t not in auto], "quads", sets, ["default"], [(side, side)])
-    for t in auto:
-        points += cross([t], "quads", sets, ["default"], [(side, side)], [("k", "auto")])
-    return Sweep("layers", points, [("time_per_fragment", {})], warmup, frames)
+    notes = []
+    series = comparison(catalogue, figure_configs.FIGURES["layers"].series, notes)
+    # A build whose k-buffer takes no k=auto keeps the pinned fixed k.
+    series = [s._replace(pins={**s.pins, "k": figure_configs.KBUFFER["k"]})
+              if s.pins.get("k") == "auto" and not catalogue.accepts_auto(s.technique, "k") else s for s in series]
+    points = series_points(catalogue, series, "quads", sets, ["default"], sizes_of("layers", quick), notes)
+    return Sweep("layers", points, [("time_per_fragment", {})], warmup, frames, notes=notes)
 
 
 def carnecky_images(catalogue, quick):
@@ -302,8 +329,10 @@ def carnecky_images(catalogue, quick):
     grid += [(f"fig11_{m}", f"{m} transparency", ib, [("modulation", m)], ("nested_spheres", ())) for m in extra_modes]
     grid += [(f"fig13_{m}", f"(b) engine, {m}", ib, [("modulation", m)], engine)
              for m in extra_modes if "normal" in m]
-    return [Render(name, caption, t, tuple(tp), where[0], where[1], where[2] if len(where) > 2 else "default", side,
-                   side) for name, caption, t, tp, where in grid]
+    # Every image on the paper's path (figure_configs.CARNECKY_IMAGES), its own knobs on top.
+    return [Render(name, caption, t, pins_for(catalogue, t, {**figure_configs.CARNECKY_IMAGES, **dict(tp)}, []),
+                   where[0], where[1], where[2] if len(where) > 2 else "default", side, side)
+            for name, caption, t, tp, where in grid]
 
 
 def plan(catalogue, quick, views=None):
@@ -314,13 +343,14 @@ def plan(catalogue, quick, views=None):
     stopped)."""
     warmup, frames = (1, 3) if quick else (3, 20)
     scenes = model_scenes(catalogue, quick)
-    side = 256 if quick else 600  # pastyrik2016 section 4 quotes 600x600
-    models = Sweep("models", model_points(catalogue.timed(), scenes, MODEL_CAMERAS, (side, side)),
-                   [("pastyrik_fig8", {}), ("pastyrik_fig9", {}), ("pastyrik_fig10", {"heatmaps": True}),
-                    ("oit_comparison", {}), ("pastyrik_memory", {}), ("peeling_stages", {})], warmup, frames)
+    notes = []
+    series = comparison(catalogue, figure_configs.FIGURES["models"].series, notes)
+    models = Sweep("models", model_points(catalogue, series, scenes, MODEL_CAMERAS, sizes_of("models", quick), notes),
+                   [(module, {"heatmaps": True} if module == "pastyrik_fig10" else {})
+                    for module in figure_configs.FIGURES["models"].plots], warmup, frames, notes=notes)
     images = carnecky_images(catalogue, quick)
     return ([murray_fig10(catalogue, quick, warmup, frames)] + carnecky_sweeps(catalogue, quick, warmup, frames, views)
-            + [models, pastyrik_fig7(catalogue, scenes, (side, side), warmup, frames),
+            + [models, pastyrik_fig7(catalogue, scenes, quick, warmup, frames),
                murray_models(catalogue, scenes, quick, warmup, frames),
                psi_scenes(catalogue, quick, warmup, frames),
                layers_sweep(catalogue, quick, warmup, frames),
@@ -353,13 +383,16 @@ def finished(point, rows, rerun_noisy=False):
 
 
 def batches(points):
-    """Missing runs grouped into bench invocations: runs that differ only by
-    technique share one process (one GL context, one reference image); runs
-    with technique parameters go alone, since --set would apply to every one."""
+    """Missing runs grouped into bench invocations: runs of one scene point
+    (scene, its parameters, camera, size) share one process (one GL context,
+    one reference image), at most one run per technique in each, since each
+    technique's parameters are set for it alone (`--set technique.key=v`)."""
     groups = OrderedDict()
     for p in points:
-        key = (p.tparams and p.technique, p.tparams, p.scene, p.sparams, p.camera, p.width, p.height)
-        groups.setdefault(key, []).append(p)
+        where, n = (p.scene, p.sparams, p.camera, p.width, p.height), 0
+        while any(q.technique == p.technique for q in groups.get((where, n), [])):
+            n += 1  # a second series of the technique (e.g. the other tie_break): a process of its own
+        groups.setdefault((where, n), []).append(p)
     return list(groups.values())
 
 
@@ -370,8 +403,8 @@ def bench_arguments(batch, warmup, frames):
     command = ["bench"]
     for p in batch:
         command += ["--technique", p.technique]
-    for key, value in first.tparams:
-        command += ["--set", f"{first.technique}.{key}={value}"]
+    for p in batch:
+        command += [a for key, value in p.tparams for a in ("--set", f"{p.technique}.{key}={value}")]
     command += ["--scene", first.scene]
     for key, value in first.sparams:
         command += ["--scene-set", f"{key}={value}"]
@@ -387,7 +420,7 @@ def bench_command(oitbench, batch, csv_path, warmup, frames):
 def describe(batch):
     p = batch[0]
     text = "+".join(q.technique for q in batch)
-    text += "".join(f" {k}={v}" for k, v in p.tparams)
+    text += "".join(f" {q.technique}.{k}={v}" for q in batch for k, v in q.tparams) if len(batch) == 1 else ""
     text += f" on {p.scene}" + "".join(f" {k}={v}" for k, v in p.sparams)
     return text + f" {p.width}x{p.height}" + ("" if p.camera == "default" else f" camera {p.camera}")
 
@@ -400,6 +433,8 @@ def run_sweep(sweep, args, env):
     todo = batches(missing)
     print(f"== {sweep.name}: {len(sweep.points)} runs, {len(sweep.points) - len(missing)} already in {csv_path}, "
           f"{len(todo)} bench invocation(s) to go", flush=True)
+    for note in sweep.notes:
+        print(f"  note: {note}", flush=True)
     started = []
     for i, batch in enumerate(todo):
         command = bench_command(args.oitbench, batch, csv_path, sweep.warmup, sweep.frames)
@@ -552,7 +587,9 @@ def draw_plots(sweep, args):
     drawn = []
     for module_name, options in sweep.plots:
         module = importlib.import_module(f"analysis.{module_name}")
-        plot_args = argparse.Namespace(heatmaps=os.path.join(args.out, "heatmaps")) if options.get("heatmaps") else None
+        # The build's defaults: labels name the parameters a run has off them.
+        plot_args = argparse.Namespace(heatmaps=os.path.join(args.out, "heatmaps") if options.get("heatmaps") else None,
+                                       defaults=getattr(args, "defaults", None))
         for suffix, runs in groups:
             out = os.path.join(args.out, f"{module_name}{suffix}.png")
             draw_and_save(lambda: module.draw(runs, plot_args), out, f"{module_name}{suffix}", drawn)
@@ -574,6 +611,7 @@ def plan_as_data(sweeps):
              "heatmaps": [{"model": m, "arguments": a} for m, a in heatmap_arguments(s)] if s.name == "models" else [],
              "renders": [{"name": r.name, "arguments": render_arguments(r)} for r in s.renders],
              "paper": PAPER.get(s.name, ""),
+             "notes": s.notes,
              "plots": [module for module, _ in s.plots]}
             for s in sweeps]
 
@@ -623,7 +661,9 @@ def main(argv=None):
     if not os.access(args.oitbench, os.X_OK):
         sys.exit(f"reproduce: {args.oitbench} is not an executable (build first: bash setup.sh build)")
     env = oitbench_environment(args.oitbench)
-    sweeps = plan(catalogue_of(args.oitbench, env), args.quick, args.views)
+    catalogue = catalogue_of(args.oitbench, env)
+    args.defaults = catalogue.techniques
+    sweeps = plan(catalogue, args.quick, args.views)
     for sweep in sweeps:
         if sweep.points:
             sweep.frames = args.frames if args.frames is not None else sweep.frames

@@ -15,27 +15,33 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 import pandas as pd  # noqa: E402
 
-from analysis import common  # noqa: E402
+from analysis import common, presentation  # noqa: E402
 
 
 def draw(runs, args=None):
     rows = runs[(runs["stage"] == "total") & (runs["technique"] != "reference") & (runs["fragments"] > 0)]
     if rows.empty:
         raise common.NoData("no total rows with fragments")
-    rows = rows.assign(label=rows["technique"] + rows["params"].map(lambda p: f" {p}" if p else ""),
+    # Labels name the parameters off the defaults (args.defaults, as
+    # analysis.reproduce passes them), else those that differ between a
+    # technique's runs.
+    rows = rows.assign(label=presentation.run_labels(rows, getattr(args, "defaults", None)),
                        ns_per_fragment=rows["median_ms"] * 1e6 / rows["fragments"])
-    # Parameters of one technique differ between runs only where swept: label
-    # by technique unless the CSV holds several parameter sets of it.
-    several = rows.groupby("technique")["params"].nunique()
-    rows["label"] = [label if several[t] > 1 else t for label, t in zip(rows["label"], rows["technique"])]
     fig, ax = plt.subplots(figsize=(8.5, 4.8))
     dropped = pd.to_numeric(rows.get("fragments_dropped", pd.Series(0, index=rows.index)), errors="coerce").fillna(0)
     rows = rows.assign(dropped=dropped > 0)
+    dashes = ["-", "--", ":", "-."]
+    seen = {}
     for label, series in rows.groupby("label"):
+        technique = series["technique"].iloc[0]
+        style = presentation.technique_style(technique)
+        linestyle = dashes[seen.setdefault(technique, 0) % len(dashes)]  # a technique's second run config: dashed
+        seen[technique] += 1
         line = series.groupby("max_depth_complexity")["ns_per_fragment"].mean().sort_index()
         drops = series.groupby("max_depth_complexity")["dropped"].any().sort_index()
         suffix = " (x: fragments dropped)" if drops.any() else ""
-        (drawn,) = ax.plot(line.index, line.to_numpy(), marker="o", markersize=3, label=label + suffix)
+        (drawn,) = ax.plot(line.index, line.to_numpy(), marker=style.marker, markersize=4, color=style.colour,
+                           linestyle=linestyle, label=presentation.wrap(label + suffix))
         if drops.any():
             ax.plot(line.index[drops.to_numpy()], line.to_numpy()[drops.to_numpy()], linestyle="", marker="x",
                     markersize=8, color=drawn.get_color())

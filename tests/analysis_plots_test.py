@@ -122,7 +122,7 @@ class MurrayFig10Test(PlotTest):
 
 
 class CarneckyTest(PlotTest):
-    STAGES = ["clear", "fill", "sort", "neighbors", "stylize", "compose"]
+    STAGES = ["clear", "fill", "sort", "neighbors", "stylize_init", "diffuse", "compose"]
 
     def rows(self):
         rows = []
@@ -142,14 +142,30 @@ class CarneckyTest(PlotTest):
     def test_fig14_fragments_on_x_averaged_over_views(self):
         rows = [r for r in self.rows() if r["scene_params"].startswith("slices=16") or r["technique"] != "illustration_buffer"]
         ax = self.draw(carnecky_fig14, rows).axes[0]
-        # The paper's pass names: connect = our neighbour search, solve = stylize (one iteration in the sweep).
+        # The paper's passes (its section 7): connect = the neighbour search (4.4) and the fields' initial
+        # values and boundary rules (5.2, 5.3); solve = one diffusion iteration (5.4).
         self.assertEqual([c.get_label() for c in ax.collections],
-                         ["clear", "fill", "sort", "connect (neighbors)", "solve (stylize, 1 iteration)", "compose"])
+                         ["clear", "fill", "sort", "connect (neighbors + stylize_init)", "solve (diffuse)", "compose"])
         total = [line for line in ax.get_lines() if line.get_label() == "total"][0]
         np.testing.assert_allclose(total.get_xdata(), [2000 * 128, 2000 * 256])  # mean over the two views
         np.testing.assert_allclose(total.get_ydata(), [100.5, 200.5])
-        # Cumulative: the top of the stack is the sum of the six stages, mean over views (x1.5).
-        np.testing.assert_allclose(stack_tops(ax)[-1], [21 * 1.5, 42 * 1.5])
+        tops = stack_tops(ax)
+        # connect = neighbors (4) + stylize_init (5); solve = diffuse (6); mean over views (x1.5).
+        np.testing.assert_allclose(tops[3] - tops[2], [(4 + 5) * 1.5, (4 + 5) * 3.0])
+        np.testing.assert_allclose(tops[4] - tops[3], [6 * 1.5, 6 * 3.0])
+        # Cumulative: the top of the stack is the sum of the seven stages.
+        np.testing.assert_allclose(tops[-1], [28 * 1.5, 56 * 1.5])
+        # Each pass has its own colour.
+        colours = [tuple(c.get_facecolor()[0][:3]) for c in ax.collections]
+        self.assertEqual(len(set(colours)), len(colours))
+
+    def test_fig14_a_csv_with_one_stylize_stage_names_what_it_holds(self):
+        rows = [dict(r, stage="stylize") if r["stage"] == "stylize_init" else r for r in self.rows()
+                if r["stage"] != "diffuse" and r["scene_params"].startswith("slices=16")]
+        ax = self.draw(carnecky_fig14, rows).axes[0]
+        self.assertEqual([c.get_label() for c in ax.collections],
+                         ["clear", "fill", "sort", "connect (neighbors)",
+                          "connect 5.2-5.3 + solve, older CSV (stylize)", "compose"])
         self.assertIn("mean over 2 camera view(s)", ax.get_title())
         self.assert_title(ax, "128x128..256x256")
 

@@ -63,10 +63,12 @@ class ReproduceTest(unittest.TestCase):
         self.assertEqual(self.bench_calls(), [])
         self.assertIn("would run:", printed)
         benches = [c for c in started if c[1] == "bench"]
-        # Fig. 10: kbuffer, bucketed (buckets named at its default), brute
-        # force and the merge search, each at 6 object counts.
+        # Fig. 10: kbuffer with the paper's bucketed query in one process,
+        # then the brute force and the merge search (bucketed_kbuffer again:
+        # a process each), at 6 object counts.
         fig10 = [c for c in benches if c[c.index("--csv") + 1].endswith("murray_fig10.csv")]
-        self.assertEqual(len(fig10), 24)
+        self.assertEqual(len(fig10), 18)
+        self.assertEqual(sum("kbuffer.k=32" in c for c in fig10), 6)
         self.assertEqual(sum("bucketed_kbuffer.buckets=off" in c for c in fig10), 6)
         self.assertEqual(sum("bucketed_kbuffer.buckets=on" in c for c in fig10), 12)
         self.assertEqual(sum("bucketed_kbuffer.neighbor_search=merge" in c for c in fig10), 6)
@@ -75,9 +77,13 @@ class ReproduceTest(unittest.TestCase):
         fig14 = [c for c in benches if c[c.index("--csv") + 1].endswith("carnecky_fig14.csv")]
         self.assertEqual(sorted(c[c.index("--camera") + 1] for c in fig14), ["random:3:1@0"] * 5 + ["random:3:1@1"] * 5 + ["random:3:1@2"] * 5)
         self.assertTrue(all(c[c.index("--warmup") + 1] == "1" and c[c.index("--frames") + 1] == "3" for c in benches))
-        # Techniques without parameters share one process per scene point; the reference is never timed.
+        # The techniques of a scene point share one process, each with its own
+        # pinned parameters (`--set technique.key=value`); the reference is never timed.
         models = [c for c in benches if os.path.basename(c[c.index("--csv") + 1]) == "models.csv"]
         self.assertTrue(all(c.count("--technique") > 1 and "reference" not in c for c in models))
+        first = models[0]
+        self.assertIn("linked_list.sort=network", first)
+        self.assertIn("illustration_buffer.neighbors=triangle_index", first)
 
     def test_second_run_repeats_nothing_and_draws_every_plot(self):
         started, printed = self.reproduce()
@@ -85,7 +91,7 @@ class ReproduceTest(unittest.TestCase):
         self.assertEqual(len(first), len([c for c in started if c[1] == "bench"]))
         for png in ("murray_fig10", "carnecky_fig14", "carnecky_fig15", "pastyrik_fig8", "pastyrik_fig9",
                     "pastyrik_fig10", "oit_comparison", "time_per_fragment", "pastyrik_fig7", "pastyrik_memory",
-                    "peeling_stages", "murray_fps_ratio", "carnecky_images", "pastyrik_psi"):
+                    "peeling_stages", "murray_fps_ratio", "carnecky_images", "pastyrik_psi", "pastyrik_fig11_14"):
             self.assertTrue(os.path.exists(os.path.join(self.out, f"{png}.png")), png)
         started, printed = self.reproduce()
         self.assertEqual(started, [])
@@ -178,8 +184,10 @@ class PlanTest(unittest.TestCase):
 
     def test_carnecky_one_iteration_tens_of_views_2048_and_500k_triangles(self):
         fig14, fig15 = self.full["carnecky_fig14"], self.full["carnecky_fig15"]
-        for sweep in (fig14, fig15):
-            self.assertEqual({p.tparams for p in sweep.points}, {(("iterations", "1"), ("neighbors", "heuristic"))})
+        for sweep in (fig14, fig15):  # the pins the fake build lists (figure_configs.CARNECKY)
+            self.assertEqual({p.tparams for p in sweep.points},
+                             {(("modulation", "silhouette_halo"), ("iterations", "1"), ("neighbors", "heuristic"))})
+            self.assertTrue(any("storage, diffusion, skip_converged" in n for n in sweep.notes), sweep.notes)
         self.assertEqual(self.sizes(fig14), [(s, s) for s in (128, 256, 512, 1024, 2048)])
         self.assertGreaterEqual(len({p.camera for p in fig14.points}), 30)
         self.assertEqual(self.sizes(fig15), [(1024, 1024)])
@@ -202,11 +210,12 @@ class PlanTest(unittest.TestCase):
         self.assertEqual(sorted({p.scene for p in sweep.points}), sorted(["model", FAKE]))
         self.assertEqual(len({p.sparams for p in sweep.points if p.scene == "model"}), 5)  # every catalogue model
 
-    def test_murray_models_at_1000_with_16_layers(self):
+    def test_murray_models_at_1000_and_fig8s_1200x800_with_16_layers(self):
         sweep = self.full["murray_models"]
-        self.assertEqual(self.sizes(sweep), [(1000, 1000)])
+        self.assertEqual(self.sizes(sweep), [(1000, 1000), (1200, 800)])
         self.assertEqual({(p.technique, p.tparams) for p in sweep.points},
-                         {("kbuffer", (("k", "16"),)), ("bucketed_kbuffer", (("k", "16"),))})
+                         {("kbuffer", (("k", "16"),)),
+                          ("bucketed_kbuffer", (("k", "16"), ("buckets", "on"), ("neighbor_search", "bucket")))})
 
     def test_psi_scenes_time_both_techniques_at_600(self):
         sweep = self.full["psi_scenes"]
@@ -222,7 +231,11 @@ class PlanTest(unittest.TestCase):
     def test_k_buffers_run_at_k_auto_where_the_build_accepts_it(self):
         kbuffer = [p for p in self.full["layers"].points if p.technique == "kbuffer"]
         self.assertEqual({p.tparams for p in kbuffer}, {(("k", "auto"),)})
-        self.assertTrue(all(p.tparams == () for p in self.full["layers"].points if p.technique != "kbuffer"))
+        # The fake's bucketed_kbuffer takes no k=auto: its pinned k.
+        self.assertEqual({dict(p.tparams)["k"] for p in self.full["layers"].points
+                          if p.technique == "bucketed_kbuffer"}, {"16"})
+        self.assertEqual({p.tparams for p in self.full["layers"].points if p.technique == "depth_peeling"},
+                         {(("max_passes", "64"),)})
 
     def test_images_take_the_modes_list_offers_and_the_quick_plan_stays_small(self):
         names = [r.name for r in self.full["carnecky_images"].renders]
