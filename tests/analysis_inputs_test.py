@@ -81,6 +81,10 @@ class InputsTest(unittest.TestCase):
         runs = results_io.read_results(self.csv)
         self.assertEqual(list(runs.columns), fx.csv_columns())
         self.assertEqual([row.get("timestamp") for row in results_io.read_rows(self.csv)], ["2026-11-22T09:00:00Z"] * 4)
+        merged = os.path.join(self.tmp.name, "merged.csv")
+        result = analysis("merge", "--out", merged, self.csv)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(len(results_io.read_rows(merged)), 4)
 
     def test_a_binary_file_is_an_error_naming_it(self):
         with open(self.csv, "wb") as f:
