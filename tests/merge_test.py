@@ -250,6 +250,42 @@ class SweepFileTest(unittest.TestCase):
             with open(done) as f:
                 self.assertEqual(json.load(f), {"rows": 0, "status": {}, "devices": [], "csv": "s.csv"})
 
+    def test_runs_ending_in_error_rows_do_not_fail_the_job(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            fake = os.path.join(tmp, "oitbench")  # bench's status when some runs wrote error rows
+            with open(fake, "w") as f:
+                f.write("#!/bin/sh\nexit 4\n")
+            os.chmod(fake, 0o755)
+            spec, done = os.path.join(tmp, "s.json"), os.path.join(tmp, "s.done")
+            shards.write_json_atomically(spec, [["bench", "--technique", "a"]])
+            shards.main(["run", spec, "--oitbench", fake, "--csv", os.path.join(tmp, "s.csv"), "--done", done])
+            self.assertTrue(os.path.exists(done))
+
+    def test_a_malformed_spec_is_an_error_naming_it(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            spec = os.path.join(tmp, "shard.json")
+            for text, why in (("[[\"bench\"", "not a JSON shard spec (Expecting"),
+                              ("{\"bench\": 1}", "not a list of bench argument lists"),
+                              ("[[\"render\", \"--out\", \"x.png\"]]", "not a list of bench argument lists"),
+                              (None, "is not a regular file"),
+                              ("", "cannot read: No such file or directory")):
+                if os.path.lexists(spec):
+                    os.unlink(spec)
+                if text is None:
+                    os.symlink("/dev/zero", spec)
+                elif text:
+                    with open(spec, "w") as f:
+                        f.write(text)
+                else:
+                    spec = os.path.join(tmp, "missing.json")
+                result = subprocess.run([sys.executable, "-m", "analysis.shards", "run", spec, "--oitbench", "true",
+                                         "--csv", os.path.join(tmp, "s.csv"), "--done", os.path.join(tmp, "d")],
+                                        cwd=REPO, capture_output=True, text=True, timeout=60)
+                self.assertEqual(result.returncode, 1, result.stderr)
+                self.assertTrue(result.stderr.startswith(f"shards: {spec}"), result.stderr)
+                self.assertIn(why, result.stderr)
+                self.assertNotIn("Traceback", result.stderr)
+
     def test_shards_are_named_by_their_content(self):
         benches = [["bench", "--technique", t] for t in ("a", "b", "c")]
         cut = shards.cut(benches, 2)
