@@ -4,7 +4,8 @@ that is no row (a quote left open, a shifted value) is named and every whole
 run after it is still read; a byte order mark is accepted; a binary file, a
 special file or a missing column is an error naming the file (no
 traceback); runs without a positive median are named and left out of
-plot_stages and pareto, and nothing left means no plot and a non-zero exit."""
+plot_stages and pareto, and nothing left means no plot and a non-zero exit;
+a Python without Debian's packages is told what to install before any work."""
 import contextlib
 import io
 import os
@@ -161,6 +162,26 @@ class PlotsFromNothingTest(unittest.TestCase):
         import pandas as pd
         with self.assertRaisesRegex(ValueError, "a Pareto front needs positive times"):
             pareto.pareto_front(pd.DataFrame({"time_ms": [0.0, 1.0], "error": [0.5, 0.1]}))
+
+
+class StartupTest(unittest.TestCase):
+    def test_a_python_without_debians_packages_is_told_what_to_install(self):
+        # -S: no site-packages, so pandas, numpy and matplotlib cannot be imported.
+        for module in ("plot_stages", "reproduce", "carnecky_fig14"):
+            with tempfile.TemporaryDirectory() as tmp:
+                result = subprocess.run([sys.executable, "-S", "-m", f"analysis.{module}", "--out", tmp],
+                                        cwd=REPO, capture_output=True, text=True, timeout=60)
+                self.assertEqual(result.returncode, 1)
+                self.assertEqual(os.listdir(tmp), [])  # reproduce ran no sweep
+            self.assertIn(f"analysis.{module}: this Python ({sys.executable}) cannot import numpy, pandas, "
+                          "matplotlib: run it with Debian's /usr/bin/python3", result.stderr)
+            self.assertIn("apt-get install python3-numpy python3-pandas python3-matplotlib", result.stderr)
+            self.assertNotIn("Traceback", result.stderr)
+
+    def test_the_workflows_jobs_need_only_the_standard_library(self):
+        result = subprocess.run([sys.executable, "-S", "-m", "analysis.merge", "--help"], cwd=REPO,
+                                capture_output=True, text=True, timeout=60)
+        self.assertEqual(result.returncode, 0, result.stderr)
 
 
 if __name__ == "__main__":
