@@ -5,7 +5,8 @@ run after it is still read; a byte order mark is accepted; a binary file, a
 special file or a missing column is an error naming the file (no
 traceback); runs without a positive median are named and left out of
 plot_stages and pareto, and nothing left means no plot and a non-zero exit;
-a Python without Debian's packages is told what to install before any work."""
+a Python without Debian's packages is told what to install before any work;
+approximate_oit's default build is the repository's."""
 import contextlib
 import io
 import os
@@ -19,7 +20,7 @@ REPO = os.path.dirname(HERE)
 sys.path.insert(0, REPO)
 sys.path.insert(0, HERE)
 import analysis_fixtures as fx  # noqa: E402
-from analysis import pareto, plot_stages, results_io  # noqa: E402
+from analysis import approximate_oit, pareto, plot_stages, results_io  # noqa: E402
 
 
 def stage_runs(count):
@@ -182,6 +183,12 @@ class StartupTest(unittest.TestCase):
         result = subprocess.run([sys.executable, "-S", "-m", "analysis.merge", "--help"], cwd=REPO,
                                 capture_output=True, text=True, timeout=60)
         self.assertEqual(result.returncode, 0, result.stderr)
+
+
+class ApproximateOitTest(unittest.TestCase):
+    def test_the_default_build_is_the_repositorys_wherever_it_runs(self):
+        args = approximate_oit.parse_arguments(["grid", "-o", "grid.png"])
+        self.assertEqual(args.oitbench, os.path.join(REPO, "build", "harness", "oitbench"))
 
 
 if __name__ == "__main__":
