@@ -8,6 +8,7 @@ plot_stages and pareto, and nothing left means no plot and a non-zero exit;
 a Python without Debian's packages is told what to install before any work;
 approximate_oit's default build is the repository's."""
 import contextlib
+import csv
 import io
 import os
 import subprocess
@@ -73,6 +74,21 @@ class InputsTest(unittest.TestCase):
         self.assertEqual(sorted(set(runs["technique"])), ["t0", "t2"])
         self.assertIn(f"{self.csv}: line 4: technique '4.5 (Core Profile' is not a technique id: left out\n",
                       errors.getvalue())
+
+    def test_the_columns_added_at_the_end_of_the_header_are_read(self):
+        added = ["requested_params", "ci_low_ms", "ci_high_ms", "precision_reached", "rounds", "baseline", "ratio",
+                 "ratio_ci_low", "ratio_ci_high", "warnings", "frame_overhead_ms", "gpu_sm_mhz_start",
+                 "gpu_sm_mhz_end", "gpu_mem_mhz_start", "gpu_mem_mhz_end", "gpu_temp_c_end", "samples_ms"]
+        columns = fx.csv_columns() + [c for c in added if c not in fx.csv_columns()]
+        rows = fx.with_run_columns([dict(row, samples_ms="1.5 2.5 2", warnings="clock throttled,\nonce", ratio="1.1")
+                                    for row in stage_runs(2)])
+        with open(self.csv, "w", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=columns, restval="", lineterminator="\n")
+            writer.writeheader()
+            writer.writerows(rows)
+        runs = plot_stages.load_runs(self.csv)
+        self.assertEqual(list(runs["samples_ms"]), ["1.5 2.5 2"] * 4)
+        self.assertEqual(list(runs["median_ms"]), [1.0, 2.0, 1.0, 2.0])
 
     def test_a_byte_order_mark_is_accepted(self):
         fx.write_csv(self.csv, stage_runs(2))
