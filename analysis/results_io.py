@@ -156,10 +156,12 @@ def parse(text, source):
     header = next(csv.reader([lines[0]]), [])
     rows, problems = [], []
     for number, fields, why in records(lines, header):
+        row = dict(zip(header, fields)) if fields and len(fields) == len(header) else {}
         if why:
-            problems.append(f"{source}: line {number}: {why}: left out")
+            run = f" (run {row['run_id']})" if row.get("run_id") else ""
+            problems.append(f"{source}: line {number}{run}: {why}: left out")
         else:
-            rows.append((number, dict(zip(header, fields))))
+            rows.append((number, row))
     return header, rows, problems
 
 
