@@ -118,8 +118,8 @@ def merge_rows(tables):
         counts["duplicate_rows"] += duplicates
         counts["recordings_left_out"] += chosen is None
         for copy, why in left_out:
-            run = copy.rows[0].get("run_id") or results_io.describe_run(copy.rows[0])
-            notes.append(f"{copy.where()}: run {run}: {why}: left out")
+            run = f"run {copy.rows[0].get('run_id') or results_io.describe_run(copy.rows[0])}"
+            notes.append(f"{copy.where()}: {why if why.startswith(run) else f'{run}: {why}'}: left out")
         if chosen:
             merged += [tuple(row.get(c, "") for c in header) for row in chosen.rows]
     return header, merged, counts, notes

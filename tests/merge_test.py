@@ -114,9 +114,9 @@ class MergeTest(unittest.TestCase):
                          [("r1", "fill", "5.0"), ("r1", "total", "5.0"), ("r2", "fill", "1.0"),
                           ("r2", "total", "1.0")])
         self.assertEqual(notes, [
-            f"{crashed}: line 2: run r1: run r1 has 1 row(s) of 2 (a run cut short is not a result); the whole copy "
+            f"{crashed}: line 2: run r1 has 1 row(s) of 2 (a run cut short is not a result); the whole copy "
             f"in {whole} is kept: left out",
-            f"{lone}: line 2: run r3: run r3 has 1 row(s) of 2 (a run cut short is not a result), and no input "
+            f"{lone}: line 2: run r3 has 1 row(s) of 2 (a run cut short is not a result), and no input "
             "holds it whole: left out"])
         self.assertEqual(counts["recordings_left_out"], 1)
 
