@@ -156,7 +156,7 @@ def parse(text, source):
     header = next(csv.reader([lines[0]]), [])
     rows, problems = [], []
     for number, fields, why in records(lines, header):
-        row = dict(zip(header, fields)) if fields and len(fields) == len(header) else {}
+        row = dict(zip(header, fields)) if fields and len(fields) == len(header) and fields != header else {}
         if why:
             run = f" (run {row['run_id']})" if row.get("run_id") else ""
             problems.append(f"{source}: line {number}{run}: {why}: left out")
@@ -202,11 +202,19 @@ def run_problem(key, rows):
 
 def whole_runs(numbered_rows, source):
     """(the (line, row) pairs of whole runs, in file order; problems naming
-    the runs left out by their first line)."""
-    runs = OrderedDict()
+    the runs left out by their first line). A row that repeats an earlier
+    row of its run exactly (a file appended to itself) is named and read
+    once."""
+    runs, first_line, problems = OrderedDict(), {}, []
     for number, row in numbered_rows:
-        runs.setdefault(run_key(row), []).append((number, row))
-    kept, problems = [], []
+        key = run_key(row)
+        values = (key, tuple(row.values()))
+        if key[0] == "run_id" and values in first_line:
+            problems.append(f"{source}: line {number}: a copy of line {first_line[values]}: left out")
+            continue
+        first_line[values] = number
+        runs.setdefault(key, []).append((number, row))
+    kept = []
     for key, members in runs.items():
         why = run_problem(key, [row for _, row in members])
         if why:

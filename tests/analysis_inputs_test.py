@@ -66,6 +66,20 @@ class InputsTest(unittest.TestCase):
         self.assertIn("has 1 row(s) of 2 (a run cut short is not a result): left out\n", result.stderr)
         self.assertTrue(os.path.exists(out))
 
+    def test_a_file_appended_to_itself_reads_each_run_once(self):
+        fx.write_csv(self.csv, stage_runs(2))
+        with open(self.csv) as f:
+            text = f.read()
+        with open(self.csv, "a") as f:
+            f.write(text)
+        errors = io.StringIO()
+        with contextlib.redirect_stderr(errors):
+            self.assertEqual(list(results_io.read_results(self.csv)["technique"]), ["t0", "t0", "t1", "t1"])
+        self.assertEqual(errors.getvalue().splitlines(), [
+            f"{self.csv}: line 6: the header again (two files joined?): left out",
+            f"{self.csv}: line 7: a copy of line 2: left out", f"{self.csv}: line 8: a copy of line 3: left out",
+            f"{self.csv}: line 9: a copy of line 4: left out", f"{self.csv}: line 10: a copy of line 5: left out"])
+
     def test_a_shifted_row_is_named_not_read(self):
         fx.write_csv(self.csv, stage_runs(3))
         self.edit_line(4, lambda line: line.replace("t1,", "4.5 (Core Profile,", 1))
