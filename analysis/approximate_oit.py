@@ -30,7 +30,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from analysis.pareto import load_totals, pareto_front  # noqa: E402
-from analysis.presentation import FACET_COLUMNS, facet_title, varying_params  # noqa: E402
+from analysis.presentation import DEFAULT_OITBENCH, FACET_COLUMNS, facet_title, varying_params  # noqa: E402
 
 DEFAULT_TECHNIQUES = ["unsorted", "weighted_blended", "moment_oit", "hybrid_transparency",
                       "stochastic_transparency", "multi_layer_alpha_blending", "adaptive_transparency",
@@ -156,7 +156,7 @@ def grid(args):
     print(f"wrote {args.out}: largest error {top:.3g}")
 
 
-def main(argv=None):
+def parse_arguments(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     commands = parser.add_subparsers(dest="command", required=True)
     table_parser = commands.add_parser("table", help="markdown table of a pareto CSV with the front marked")
@@ -165,14 +165,18 @@ def main(argv=None):
     table_parser.add_argument("--metric", default="error_rmse", choices=["error_rmse", "error_max"])
     table_parser.add_argument("--short", action="store_true", help="each technique's fastest and most accurate run")
     grid_parser = commands.add_parser("grid", help="image and error heatmap per technique")
-    grid_parser.add_argument("--oitbench", default="build/harness/oitbench")
+    grid_parser.add_argument("--oitbench", default=DEFAULT_OITBENCH, help="default: the repository's build")
     grid_parser.add_argument("--scene", default="spheres")
     grid_parser.add_argument("--scene-set", action="append", default=[])
     grid_parser.add_argument("--size", default="128x128")
     grid_parser.add_argument("--technique", action="append", default=[],
                              help="ID or ID:key=value,... (repeatable; default: the approximate techniques)")
     grid_parser.add_argument("-o", "--out", required=True)
-    args = parser.parse_args(argv)
+    return parser.parse_args(argv)
+
+
+def main(argv=None):
+    args = parse_arguments(argv)
     try:
         table(args) if args.command == "table" else grid(args)
     except (RuntimeError, ValueError, OSError) as error:

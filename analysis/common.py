@@ -9,7 +9,7 @@ import matplotlib
 matplotlib.use("Agg")
 import pandas as pd  # noqa: E402
 
-from analysis.results_io import read_results, save_figure  # noqa: E402
+from analysis.results_io import ResultsError, read_results, save_figure  # noqa: E402
 
 NUMERIC = ["width", "height", "median_ms", "fragments", "max_depth_complexity", "mean_depth_complexity", "psi",
            "bytes_allocated", "fragments_stored", "passes"]
@@ -34,16 +34,16 @@ def load(path, clock=None):
     (the given one, else the one most rows use: mixing clocks mixes devices'
     notions of time)."""
     paths = [path] if isinstance(path, str) else list(path)
-    frames = [read_results(p, keep_default_na=False, dtype=str) for p in paths]
+    frames = [read_results(p, columns=["clock", "timestamp", "median_ms"]) for p in paths]
     runs = pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
     if runs.empty or "status" not in runs:
         raise NoData(f"{', '.join(paths)}: no rows")
     runs = runs[runs["status"] == "ok"].copy()
     if runs.empty:
         raise NoData(f"{', '.join(paths)}: no successful runs")
-    for column in NUMERIC:
-        runs[column] = pd.to_numeric(runs[column], errors="coerce")
-    extra = runs["extra"].map(tokens)
+    for column in NUMERIC:  # a column older CSVs lack is empty
+        runs[column] = pd.to_numeric(runs[column], errors="coerce") if column in runs else float("nan")
+    extra = runs["extra"].map(tokens) if "extra" in runs else pd.Series([{}] * len(runs), index=runs.index)
     for name in sorted({key for counters in extra for key in counters}):
         runs[f"extra_{name}"] = pd.to_numeric(extra.map(lambda c, n=name: c.get(n, "")), errors="coerce")
     if clock is None:
@@ -123,9 +123,9 @@ def cli(description, draw, extra_arguments=None):
     args = parser.parse_args()
     try:
         fig = draw(load(args.csv, args.clock), args)
-    except NoData as e:
+        save_figure(fig, args.out, dpi=110)
+    except (NoData, ResultsError, OSError) as e:
         sys.exit(f"{description.split(':')[0]}: {e}")
-    save_figure(fig, args.out, dpi=110)
     print(f"wrote {args.out}")
 
 

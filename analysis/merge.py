@@ -1,122 +1,164 @@
-"""Merge oitbench CSVs (the shards of a sweep, runs from several machines) into one, without duplicates.
+"""Merge oitbench CSVs (the shards of a sweep, runs from several machines) into one, keeping every recording once.
 
 Usage: /usr/bin/python3 -m analysis.merge --out merged.csv shard1.csv shard2.csv ...
 
-A run is one configuration (the RUN_COLUMNS the header has: technique,
-params, scene, scene_params, camera, width, height, scene_rect) on one machine
-(MACHINE_COLUMNS: device, gl_version, platform). The same configuration
-measured on two machines is two runs: both are kept, each row with its own
-device and platform, so that they can be compared side by side.
+A recording is the rows one bench invocation wrote for one run: one run_id
+(results_io.run_key; a CSV written before run ids existed: the rows of one
+configuration, machine, git revision and timestamp). Every recording is
+kept: the same configuration measured by another invocation (a `bench
+--resume` after an error row, another git revision, another machine) is
+another recording, side by side with its own device, platform and revision.
+A recording found in several inputs (a shard given twice, a shard retried
+after a crash) is written once: the first whole copy, in input order with
+--out's own rows first (from before run ids: the first with the most
+rows); a copy cut short is left out when a whole one exists. A recording
+no input holds whole is left out.
 
-A run can be recorded more than once: `bench --resume` runs an error row's
-configuration again and appends the new rows, a shard retried after a crash
-may hold a partial attempt, the same file may be given twice. A recording is
-the rows of one run that share a timestamp (one bench invocation writes them
-together). Per run the merge keeps one recording whole: the first ok or
-skipped one in input order (--out's own rows first), else the last error one;
-the others are left out and counted. Exact duplicate rows are written once.
+Lines that are no row (a quote left open, a field count or value the
+harness never writes) are left out as the readers leave them out
+(analysis.results_io); everything left out other than exact duplicates is
+named on stderr with file, line, run and reason.
 
 The header is the union of the inputs' headers in first-seen order (columns
 are matched by name, so CSVs written by builds with more or fewer columns
 merge; a missing value is empty). If --out exists its rows are read first
-and kept: merging again with more inputs only adds. The output is written to
-a temporary file and renamed over --out, so a reader never sees half of it.
+and kept: merging again with more inputs only adds. The output is written
+whole (results_io.write_whole) or not at all.
 """
 import argparse
 import csv
 import os
 import sys
-import tempfile
 from collections import OrderedDict
 
-RUN_COLUMNS = ["technique", "params", "scene", "scene_params", "camera", "width", "height", "scene_rect"]
-MACHINE_COLUMNS = ["device", "gl_version", "platform"]
+from analysis import results_io
+from analysis.results_io import RUN_COLUMNS, MACHINE_COLUMNS
+
 REQUIRED = ["technique", "scene", "status", "timestamp", "device", "platform"]
-DONE = ("ok", "skipped")
 
 
 class MergeError(Exception):
-    """An input that cannot be merged; the message names the file."""
+    """An input or output that cannot be merged; the message names the file."""
 
 
 def read_table(path):
-    """(header, rows as dicts) of one CSV; an empty file has neither."""
+    """(header, [(line, row dict)], problems) of one CSV; an empty file has none."""
     try:
-        with open(path, newline="") as f:
-            reader = csv.reader(f)
-            header = next(reader, None)
-            if header is None:
-                return [], []
-            missing = [c for c in REQUIRED if c not in header]
-            if missing:
-                raise MergeError(f"{path}: not an oitbench CSV, no column(s) {', '.join(missing)}")
-            rows = []
-            for number, record in enumerate(reader, start=2):
-                if len(record) != len(header):
-                    raise MergeError(f"{path}:{number}: {len(record)} fields, the header has {len(header)}")
-                rows.append(dict(zip(header, record)))
-            return header, rows
-    except OSError as e:
-        raise MergeError(f"{path}: cannot read: {e.strerror}") from e
-    except csv.Error as e:
-        raise MergeError(f"{path}: malformed CSV: {e}") from e
+        header, rows, problems = results_io.read_table(path)
+    except results_io.ResultsError as e:
+        raise MergeError(str(e)) from e
+    missing = [c for c in REQUIRED if header and c not in header]
+    if missing:
+        raise MergeError(f"{path}: not an oitbench CSV, no column(s) {', '.join(missing)}")
+    return header, rows, problems
 
 
-def run_identity(row):
-    return tuple(row.get(c, "") for c in RUN_COLUMNS + MACHINE_COLUMNS)
+def recording_key(row):
+    """One bench invocation's rows of one run: its run key, configuration,
+    machine, revision and timestamp (a run_id is unique, the rest guards
+    against two invocations that drew the same one)."""
+    return results_io.run_key(row) + tuple(row.get(c, "") for c in RUN_COLUMNS + MACHINE_COLUMNS +
+                                           ["git_revision", "timestamp"])
+
+
+class Copy:
+    """The rows of one recording in one input, exact duplicates once."""
+
+    def __init__(self, source):
+        self.source, self.lines, self.rows, self.seen, self.duplicates = source, [], [], set(), 0
+
+    def add(self, number, row):
+        values = tuple(sorted(row.items()))
+        if values in self.seen:
+            self.duplicates += 1
+            return
+        self.seen.add(values)
+        self.lines.append(number)
+        self.rows.append(row)
+
+    def problem(self):
+        return results_io.run_problem(results_io.run_key(self.rows[0]), self.rows)
+
+    def where(self):
+        return f"{self.source}: line{'s' if len(self.lines) > 1 else ''} {', '.join(map(str, self.lines))}"
+
+
+def choose(copies):
+    """(the copy to keep or None, [(copy, why left out)], exact duplicate rows)."""
+    whole = [c for c in copies if c.problem() is None]
+    duplicates = sum(c.duplicates for c in copies)
+    if not whole:
+        return None, [(c, c.problem() + ", and no input holds it whole") for c in copies], duplicates
+    chosen = max(whole, key=lambda c: len(c.rows))  # the first of the largest: an old CSV's copy may lack rows
+    left_out = []
+    for c in copies:
+        if c is chosen:
+            continue
+        if {tuple(sorted(r.items())) for r in c.rows} <= chosen.seen:
+            duplicates += len(c.rows)
+        else:
+            left_out.append((c, f"{c.problem() or 'a copy that differs'}; the whole copy in {chosen.source} "
+                                f"is kept"))
+    return chosen, left_out, duplicates
 
 
 def merge_rows(tables):
-    """(header, rows, counts) from [(header, rows)] in priority order."""
-    header = []
-    recordings = OrderedDict()  # run identity -> OrderedDict(timestamp -> [rows])
-    for table_header, rows in tables:
+    """(header, rows as value tuples, counts, notes) from [(source, header,
+    numbered rows)] in priority order."""
+    header, recordings = [], OrderedDict()  # recording key -> OrderedDict(source index -> Copy)
+    for index, (source, table_header, rows) in enumerate(tables):
         header += [c for c in table_header if c not in header]
-        for row in rows:
-            recordings.setdefault(run_identity(row), OrderedDict()).setdefault(row["timestamp"], []).append(row)
-    merged, counts = [], {"runs": len(recordings), "recordings_left_out": 0, "duplicate_rows": 0}
-    for by_time in recordings.values():
-        done = [rows for rows in by_time.values() if any(r["status"] in DONE for r in rows)]
-        chosen = done[0] if done else list(by_time.values())[-1]
-        counts["recordings_left_out"] += len(by_time) - 1
-        seen = set()
-        for row in chosen:
-            values = tuple(row.get(c, "") for c in header)
-            if values in seen:
-                counts["duplicate_rows"] += 1
-                continue
-            seen.add(values)
-            merged.append(values)
-    return header, merged, counts
+        for number, row in rows:
+            copies = recordings.setdefault(recording_key(row), OrderedDict())
+            copies.setdefault(index, Copy(source)).add(number, row)
+    merged, notes = [], []
+    counts = {"recordings": len(recordings), "recordings_left_out": 0, "duplicate_rows": 0}
+    for copies in recordings.values():
+        chosen, left_out, duplicates = choose(list(copies.values()))
+        counts["duplicate_rows"] += duplicates
+        counts["recordings_left_out"] += chosen is None
+        for copy, why in left_out:
+            run = f"run {copy.rows[0].get('run_id') or results_io.describe_run(copy.rows[0])}"
+            notes.append(f"{copy.where()}: {why if why.startswith(run) else f'{run}: {why}'}: left out")
+        if chosen:
+            merged += [tuple(row.get(c, "") for c in header) for row in chosen.rows]
+    return header, merged, counts, notes
 
 
-def write_atomically(path, header, rows):
-    directory = os.path.dirname(os.path.abspath(path))
-    handle, temporary = tempfile.mkstemp(prefix=".merge-", suffix=".csv", dir=directory)
+def output_target(out, inputs):
+    """--out's rows come first unless it is an input too; refuses a special file."""
     try:
-        with os.fdopen(handle, "w", newline="") as f:
-            writer = csv.writer(f, lineterminator="\n")
-            writer.writerow(header)
-            writer.writerows(rows)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(temporary, path)
-    except BaseException:
-        os.unlink(temporary)
-        raise
+        results_io.require_regular_file(out)
+    except results_io.ResultsError as e:
+        raise MergeError(f"--out {e}") from e
+    exists = os.path.exists(out)
+    return [out] if exists and os.path.realpath(out) not in map(os.path.realpath, inputs) else []
 
 
 def merge(out, inputs):
-    """Merges `inputs` (and --out's rows, kept first) into `out`; returns the counts."""
-    sources = [out] if os.path.exists(out) and os.path.abspath(out) not in map(os.path.abspath, inputs) else []
-    tables = [read_table(p) for p in sources + list(inputs)]
-    header, rows, counts = merge_rows(tables)
+    """Merges `inputs` (and --out's rows, kept first) into `out`; returns
+    the counts and the notes naming what was left out."""
+    sources = output_target(out, inputs) + list(inputs)
+    tables, notes = [], []
+    for path in sources:
+        header, rows, problems = read_table(path)
+        tables.append((path, header, rows))
+        notes += problems
+    header, rows, counts, left_out = merge_rows(tables)
     if not header:
         raise MergeError(f"{', '.join(inputs)}: no CSV header in any input")
-    write_atomically(out, header, rows)
-    counts["rows"] = len(rows)
-    counts["inputs"] = len(tables)
-    return counts
+
+    def write(f):
+        writer = csv.writer(f, lineterminator="\n")
+        writer.writerow(header)
+        writer.writerows(rows)
+
+    try:
+        results_io.write_whole(out, write, binary=False)
+    except OSError as e:
+        raise MergeError(str(e)) from e
+    counts.update(rows=len(rows), inputs=len(tables), lines_left_out=len(notes))
+    return counts, notes + left_out
 
 
 def main(argv=None):
@@ -125,12 +167,13 @@ def main(argv=None):
     parser.add_argument("inputs", nargs="+", help="oitbench CSVs")
     args = parser.parse_args(argv)
     try:
-        c = merge(args.out, args.inputs)
+        c, notes = merge(args.out, args.inputs)
     except MergeError as e:
         sys.exit(f"merge: {e}")
-    print(f"merge: {c['rows']} rows of {c['runs']} runs from {c['inputs']} file(s) -> {args.out} "
-          f"({c['recordings_left_out']} superseded or repeated recording(s) and {c['duplicate_rows']} duplicate "
-          f"row(s) left out)")
+    results_io.report(notes, limit=None)
+    print(f"merge: {c['rows']} rows of {c['recordings']} recordings from {c['inputs']} file(s) -> {args.out} "
+          f"({c['lines_left_out']} line(s) that are no row, {c['recordings_left_out']} recording(s) held whole by "
+          f"no input and {c['duplicate_rows']} duplicate row(s) left out)")
 
 
 if __name__ == "__main__":

@@ -38,7 +38,7 @@ import pandas as pd  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from analysis import presentation  # noqa: E402
 from analysis.common import tokens  # noqa: E402
-from analysis.results_io import read_results  # noqa: E402
+from analysis.results_io import read_results, usable_times  # noqa: E402
 
 
 def load_totals(path, metric):
@@ -48,10 +48,11 @@ def load_totals(path, metric):
     the envelope of the 95% confidence intervals of the median
     (ci_low_ms..ci_high_ms; NaN in a CSV written before the harness
     recorded them), and `label` = technique and its full params."""
-    runs = read_results(path, keep_default_na=False, dtype=str)
-    runs = runs[(runs["status"] == "ok") & (runs["stage"] == "total")].copy()
+    runs = read_results(path, columns=["stage", "median_ms"])
+    runs = runs[(runs["status"] == "ok") & (runs["stage"] == "total")]
     if runs.empty:
         sys.exit(f"{path}: no successful runs with a total stage")
+    runs = usable_times(runs, path).copy()  # a front of zero or missing times would be drawn from nothing
     for column in ["median_ms", "p05_ms", "p95_ms", "ci_low_ms", "ci_high_ms", metric]:
         runs[column] = pd.to_numeric(runs[column], errors="coerce") if column in runs else float("nan")
     runs["label"] = runs["technique"] + runs["params"].map(lambda p: f" {p}" if p else "")
@@ -65,7 +66,10 @@ def load_totals(path, metric):
 
 
 def pareto_front(points):
-    """Rows not dominated by another row (faster-or-equal and more-accurate-or-equal, one strictly)."""
+    """Rows not dominated by another row (faster-or-equal and more-accurate-or-equal, one strictly).
+    Every time must be positive (load_totals leaves out the others)."""
+    if not (points["time_ms"] > 0).all():
+        raise ValueError(f"a Pareto front needs positive times, not {sorted(points['time_ms'])[:3]}")
     ordered = points.sort_values(["time_ms", "error"])
     front, best_error = [], float("inf")
     for index, row in ordered.iterrows():
@@ -203,10 +207,14 @@ def main():
     prefix = args.prefix or os.path.splitext(os.path.basename(args.csv))[0]
     try:
         totals = load_totals(args.csv, args.metric)
+        drawn = 0
         for name, fig, front in figures(totals, presentation.technique_defaults(args.oitbench), args.metric, prefix):
             presentation.save_png_and_svg(fig, os.path.join(out_dir, name), dpi=120)
             plt.close(fig)
             print(f"  front = {', '.join(front['short'])}")
+            drawn += 1
+        if not drawn:
+            raise ValueError(f"{args.csv}: no run has both a time and {args.metric} (see above): no plot written")
     except (ValueError, RuntimeError, OSError) as e:
         sys.exit(f"pareto: {e}")
 

@@ -31,14 +31,16 @@ import pandas as pd  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from analysis import presentation  # noqa: E402
 from analysis.common import stage_order  # noqa: E402
-from analysis.results_io import read_results  # noqa: E402
+from analysis.results_io import read_results, usable_times  # noqa: E402
 
 TIMES = ["median_ms", "p05_ms", "p95_ms"]
 MAX_HEIGHT_IN = 400
 
 
 def load_runs(path, scene=None, clock=None):
-    runs = read_results(path, keep_default_na=False, dtype=str)
+    """The successful runs of the CSV with the given scene and clock whose
+    every stage has a positive median (usable_times names the others)."""
+    runs = read_results(path, columns=["scene", "clock", "stage", "median_ms"])
     runs = runs[runs["status"] == "ok"]
     if scene:
         runs = runs[runs["scene"] == scene]
@@ -46,7 +48,7 @@ def load_runs(path, scene=None, clock=None):
         runs = runs[runs["clock"] == clock]
     if runs.empty:
         sys.exit(f"{path}: no successful runs match scene={scene!r} clock={clock!r}")
-    runs = runs.copy()
+    runs = usable_times(runs, path).copy()
     for column in TIMES:
         runs[column] = pd.to_numeric(runs[column], errors="coerce") if column in runs else np.nan
     return runs

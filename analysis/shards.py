@@ -12,12 +12,13 @@ recorded for other runs.
 
 runs every invocation of the shard (SPEC: a JSON list of argument lists)
 with `--csv SHARD.csv --resume`, so a job started again after a crash or a
-cancellation runs only what the CSV lacks; a bench that fails as a whole
-(not a run: those are error rows) makes the job fail after the others ran,
-and DONE (the job's output) is written only when every bench exited 0.
+cancellation runs only what the CSV lacks. A run that ends in an error row
+does not fail the job (bench exits 4: its rows are all written, and the
+error rows run again when the shard does); a bench that fails as a whole
+(any other non-zero status) makes the job fail after the others ran, and
+DONE (the job's output) is written only when no bench did.
 """
 import argparse
-import csv
 import hashlib
 import json
 import os
@@ -25,14 +26,21 @@ import re
 import shlex
 import subprocess
 import sys
-import tempfile
 from collections import Counter, OrderedDict
 
-from analysis import reproduce
+from analysis import reproduce, results_io
+
+# bench's exit status when every row is written and some runs are error
+# rows (docs/REFERENCE.md, bench).
+RUNS_FAILED = 4
 
 
 class SweepFileError(Exception):
     """A sweep file line that is not a bench command; the message names file and line."""
+
+
+class ShardSpecError(Exception):
+    """A shard spec that is not a JSON list of bench argument lists; the message names it."""
 
 
 def read_sweep_file(path):
@@ -120,25 +128,52 @@ def workflow_sweeps(config, oitbench):
 
 
 def write_json_atomically(path, data):
-    handle, temporary = tempfile.mkstemp(prefix=".shard-", dir=os.path.dirname(os.path.abspath(path)))
-    with os.fdopen(handle, "w") as f:
+    """`data` as JSON into `path`, whole (results_io.write_whole)."""
+    def write(f):
         json.dump(data, f, indent=1)
         f.write("\n")
-    os.replace(temporary, path)
+    results_io.write_whole(path, write, binary=False)
+
+
+def read_spec(path):
+    """The bench argument lists of a shard spec (as write_json_atomically
+    wrote them); ShardSpecError naming the file otherwise."""
+    try:
+        results_io.require_regular_file(path)
+        with open(path) as f:
+            benches = json.load(f)
+    except results_io.ResultsError as e:
+        raise ShardSpecError(str(e)) from e
+    except OSError as e:
+        raise ShardSpecError(f"{path}: cannot read: {e.strerror}") from e
+    except ValueError as e:  # not JSON, or not text
+        raise ShardSpecError(f"{path}: not a JSON shard spec ({e})") from e
+    if not isinstance(benches, list) or not all(
+            isinstance(b, list) and b[:1] == ["bench"] and all(isinstance(w, str) for w in b) for b in benches):
+        raise ShardSpecError(f"{path}: not a list of bench argument lists (like [[\"bench\", \"--technique\", "
+                             f"\"unsorted\"]]): write it with the workflow's shard_spec rule")
+    return benches
 
 
 def run_shard(spec, oitbench, device, csv_path):
-    """Runs the shard's invocations; returns the failed commands."""
-    with open(spec) as f:
-        benches = json.load(f)
+    """Runs the shard's invocations; returns the commands that failed as a
+    whole (error rows alone are no failure: RUNS_FAILED)."""
+    benches = read_spec(spec)
     env = reproduce.oitbench_environment(oitbench)
     failed = []
     for i, arguments in enumerate(benches, start=1):
         command = [oitbench, "--device", device] + arguments + ["--csv", csv_path, "--resume"]
         print(f"[{i}/{len(benches)}] {shlex.join(command)}", flush=True)
-        result = subprocess.run(command, env=env)
-        if result.returncode != 0:
-            print(f"  exit status {result.returncode}", flush=True)
+        try:
+            status = subprocess.run(command, env=env).returncode
+        except OSError as e:
+            print(f"  cannot run {oitbench}: {e.strerror}", flush=True)
+            status = None
+        if status == RUNS_FAILED:
+            print(f"  some runs ended in error rows (kept in {csv_path}; they run again when the shard does)",
+                  flush=True)
+        elif status != 0:
+            print(f"  exit status {status}" if status is not None else "  not run", flush=True)
             failed.append(command)
     return failed
 
@@ -158,13 +193,16 @@ def main(argv=None):
     run.add_argument("--oitbench", required=True)
     run.add_argument("--device", default="auto", help="oitbench --device")
     run.add_argument("--csv", required=True, help="the shard's CSV (appended to, never replaced)")
-    run.add_argument("--done", required=True, help="written when every bench exited 0")
+    run.add_argument("--done", required=True, help="written when no bench failed as a whole")
     args = parser.parse_args(argv)
-    failed = run_shard(args.spec, args.oitbench, args.device, args.csv)
-    if failed:
-        sys.exit(f"shards: {len(failed)} bench invocation(s) failed as a whole (see above); the rows they wrote "
-                 f"stay in {args.csv} and a new attempt resumes from them")
-    write_json_atomically(args.done, dict(summary(args.csv), csv=args.csv))
+    try:
+        failed = run_shard(args.spec, args.oitbench, args.device, args.csv)
+        if failed:
+            sys.exit(f"shards: {len(failed)} bench invocation(s) failed as a whole (see above); the rows they wrote "
+                     f"stay in {args.csv} and a new attempt resumes from them")
+        write_json_atomically(args.done, dict(summary(args.csv), csv=args.csv))
+    except (ShardSpecError, results_io.ResultsError, OSError) as e:
+        sys.exit(f"shards: {e}")
 
 
 if __name__ == "__main__":
