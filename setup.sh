@@ -16,7 +16,7 @@ packages=(
   libbenchmark-dev libgtest-dev libgmock-dev
   libtinygltf-dev libopenmesh-dev libstb-dev nlohmann-json3-dev libcli11-dev libgsl-dev libimgui-dev libcsv-dev
   libegl-mesa0 libgl1-mesa-dri mesa-utils xvfb xauth
-  python3-matplotlib python3-pandas python3-numpy
+  python3-matplotlib python3-pandas python3-numpy python3-scipy
   glmark2-data assimp-testmodels
   clang libclang-rt-14-dev
   snakemake slurm-wlm munge

@@ -54,6 +54,9 @@ def module_run_as_main():
     return None
 
 
+# Entry points that need more than the plotting libraries.
+NEEDS = {"analysis.compare": ("numpy", "scipy")}
+
 _main = module_run_as_main()
 if _main and _main.startswith("analysis.") and _main not in STANDARD_LIBRARY_ONLY:
-    require_modules(_main)
+    require_modules(_main, NEEDS.get(_main, PLOTTING))

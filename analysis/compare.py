@@ -85,7 +85,8 @@ def collect(path, ignored):
         if row.get("status") != "ok" or not row.get("stage"):
             continue
         entry = collected.setdefault((run_key(row, ignored), row["stage"]),
-                                     {"samples": [], "medians": [], "rounds": {}})
+                                     {"samples": [], "medians": [], "rounds": {}, "noisy": False})
+        entry["noisy"] |= row.get("noisy") == "true"
         samples = samples_of(row)
         entry["samples"] += samples
         entry["medians"].append(float(row["median_ms"]))
@@ -159,15 +160,21 @@ def label(key):
 def compare(base_path, new_path, arguments, paired=False):
     ignored = set(arguments.ignore_param)
     base, new = collect(base_path, ignored), collect(new_path, ignored)
-    rows, unmatched = [], []
+    rows, unmatched, noisy = [], [], []
     for key in sorted(set(base) | set(new)):
         configuration, stage = key
         if arguments.stage and stage not in arguments.stage:
             continue
         if key not in base or key not in new:
-            unmatched.append((label(configuration), stage, "only in " + (base_path if key in base else new_path)))
+            unmatched.append((label(configuration), stage,
+                              "not compared: only in " + (base_path if key in base else new_path)))
             continue
         rows.append((label(configuration), stage, compare_entry(base[key], new[key], arguments.threshold, paired)))
+        if stage == "total" and (base[key]["noisy"] or new[key]["noisy"]):
+            noisy.append(label(configuration))
+    for configuration in noisy:
+        unmatched.append((configuration, "total", "a run was flagged noisy (another process loaded the host, or the "
+                          "GPU clock moved): a change may be the disturbance's; compare --builds pairs rounds"))
     return rows, unmatched
 
 
@@ -194,7 +201,7 @@ def print_table(rows, unmatched, markdown, threshold):
     print(f"\n(verdict: faster/slower when p < {ALPHA} (Mann-Whitney U over the frames) and the whole 95% interval "
           f"lies beyond the {threshold:g}% noise threshold; `no samples`: a CSV without samples_ms)")
     for configuration, stage, why in unmatched:
-        print(f"not compared: {configuration} / {stage}: {why}", file=sys.stderr)
+        print(f"note: {configuration} / {stage}: {why}", file=sys.stderr)
 
 
 def run_builds(arguments, bench):
@@ -226,12 +233,6 @@ def run_builds(arguments, bench):
 
 
 def main(argv=None):
-    try:
-        import numpy  # noqa: F401
-        import scipy  # noqa: F401
-    except ImportError as e:
-        raise SystemExit(f"oitbench compare: {e.name} is missing: run with /usr/bin/python3 (Debian's "
-                         f"python3-numpy, python3-scipy)")
     arguments, bench = parse_arguments(sys.argv[1:] if argv is None else argv)
     paired = bool(arguments.builds)
     base_path, new_path = run_builds(arguments, bench) if paired else arguments.csv

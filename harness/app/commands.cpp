@@ -69,8 +69,11 @@ std::string technique_table_markdown(const TechniqueRegistry& registry) {
 int run_list(const CommonOptions& common) {
   auto context = open_context(common);
   const DeviceProfile& device = context->device();
-  std::printf("Device: %s (%s, %s)%s\n\n", device.renderer.c_str(), device.version.c_str(), platform_text(device).c_str(),
+  std::printf("Device: %s (%s, %s)%s\n", device.renderer.c_str(), device.version.c_str(), platform_text(device).c_str(),
               device.software ? " — software GL: stage clock defaults to wall+glFinish" : "");
+  // The profile the techniques' resolution rules receive (device_profile.h).
+  for (const std::string& line : device.describe()) std::printf("    %s\n", line.c_str());
+  std::printf("\n");
   const DeviceLimits limits = query_device_limits();
   std::printf("Limits: largest buffer %s (storage block, buffer texture); memory budget %s (%s). A technique whose storage for a frame "
               "exceeds either renders in screen tiles (CSV column `tiles`; --memory-budget sets the budget).\n\n",
