@@ -99,8 +99,8 @@ case "$mode" in
   bench)
     out="results/$(date +%F)"
     mkdir -p "$out"
-    "$build_dir/harness/oitbench" bench --technique all --scene quads --size 256x256 \
-      --warmup 1 --frames 5 --csv "$out/runs.csv" --images "$out"
+    "$build_dir/harness/oitbench" bench --technique all --scene quads --size auto \
+      --csv "$out/runs.csv" --images "$out"
     /usr/bin/python3 analysis/plot_stages.py "$out/runs.csv" --out "$out/stages.png"
     ;;
   test)
