@@ -111,6 +111,15 @@ NOT_RUN = {
                            ("ViewerSweepLine.AppendedLineRunsAsABenchCommand",)),
     "oitbench export --wide FILE -o OUT": ("FILE and OUT stand for `runs.csv` and `wide.csv` of the command run above",
                                            ("Cli.ExportWideHasAColumnPerParameterFigureAndStage",)),
+    "oitbench bench -t depth_peeling --set early_exit=true -s quads --scene-set layers=4 --size 128x128 --csv base.csv":
+        ("the README's worked A/B, run with the same settings by the compare test", ("Analysis.Compare",)),
+    "oitbench bench -t depth_peeling --set early_exit=false -s quads --scene-set layers=4 --size 128x128 --csv new.csv":
+        ("the README's worked A/B, run with the same settings by the compare test", ("Analysis.Compare",)),
+    "oitbench compare base.csv new.csv --ignore-param early_exit --stage peel --stage total":
+        ("the README's worked A/B, whose verdict the compare test asserts", ("Analysis.Compare",)),
+    "oitbench compare BASE.csv NEW.csv": ("BASE and NEW stand for two results CSVs", ("Analysis.Compare",)),
+    "oitbench compare --builds build-old build -- <bench arguments>":
+        ("build-old stands for a second build directory", ("Analysis.Compare",)),
     "xvfb-run -a oitbench view ... --frames 3 --screenshot out.png": ("needs an X server; `...` stands for the view",
                                                                       ("Viewer.UnderXvfb",)),
 }
@@ -409,6 +418,9 @@ class RunCommandsTest(unittest.TestCase):
                 continue
             result = run(command.replace("COMMAND", name), self.dir)
             self.assertEqual(result.returncode, 0, name)
+            if name == "compare":  # its options are analysis/compare.py's (argparse)
+                self.assertRegex(result.stdout, r"(?m)^usage: oitbench compare \[-h\]", name)
+                continue
             self.assertRegex(result.stdout, rf"(?m)^Usage: \S*oitbench {name} \[OPTIONS\]$", name)
             self.assertIn("\nOptions:\n  -h,--help ", result.stdout, name)
 

@@ -284,22 +284,22 @@ void BenchSession::run_interleaved(const std::vector<RunSpec>& runs, size_t begi
                                                      .c_str()
                                                : to_string(slot.result.status).c_str());
   }
-  // Round-robin: each round gives every run that still wants frames its
-  // share; a run is done once it has had the rounds and no longer wants more.
+  // Round-robin: each round gives every run its share while any run of the
+  // block still wants frames (so each round's host conditions hold for all
+  // of them), a run stopping only at its own cap.
   const int least = std::max(1, options_.rounds);
   for (int round = 0;; ++round) {
-    bool any = false;
+    bool wanted = false;
+    for (Slot& slot : slots) wanted |= slot.active && slot.active->wants_more();
+    if (round >= least && !wanted) break;
     for (Slot& slot : slots) {
-      if (!slot.active) continue;
+      if (!slot.active || (round >= least && slot.active->capped())) continue;
       const int per_round = std::max(1, (slot.active->result().spec.frames + least - 1) / least);
-      if (round >= least && !slot.active->wants_more()) continue;
-      any = true;
       if (!harness_.render_round(*slot.active, per_round, round)) {
         slot.result = std::move(slot.active->result());
         slot.active.reset();
       }
     }
-    if (!any) break;
   }
   for (Slot& slot : slots)
     if (slot.active) {

@@ -311,12 +311,19 @@ Summary ActiveRun::total_so_far() {
   return {};
 }
 
+bool ActiveRun::capped() const {
+  const RunSpec& spec = result_.spec;
+  if (frames() < spec.frames) return false;  // the least frames come before any cap
+  if (spec.precision <= 0.0) return true;
+  // Without a cap of its own a run stops at 100000 frames.
+  const int most = spec.max_frames > 0 ? spec.max_frames : 100000;
+  return frames() >= most || (spec.max_seconds > 0.0 && timed_seconds_ >= spec.max_seconds);
+}
+
 bool ActiveRun::wants_more() {
   const RunSpec& spec = result_.spec;
   if (frames() < spec.frames) return true;
-  if (spec.precision <= 0.0) return false;
-  if (spec.max_frames > 0 && frames() >= spec.max_frames) return false;
-  if (spec.max_seconds > 0.0 && timed_seconds_ >= spec.max_seconds) return false;
+  if (capped()) return false;
   return !precision_reached(total_so_far(), spec.precision);
 }
 

@@ -198,6 +198,9 @@ class ActiveRun {
   // Whether it needs more frames: fewer than spec.frames, or a precision
   // not reached and no cap hit.
   bool wants_more();
+  // Whether it may take no more frames: at least spec.frames, and its
+  // fixed count (no precision target), max_frames or max_seconds reached.
+  bool capped() const;
 
  private:
   friend class Harness;
