@@ -15,6 +15,7 @@
 #include "harness/app/stress.h"
 #include "harness/app/sweep_cli.h"
 #include "harness/app/viewer/view_command.h"
+#include "harness/core/output_file.h"
 #include "harness/gl/context.h"
 
 namespace {
@@ -36,6 +37,15 @@ void add_bench_options(CLI::App* command, oit::BenchOptions& options, const std:
                       "CSV file to append every timed frame's stage times to (one row per run, stage, clock, frame)");
   command->add_option("--json", options.json, "JSON file to write this invocation's runs to (samples included)");
   command->add_option("--baseline", options.baseline, "technique whose median total the summary's ratios divide by");
+}
+
+// No output of one bench or pareto invocation may be another (the JSON
+// written over the results CSV): refused before anything runs.
+void check_distinct_bench_outputs(const oit::BenchOptions& options) {
+  oit::check_distinct_outputs({{"--csv", options.csv},
+                               {"--json", options.json},
+                               {"--samples", options.samples},
+                               {"--images", options.images_dir}});
 }
 
 // Each command's options live here from parsing to running; `add` registers
@@ -109,7 +119,10 @@ void add_render_command(CLI::App& app, Commands& c) {
 void add_bench_and_pareto_commands(CLI::App& app, Commands& c) {
   auto* bench = app.add_subcommand("bench", "time every combination and append long-form CSV rows");
   add_bench_options(bench, c.bench, "");
-  c.add(bench, [&c] { return oit::run_bench(c.common, c.bench); });
+  c.add(bench, [&c] {
+    check_distinct_bench_outputs(c.bench);
+    return oit::run_bench(c.common, c.bench);
+  });
   // pareto: the bench options, with each technique's quality knobs swept.
   c.pareto.sweep.scenes = {"quads", "spheres"};
   c.pareto.sweep.sizes = {"128x128"};
@@ -121,7 +134,10 @@ void add_bench_and_pareto_commands(CLI::App& app, Commands& c) {
   // quality knobs, several times bench's runs; a quarter of the pixels keeps
   // that to minutes on software GL, and the error ranking holds at that size.
   add_bench_options(pareto, c.pareto, "; smaller than bench's default: pareto runs every knob value");
-  c.add(pareto, [&c] { return oit::run_pareto(c.common, c.pareto); });
+  c.add(pareto, [&c] {
+    check_distinct_bench_outputs(c.pareto);
+    return oit::run_pareto(c.common, c.pareto);
+  });
 }
 
 void add_adaptive_command(CLI::App& app, Commands& c) {
@@ -183,7 +199,10 @@ void add_stats_and_export_commands(CLI::App& app, Commands& c) {
                       "<stage>.<clock>.<median|min|p05|p95|mean>_ms columns")
       ->required();
   exports->add_option("--out,-o", c.export_options.out, "CSV file to write (replaced whole)")->required();
-  c.add(exports, [&c] { return oit::run_export(c.export_options); });
+  c.add(exports, [&c] {
+    oit::check_distinct_outputs({{"--wide", c.export_options.wide}, {"--out", c.export_options.out}});
+    return oit::run_export(c.export_options);
+  });
 }
 
 }  // namespace
