@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -166,7 +167,7 @@ bool read_referenced_file(std::vector<unsigned char>* out, std::string* err, con
 // Parses `path` (.glb binary, anything else JSON), skipping images.
 tinygltf::Model load_model(const std::string& path) {
   const std::string bytes = read_regular_file(path, kMaxSceneFileBytes);
-  if (bytes.empty()) throw std::invalid_argument(path + ": file is empty");
+  if (bytes.empty()) throw std::invalid_argument(path + ": cannot load glTF: the file is empty");
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skip_image, nullptr);
   loader.SetFsCallbacks({referenced_file_exists, tinygltf::ExpandFilePath, read_referenced_file,
@@ -258,6 +259,10 @@ class SceneBuilder {
     auto position_it = primitive.attributes.find("POSITION");
     if (position_it == primitive.attributes.end()) reader_.fail("mesh '" + mesh.name + "' has no POSITION");
     const auto positions = reader_.read(position_it->second, 3);
+    // The file's own values; what the node transforms make of them is checked in check_placement.
+    for (size_t i = 0; i < positions.size(); ++i)
+      if (!std::isfinite(positions[i]) || std::abs(positions[i]) > double(FLT_MAX))
+        reader_.fail("mesh '" + mesh.name + "' vertex " + std::to_string(i / 3) + " has a non-finite position");
     const size_t vertex_count = positions.size() / 3;
     std::vector<double> normals;
     if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
@@ -407,6 +412,8 @@ class SceneBuilder {
                                                    by([](const PlacedNode& p) { return p.farthest; }));
     const std::string through = " through its scale, matrix or translation (or its parents'): ";
     char text[256];
+    if (!std::isfinite(farthest.farthest))
+      reader_.fail(node_name(farthest.node) + " makes vertex positions non-finite" + through + "scale the model down");
     if (!(farthest.farthest <= kLargestCoordinate)) {
       std::snprintf(text, sizeof text, "puts vertices %.3g from the origin, beyond the %.0e that rendering in float "
                     "handles,", farthest.farthest, kLargestCoordinate);

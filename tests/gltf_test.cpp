@@ -212,7 +212,7 @@ TEST(Gltf, NodeTransformsThatBreakFloatRenderingAreRefusedNamingTheNode) {
   const std::vector<std::tuple<std::string, nlohmann::json, std::string>> cases = {
       {"scale_1e20", {{"scale", {1e20, 1e20, 1e20}}}, "puts vertices 1e+20 from the origin"},
       {"scale_1e30", {{"scale", {1e30, 1e30, 1e30}}}, "scale the model down"},
-      {"scale_1e40", {{"scale", {1e40, 1e40, 1e40}}}, "scale the model down"},  // past float: infinite
+      {"scale_1e40", {{"scale", {1e40, 1e40, 1e40}}}, "makes vertex positions non-finite"},  // past float
       {"matrix_1e30", {{"matrix", {1e30, 0, 0, 0, 0, 1e30, 0, 0, 0, 0, 1e30, 0, 0, 0, 0, 1}}}, "scale the model down"},
       {"scale_1e-30", {{"scale", {1e-30, 1e-30, 1e-30}}}, "scale the model up"},
       {"scale_1e-20", {{"scale", {1e-20, 1e-20, 1e-20}}}, "less than the 1e-16 that rendering in float resolves"},
