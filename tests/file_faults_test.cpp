@@ -181,11 +181,13 @@ TEST(FileFaults, StaleTemporaryFilesOfDeadWritersAreSweptOnTheNextWrite) {
   const std::string stale = dir + "/.image.png.tmp-" + std::to_string(dead) + "-0";
   const std::string living = dir + "/.image.png.tmp-" + std::to_string(::getppid()) + "-3";
   const std::string other_target = dir + "/.other.png.tmp-" + std::to_string(dead) + "-0";
-  for (const std::string& path : {stale, living, other_target}) std::ofstream(path) << "partial";
+  const std::string not_a_pid = dir + "/.image.png.tmp-99999999999999999999-0";
+  for (const std::string& path : {stale, living, other_target, not_a_pid}) std::ofstream(path) << "partial";
   write_file_atomically(dir + "/image.png", "new");
   EXPECT_FALSE(fs::exists(stale));
   EXPECT_TRUE(fs::exists(living));
   EXPECT_TRUE(fs::exists(other_target));
+  EXPECT_TRUE(fs::exists(not_a_pid));
   EXPECT_EQ(contents_of(dir + "/image.png"), "new");
   // write_new_file_atomically sweeps the same way.
   std::ofstream(dir + "/.new.png.tmp-" + std::to_string(dead) + "-7") << "partial";

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <atomic>
+#include <charconv>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -138,7 +139,8 @@ void remove_stale_temporaries(const std::filesystem::path& target) {
     if (dash == 0 || dash == std::string_view::npos || rest.find_first_not_of("0123456789") != dash ||
         dash + 1 == rest.size() || rest.find_first_not_of("0123456789", dash + 1) != std::string_view::npos)
       continue;
-    const pid_t pid = pid_t(std::stol(std::string(rest.substr(0, dash))));
+    pid_t pid = 0;
+    if (std::from_chars(rest.data(), rest.data() + dash, pid).ec != std::errc()) continue;  // not a pid
     if (pid == ::getpid() || pid <= 0 || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
     ::unlink((directory + "/" + std::string(name)).c_str());
   }
