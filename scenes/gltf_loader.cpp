@@ -8,10 +8,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <optional>
 #include <stdexcept>
+
+#include "scenes/regular_file.h"
 
 namespace oit {
 namespace {
@@ -22,6 +26,15 @@ constexpr size_t kMaxUnbackedElements = size_t(1) << 24;
 // Instancing multiplies geometry: refuse scenes that would not fit in memory.
 constexpr size_t kMaxVertices = size_t(1) << 25;
 constexpr size_t kMaxTriangles = size_t(1) << 26;
+// The range of scene sizes that rendering in float handles: the bounding
+// sphere, the framing camera's depth range and the projection square and
+// invert lengths, which overflow or vanish (NaN pixels, or no fragments at
+// all) well before a coordinate itself stops being finite.
+constexpr double kLargestCoordinate = 1e16;
+constexpr double kSmallestExtent = 1e-16;
+// Fewer float steps than this across the scene at its farthest coordinate,
+// and its vertices snap together: a model moved far from the origin.
+constexpr double kLeastStepsAcross = 128.0;
 
 // The scene needs no textures: images are neither decoded nor required.
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
@@ -132,17 +145,43 @@ Camera read_camera(const tinygltf::Camera& source, const glm::mat4& world, const
   return c;
 }
 
+// The buffers and images a .gltf names by URI are looked up without opening
+// them (tinygltf's own check opens the file, which waits forever on a FIFO)
+// and read with the same checks as the file itself.
+bool referenced_file_exists(const std::string& path, void*) {
+  std::error_code error;
+  return std::filesystem::exists(path, error);
+}
+
+bool read_referenced_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  try {
+    const std::string bytes = read_regular_file(path, kMaxSceneFileBytes);
+    out->assign(bytes.begin(), bytes.end());
+    return true;
+  } catch (const std::invalid_argument& e) {
+    if (err) *err += e.what();
+    return false;
+  }
+}
+
 // Parses `path` (.glb binary, anything else JSON), skipping images.
 tinygltf::Model load_model(const std::string& path) {
+  const std::string bytes = read_regular_file(path, kMaxSceneFileBytes);
+  if (bytes.empty()) throw std::invalid_argument(path + ": cannot load glTF: the file is empty");
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skip_image, nullptr);
+  loader.SetFsCallbacks({referenced_file_exists, tinygltf::ExpandFilePath, read_referenced_file,
+                         tinygltf::WriteWholeFile, nullptr});
   tinygltf::Model model;
   std::string error, warning;
   std::string extension = path.size() >= 4 ? path.substr(path.size() - 4) : "";
   for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
-  const bool binary = extension == ".glb";
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
-                         : loader.LoadASCIIFromFile(&model, &error, &warning, path);
+  const std::string base_dir = std::filesystem::path(path).parent_path().string();
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  const bool ok = extension == ".glb"
+                      ? loader.LoadBinaryFromMemory(&model, &error, &warning, data, unsigned(bytes.size()), base_dir)
+                      : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(), unsigned(bytes.size()),
+                                                   base_dir);
   if (!ok) throw std::invalid_argument(path + ": cannot load glTF: " + (error.empty() ? "unknown error" : error));
   return model;
 }
@@ -175,6 +214,7 @@ class SceneBuilder {
 
   Scene finish() {
     if (scene_.indices.empty()) reader_.fail("contains no triangles");
+    check_placement();
     scene_.object_count = next_object_;
     scene_.lit = !all_unlit_;
     scene_.camera = camera_ ? *camera_ : frame_bounding_sphere(scene_.bounds());
@@ -195,7 +235,7 @@ class SceneBuilder {
     const glm::mat4 world = parent * local_transform(node);
     if (node.mesh >= 0) {
       if (size_t(node.mesh) >= model_.meshes.size()) reader_.fail("node mesh index out of range");
-      add_mesh(model_.meshes[size_t(node.mesh)], world);
+      add_mesh(model_.meshes[size_t(node.mesh)], world, node_index);
     }
     if (node.camera >= 0 && !camera_) {
       if (size_t(node.camera) >= model_.cameras.size()) reader_.fail("node camera index out of range");
@@ -204,9 +244,11 @@ class SceneBuilder {
     for (int child : node.children) visit(child, world, depth + 1);
   }
 
-  void add_mesh(const tinygltf::Mesh& mesh, const glm::mat4& world) {
+  void add_mesh(const tinygltf::Mesh& mesh, const glm::mat4& world, int node_index) {
     const uint32_t object = next_object_++;
+    const size_t first_vertex = scene_.vertices.size();
     for (const auto& primitive : mesh.primitives) add_primitive(mesh, primitive, world, object);
+    placed_.push_back(measure_node(node_index, first_vertex));
   }
 
   void add_primitive(const tinygltf::Mesh& mesh, const tinygltf::Primitive& primitive, const glm::mat4& world,
@@ -217,6 +259,10 @@ class SceneBuilder {
     auto position_it = primitive.attributes.find("POSITION");
     if (position_it == primitive.attributes.end()) reader_.fail("mesh '" + mesh.name + "' has no POSITION");
     const auto positions = reader_.read(position_it->second, 3);
+    // The file's own values; what the node transforms make of them is checked in check_placement.
+    for (size_t i = 0; i < positions.size(); ++i)
+      if (!std::isfinite(positions[i]) || std::abs(positions[i]) > double(FLT_MAX))
+        reader_.fail("mesh '" + mesh.name + "' vertex " + std::to_string(i / 3) + " has a non-finite position");
     const size_t vertex_count = positions.size() / 3;
     std::vector<double> normals;
     if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
@@ -288,17 +334,22 @@ class SceneBuilder {
     for (size_t t = 0; t + 2 < indices.size(); t += 3) {
       const uint32_t a = base + indices[t], b = base + indices[t + 1], c = base + indices[t + 2];
       if (face_normals) {
-        const glm::vec3 n =
-            glm::cross(vertices[b].position - vertices[a].position, vertices[c].position - vertices[a].position);
-        for (uint32_t k : {a, b, c}) vertices[k].normal += n;
+        // In double: the cross product of a large model's edges squares
+        // their length, and its length squares it again (NaN in float).
+        const glm::dvec3 pa(vertices[a].position), n = glm::cross(glm::dvec3(vertices[b].position) - pa,
+                                                                   glm::dvec3(vertices[c].position) - pa);
+        accumulated_normals_.resize(vertices.size());
+        for (uint32_t k : {a, b, c}) accumulated_normals_[k] += n;
       }
       scene_.indices.insert(scene_.indices.end(), {a, b, c});
       scene_.triangle_ids.push_back(uint32_t(scene_.triangle_ids.size()));
     }
     if (!face_normals) return;
+    accumulated_normals_.resize(vertices.size());
     for (size_t i = base; i < vertices.size(); ++i) {
-      glm::vec3& n = vertices[i].normal;
-      n = glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0.0f, 0.0f, 1.0f);
+      const glm::dvec3 n = accumulated_normals_[i];
+      const double length = glm::length(n);
+      vertices[i].normal = std::isfinite(length) && length > 0.0 ? glm::vec3(n / length) : glm::vec3(0.0f, 0.0f, 1.0f);
     }
   }
 
@@ -325,9 +376,74 @@ class SceneBuilder {
     return color;
   }
 
+  // Where one mesh node put its vertices, for the checks of the scene's size.
+  struct PlacedNode {
+    int node;
+    glm::dvec3 lo, hi;
+    double farthest;  // the largest |coordinate|; infinite when one is not finite
+    double extent() const { return lo.x <= hi.x ? glm::length(hi - lo) : 0.0; }
+  };
+
+  PlacedNode measure_node(int node_index, size_t first_vertex) const {
+    PlacedNode placed{node_index, glm::dvec3(INFINITY), glm::dvec3(-INFINITY), 0.0};
+    for (size_t i = first_vertex; i < scene_.vertices.size(); ++i) {
+      const glm::dvec3 p(scene_.vertices[i].position);
+      placed.lo = glm::min(placed.lo, p);
+      placed.hi = glm::max(placed.hi, p);
+      for (int axis = 0; axis < 3; ++axis)
+        placed.farthest = std::isfinite(p[axis]) ? std::max(placed.farthest, std::abs(p[axis])) : INFINITY;
+    }
+    return placed;
+  }
+
+  std::string node_name(int node_index) const {
+    const std::string& name = model_.nodes[size_t(node_index)].name;
+    return "node " + std::to_string(node_index) + (name.empty() ? "" : " '" + name + "'");
+  }
+
+  // The node transforms must leave a scene that float rendering can draw:
+  // finite, within kLargestCoordinate, at least kSmallestExtent across, and
+  // not so far from the origin that float positions cannot resolve it.
+  void check_placement() const {
+    const auto by = [](auto measure) {
+      return [measure](const PlacedNode& a, const PlacedNode& b) { return measure(a) < measure(b); };
+    };
+    const PlacedNode& farthest = *std::max_element(placed_.begin(), placed_.end(),
+                                                   by([](const PlacedNode& p) { return p.farthest; }));
+    const std::string through = " through its scale, matrix or translation (or its parents'): ";
+    char text[256];
+    if (!std::isfinite(farthest.farthest))
+      reader_.fail(node_name(farthest.node) + " makes vertex positions non-finite" + through + "scale the model down");
+    if (!(farthest.farthest <= kLargestCoordinate)) {
+      std::snprintf(text, sizeof text, "puts vertices %.3g from the origin, beyond the %.0e that rendering in float "
+                    "handles,", farthest.farthest, kLargestCoordinate);
+      reader_.fail(node_name(farthest.node) + " " + text + through + "scale the model down");
+    }
+    glm::dvec3 lo(INFINITY), hi(-INFINITY);
+    for (const PlacedNode& p : placed_)
+      if (p.lo.x <= p.hi.x) lo = glm::min(lo, p.lo), hi = glm::max(hi, p.hi);  // a node with vertices
+    const double extent = lo.x <= hi.x ? glm::length(hi - lo) : 0.0;
+    const PlacedNode& largest =
+        *std::max_element(placed_.begin(), placed_.end(), by([](const PlacedNode& p) { return p.extent(); }));
+    if (!(extent >= kSmallestExtent)) {
+      std::snprintf(text, sizeof text, "spans %.3g, less than the %.0e that rendering in float resolves,", extent,
+                    kSmallestExtent);
+      reader_.fail("the scene " + std::string(text) + " and its largest part, " + node_name(largest.node) +
+                   ", is that small" + through + "scale the model up");
+    }
+    const double step = farthest.farthest * std::ldexp(1.0, -23);  // float spacing at that distance
+    if (extent < kLeastStepsAcross * step) {
+      std::snprintf(text, sizeof text, "puts vertices %.3g from the origin, where float positions are %.3g apart, "
+                    "while the whole scene spans only %.3g,", farthest.farthest, step, extent);
+      reader_.fail(node_name(farthest.node) + " " + text + through + "move it nearer the origin");
+    }
+  }
+
   const tinygltf::Model& model_;
   GltfReader reader_;
   std::vector<uint8_t> visited_;
+  std::vector<PlacedNode> placed_;
+  std::vector<glm::dvec3> accumulated_normals_;
   Scene scene_;
   bool all_unlit_ = true;
   std::optional<Camera> camera_;

@@ -18,10 +18,14 @@ namespace oit {
 // the image's aspect rules), otherwise a camera framing the bounding sphere.
 // Zero-area triangles are kept: they produce no fragments.
 // Throws std::invalid_argument naming the file and the problem for malformed
-// input: truncated files, accessors reading past their buffers, index or
+// input: the file or a buffer it names not a regular file (a FIFO, device or
+// directory), truncated files, accessors reading past their buffers, index or
 // node references out of range, nodes reached twice (cycles), non-finite
-// positions, non-triangle primitives, no triangles, and declared sizes that
-// would need more than 2^25 vertices or 2^26 triangles.
+// positions, non-triangle primitives, no triangles, declared sizes that
+// would need more than 2^25 vertices or 2^26 triangles, and node transforms
+// that leave a scene float rendering cannot draw (naming the node): vertices
+// beyond 1e16 from the origin, a scene less than 1e-16 across, or one so far
+// from the origin that fewer than 128 float steps span it.
 Scene load_gltf_scene(const std::string& path);
 
 }  // namespace oit

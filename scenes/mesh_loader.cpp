@@ -10,12 +10,12 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
 
 #include "scenes/mesh_file_check.h"
+#include "scenes/regular_file.h"
 
 namespace oit {
 namespace {
@@ -24,7 +24,6 @@ namespace {
 // bytes); refusing early keeps a corrupt file from allocating gigabytes.
 constexpr uint64_t kMaxVertices = uint64_t(1) << 25;
 constexpr uint64_t kMaxTriangles = uint64_t(1) << 26;
-constexpr uintmax_t kMaxFileBytes = uintmax_t(2) << 30;
 
 using OpenMesh::EdgeHandle;
 using OpenMesh::FaceHandle;
@@ -155,18 +154,6 @@ std::string lower_extension(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
   for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
   return extension.empty() ? extension : extension.substr(1);
-}
-
-std::string read_bytes(const std::string& path) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) throw std::invalid_argument(path + ": not a regular file");
-  const uintmax_t size = std::filesystem::file_size(path, error);
-  if (error) throw std::invalid_argument(path + ": cannot read its size: " + error.message());
-  if (size > kMaxFileBytes) throw std::invalid_argument(path + ": larger than 2 GiB");
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes(size_t(size), '\0');
-  if (!in || !in.read(bytes.data(), std::streamsize(size))) throw std::invalid_argument(path + ": cannot be read");
-  return bytes;
 }
 
 // Union-find over vertices: a face joins all its corners.
@@ -320,7 +307,7 @@ void finish_normals(const PolygonCollector& collector, const std::vector<uint32_
 
 Scene load_mesh_scene(const std::string& path) {
   const std::string format = lower_extension(path);
-  const std::string bytes = read_bytes(path);
+  const std::string bytes = read_regular_file(path, kMaxSceneFileBytes);
   const MeshFileFacts facts = check_mesh_file(path, format, bytes);
   PolygonCollector collector;
   const bool read_ok = read_with_openmesh(path, format, collector);

@@ -5,9 +5,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <tuple>
 
 #include "tests/gl_fixture.h"
 #include "scenes/scene_library.h"
@@ -166,6 +168,70 @@ TEST(Gltf, InstancesAreObjectsAndTheOrthographicCameraIsPlacedByItsNode) {
   EXPECT_EQ(r.max_depth_complexity, 2u);
   const RunResult unsorted = test::render_once("unsorted", {}, path, {}, 48, 48);
   EXPECT_GT(unsorted.error->max_abs, 0.0);  // back-to-front is required even when opaque
+}
+
+// Two lit quads (no normals, no camera: face normals and the framing camera)
+// under one node named "model" with `placement` (scale, translation, ...).
+std::string write_placed_quads_gltf(const std::string& name, const nlohmann::json& placement) {
+  using nlohmann::json;
+  json node = placement;
+  node["mesh"] = 0;
+  node["name"] = "model";
+  const json gltf = {
+      {"asset", {{"version", "2.0"}}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {node}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}, {"material", 0}}}}}}},
+      {"materials", {{{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.3, 0.2, 0.5}}}}, {"alphaMode", "BLEND"}}}},
+  };
+  return test::write_mesh_gltf("gltf", name, gltf,
+                               {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0,
+                                -1, -1, -0.5f, 1, -1, -0.5f, 1, 1, -0.5f, -1, 1, -0.5f},
+                               {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7}, 5125);
+}
+
+// A huge but finite scale: face normals were computed in float, whose
+// squared cross product overflowed at a scale of 1e10 (NaN pixels, status
+// ok). The framing camera makes the image the same as at scale 1.
+TEST(Gltf, AHugeButUsableScaleRendersTheImageOfScaleOne) {
+  const RunResult one = test::render_once("reference", {}, write_placed_quads_gltf("scale_1", nlohmann::json::object()),
+                                          {}, 32, 32);
+  const RunResult huge =
+      test::render_once("reference", {}, write_placed_quads_gltf("scale_1e15", {{"scale", {1e15, 1e15, 1e15}}}), {},
+                        32, 32);
+  ASSERT_EQ(huge.status, RunStatus::ok) << huge.message;
+  for (float v : huge.image.rgba) ASSERT_TRUE(std::isfinite(v));
+  EXPECT_GT(huge.max_depth_complexity, 0u);
+  EXPECT_LT(test::max_abs_difference(one.image, huge.image), 1e-4);
+}
+
+// Transforms that leave positions finite but the scene unusable in float
+// (gone from the image, or collapsed) are refused naming the node and the fix.
+TEST(Gltf, NodeTransformsThatBreakFloatRenderingAreRefusedNamingTheNode) {
+  const std::vector<std::tuple<std::string, nlohmann::json, std::string>> cases = {
+      {"scale_1e20", {{"scale", {1e20, 1e20, 1e20}}}, "puts vertices 1e+20 from the origin"},
+      {"scale_1e30", {{"scale", {1e30, 1e30, 1e30}}}, "scale the model down"},
+      {"scale_1e40", {{"scale", {1e40, 1e40, 1e40}}}, "makes vertex positions non-finite"},  // past float
+      {"matrix_1e30", {{"matrix", {1e30, 0, 0, 0, 0, 1e30, 0, 0, 0, 0, 1e30, 0, 0, 0, 0, 1}}}, "scale the model down"},
+      {"scale_1e-30", {{"scale", {1e-30, 1e-30, 1e-30}}}, "scale the model up"},
+      {"scale_1e-20", {{"scale", {1e-20, 1e-20, 1e-20}}}, "less than the 1e-16 that rendering in float resolves"},
+      {"translation_1e8", {{"translation", {1e8, 0, 0}}}, "move it nearer the origin"},
+  };
+  for (const auto& [name, placement, problem] : cases) {
+    const std::string path = write_placed_quads_gltf(name, placement);
+    try {
+      load_scene(path, {});
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
+      EXPECT_NE(message.find("node 0 'model'"), std::string::npos) << message;
+      EXPECT_NE(message.find(problem), std::string::npos) << message;
+    }
+  }
+  // Far from the origin but still resolved: accepted.
+  EXPECT_NO_THROW(load_scene(write_placed_quads_gltf("translation_1e4", {{"translation", {1e4, 0, 0}}}), {}));
 }
 
 TEST(Gltf, MalformedFilesGiveErrorsNamingTheFile) {

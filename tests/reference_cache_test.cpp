@@ -1,11 +1,18 @@
 // The on-disk reference cache: a second harness reads the reference instead
 // of rendering it, gets the identical image, and ignores damaged files.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <sstream>
+#include <tuple>
 
 #include "tests/gl_fixture.h"
 
@@ -108,6 +115,144 @@ TEST(ReferenceCache, AnImageHoldingNanIsNeverServedEvenWithAMatchingChecksum) {
   image.rgba[5] = std::nanf("");
   cache.store("key", image);  // written with its checksum
   EXPECT_FALSE(cache.load("key").has_value());
+}
+
+// ---- entries that are not what they claim: misses, named, never trusted ----
+
+std::string contents_of(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The bytes of an entry as store() writes them (version 2: magic, key,
+// width, height, payload, FNV-1a checksum of everything before it), with
+// `payload_bytes` of payload whatever the declared size.
+std::string entry_bytes(const std::string& key, int32_t width, int32_t height, size_t payload_bytes) {
+  std::string bytes("OITREF2\n", 8);
+  const auto put = [&bytes](const auto& value) { bytes.append(reinterpret_cast<const char*>(&value), sizeof value); };
+  put(uint32_t(key.size()));
+  bytes += key;
+  put(width);
+  put(height);
+  bytes.append(payload_bytes, '\0');
+  uint64_t hash = 1469598103934665603ull;
+  for (unsigned char c : bytes) hash = (hash ^ c) * 1099511628211ull;
+  put(hash);
+  return bytes;
+}
+
+struct ChildLoad {
+  bool exited = false;  // false: killed (the 20 s alarm: it hung)
+  int code = -1;        // 0 a miss, 1 a hit, 2 out of memory, 3 another exception
+  std::string warnings;
+};
+
+// cache.load(key, width, height) in a child process that may not grow by
+// more than 256 MiB and is killed after 20 s, so that a hang or a runaway
+// allocation fails the test instead of stopping or exhausting the machine.
+ChildLoad load_in_child(const ReferenceCache& cache, const std::string& key, int width, int height) {
+  const std::string log = cache.directory() + "/../load_" + std::to_string(::getpid()) + ".txt";
+  const pid_t child = fork();
+  if (child == 0) {
+    if (!std::freopen(log.c_str(), "w", stderr)) _exit(4);
+    long pages = 0;
+    std::ifstream("/proc/self/statm") >> pages;
+    const rlim_t allowance = rlim_t(pages) * rlim_t(sysconf(_SC_PAGESIZE)) + (rlim_t(256) << 20);
+    const rlimit limit{allowance, allowance};
+    setrlimit(RLIMIT_AS, &limit);
+    alarm(20);
+    try {
+      const bool hit = cache.load(key, width, height).has_value();
+      std::fflush(stderr);
+      _exit(hit ? 1 : 0);
+    } catch (const std::bad_alloc&) {
+      _exit(2);
+    } catch (...) {
+      _exit(3);
+    }
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  ChildLoad result;
+  result.exited = WIFEXITED(status);
+  result.code = result.exited ? WEXITSTATUS(status) : -1;
+  result.warnings = contents_of(log);
+  return result;
+}
+
+// A FIFO in place of an entry hung the reader; a link to /dev/zero read until
+// bad_alloc; a directory was a silent miss that could never be replaced; a
+// 4 KB entry whose header claims 16384x16384 allocated 4 GiB before its size
+// was checked. Each is now a miss with a warning naming the file.
+TEST(ReferenceCache, EntriesThatAreNotRegularFilesOrClaimTooMuchAreMissesNamedInAWarning) {
+  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/reference_cache_kinds/entries";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const ReferenceCache cache(dir);
+  const std::string key = "scene|8x8|0,0,0", path = cache.path_for(key);
+  const std::vector<std::tuple<std::string, std::function<void()>, std::string>> cases = {
+      {"FIFO", [&] { ASSERT_EQ(mkfifo(path.c_str(), 0600), 0); }, "is a FIFO, not a regular file"},
+      {"link to /dev/zero", [&] { std::filesystem::create_symlink("/dev/zero", path); },
+       "is a character device, not a regular file"},
+      {"directory", [&] { std::filesystem::create_directory(path); }, "is a directory, not a regular file"},
+      {"4 KB claiming 16384x16384", [&] { std::ofstream(path, std::ios::binary) << entry_bytes(key, 16384, 16384, 4096); },
+       "does not fit the 16384x16384 image its header declares"},
+      {"another format", [&] { std::ofstream(path, std::ios::binary) << std::string(4096, 'x'); },
+       "is not an entry of this version of the cache"},
+  };
+  for (const auto& [what, make, problem] : cases) {
+    std::filesystem::remove_all(path);
+    make();
+    const ChildLoad load = load_in_child(cache, key, 8, 8);
+    EXPECT_TRUE(load.exited) << what << ": the load hung";
+    EXPECT_EQ(load.code, 0) << what << " (2: out of memory)";
+    EXPECT_NE(load.warnings.find(path), std::string::npos) << what << ": " << load.warnings;
+    EXPECT_NE(load.warnings.find(problem), std::string::npos) << what << ": " << load.warnings;
+  }
+  // No entry at all is the ordinary miss: nothing to say.
+  std::filesystem::remove_all(path);
+  const ChildLoad missing = load_in_child(cache, key, 8, 8);
+  EXPECT_EQ(missing.code, 0);
+  EXPECT_EQ(missing.warnings, "");
+}
+
+// A whole, checksum-valid entry of another image size is a miss (the key
+// says the size, so only a foreign or hand-made file holds one).
+TEST(ReferenceCache, AnEntryOfAnotherImageSizeIsAMiss) {
+  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/reference_cache_size";
+  std::filesystem::remove_all(dir);
+  const ReferenceCache cache(dir);
+  cache.store("key", Image{4, 4, std::vector<float>(64, 0.25f)});
+  testing::internal::CaptureStderr();
+  EXPECT_FALSE(cache.load("key", 8, 8).has_value());
+  const std::string warnings = testing::internal::GetCapturedStderr();
+  EXPECT_NE(warnings.find("holds a 4x4 image where 8x8 is needed"), std::string::npos) << warnings;
+  EXPECT_TRUE(cache.load("key", 4, 4).has_value());
+}
+
+// A directory in the way: rendered every time, with a warning, never stored.
+TEST(ReferenceCache, ADirectoryInPlaceOfAnEntryIsRenderedAndLeftWithAWarning) {
+  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/reference_cache_directory";
+  std::filesystem::remove_all(dir);
+  const ReferenceCache cache(dir);
+  const RawParams scene = {{"layers", "3"}};
+  Harness first(test::gl_context(), builtin_techniques());
+  first.set_reference_cache(cache);
+  const Image good = first.reference_image("quads", scene, 8, 8, glm::vec3(0.0f));
+  const auto entry = std::filesystem::directory_iterator(dir)->path();
+  std::filesystem::remove(entry);
+  std::filesystem::create_directory(entry);
+  Harness again(test::gl_context(), builtin_techniques());
+  again.set_reference_cache(cache);
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(again.reference_image("quads", scene, 8, 8, glm::vec3(0.0f)).rgba, good.rgba);
+  const std::string warnings = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(again.references_rendered(), 1);
+  EXPECT_NE(warnings.find(entry.string() + ": is a directory, not a regular file"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("reference cache not written"), std::string::npos) << warnings;
+  EXPECT_TRUE(std::filesystem::is_directory(entry));
 }
 
 }  // namespace

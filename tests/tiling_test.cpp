@@ -8,6 +8,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <cmath>
+
 #include "harness/core/fragment_pool.h"
 #include "harness/core/tiling.h"
 #include "scenes/scene_library.h"
@@ -165,6 +167,28 @@ std::vector<std::string> tileable_techniques() {
   return ids;
 }
 
+// How far a technique's tiled image may be from its untiled one. A tile is
+// a frame of its own under the window's projection, so its interpolated
+// positions, depths and shading can differ from the untiled frame's in the
+// last bit; float compositing keeps that below 1e-5. Where it does not:
+double tiled_bound(const std::string& id) {
+  // Colours stored as RGBA8 (bucketed_kbuffer's stylised colours, hybrid's
+  // core): a last-bit difference can round a colour to the next step.
+  if (id == "bucketed_kbuffer" || id == "hybrid_transparency") return 1.0 / 255.0;
+  // The diffusion's float sums over neighbours are taken in another order
+  // inside a tile's window and halo (measured up to 2.5e-5).
+  if (id == "illustration_buffer") return 5e-5;
+  // The reconstruction from the moments amplifies last-bit differences of
+  // the depths summed into them (measured 2.4e-5 on spheres).
+  if (id == "moment_oit") return 1e-4;
+  // A sample on an edge between two triangles can fall to the other one in
+  // the window, which draws that triangle's coverage mask: the pixel's
+  // average moves by at most one of its 4 samples (default samples=4). The
+  // share of pixels this happens to is held separately.
+  if (id == "stochastic_transparency") return 1.0 / 4.0;
+  return 1e-5;
+}
+
 class TiledTechnique : public testing::TestWithParam<std::string> {};
 
 TEST_P(TiledTechnique, RendersTheUntiledImageInForcedTiles) {
@@ -199,12 +223,14 @@ TEST_P(TiledTechnique, RendersTheUntiledImageInForcedTiles) {
       const RunResult tiled = test::harness().run(tiled_spec);
       ASSERT_EQ(tiled.status, RunStatus::ok) << what << ": " << tiled.message;
       EXPECT_GE(tiled.tiles, descriptor.tile_halo ? 2 : 5) << what;
-      // bucketed_kbuffer reconstructs positions through the tile's inverse
-      // projection: float rounding moves its curvatures by ~1e-6 and its
-      // stylised colours by far less than the RGBA8 step it stores them in.
-      const double tolerance = id == "bucketed_kbuffer" ? 1.0 / 255.0 : 1e-5;
       const ImageError difference = compare_images(tiled.image, untiled.image);
-      EXPECT_LE(difference.max_abs, tolerance) << what << " with " << tiled.tiles << " tiles";
+      EXPECT_LE(difference.max_abs, tiled_bound(id)) << what << " with " << tiled.tiles << " tiles";
+      if (id == "stochastic_transparency") {
+        size_t moved = 0;
+        for (size_t i = 0; i < tiled.image.rgba.size(); ++i)
+          moved += std::abs(tiled.image.rgba[i] - untiled.image.rgba[i]) > 1e-5f;
+        EXPECT_LE(moved, tiled.image.rgba.size() / 1000) << what << ": channels moved by a sample on an edge";
+      }
       ASSERT_TRUE(tiled.error.has_value()) << what;
       if (descriptor.exactness == Exactness::exact && id != "bucketed_kbuffer") {
         EXPECT_LE(tiled.error->max_abs, descriptor.exact_tolerance) << what;
@@ -219,6 +245,38 @@ TEST_P(TiledTechnique, RendersTheUntiledImageInForcedTiles) {
 
 INSTANTIATE_TEST_SUITE_P(EveryTileableTechnique, TiledTechnique, testing::ValuesIn(tileable_techniques()),
                          [](const auto& info) { return info.param; });
+
+// Techniques whose storage is many bytes per pixel (textures only, or a
+// k-deep core) declared none and ran untiled far over --memory-budget, with
+// status ok and no word. At 256x256 each needs 2.9 to 5.5 MiB: a budget of
+// 1 MiB tiles them, and the plan's storage fits it.
+TEST(MemoryBudget, TechniquesOfManyBytesPerPixelAreTiledToTheBudget) {
+  for (const std::string id : {"hybrid_transparency", "moment_oit", "stochastic_transparency"}) {
+    RunSpec spec = test::one_frame(id, {}, "spheres", {}, 256);
+    spec.memory_budget = uint64_t(1) << 20;
+    ASSERT_TRUE(builtin_techniques().get(id).storage_need) << id << " declares no storage_need";
+    EXPECT_LE(test::harness().tile_plan(spec).need.total, *spec.memory_budget) << id;
+    const RunResult r = test::harness().run(spec);
+    ASSERT_EQ(r.status, RunStatus::ok) << id << ": " << r.message;
+    EXPECT_GT(r.tiles, 2) << id;
+  }
+}
+
+// illustration_buffer's default parameters (20 iterations, a halo of 22
+// pixels) under a budget that tiles 256x256 spheres: the tiled image stays
+// within its documented bound of the untiled one (1.3e-5 measured, above
+// the 1e-5 of float compositing; the README states 5e-5).
+TEST(MemoryBudget, IllustrationBufferTiledWithItsDefaultParametersStaysWithinItsBound) {
+  RunSpec spec = test::one_frame("illustration_buffer", {}, "spheres", {}, 256);
+  const RunResult untiled = test::harness().run(spec);
+  ASSERT_EQ(untiled.status, RunStatus::ok) << untiled.message;
+  ASSERT_EQ(untiled.tiles, 1);
+  spec.memory_budget = uint64_t(8) << 20;
+  const RunResult tiled = test::harness().run(spec);
+  ASSERT_EQ(tiled.status, RunStatus::ok) << tiled.message;
+  EXPECT_GT(tiled.tiles, 1);
+  EXPECT_LE(compare_images(tiled.image, untiled.image).max_abs, tiled_bound("illustration_buffer"));
+}
 
 // ---- the papers' size on the software GL ------------------------------
 

@@ -28,6 +28,13 @@ constexpr uint64_t kTailBytesPerPixel = 16 + 4;
 constexpr uint64_t kCounterBytes = 8;
 constexpr GLuint kZeroCounters[2] = {0, 0};
 
+// What counters() reports and storage_need declares: the core (two buffers
+// of k 4-byte entries per pixel, the largest single buffers) and the tail.
+uint64_t core_buffer_bytes(uint64_t pixels, int k) { return pixels * uint64_t(k) * 4u; }
+uint64_t storage_bytes(uint64_t pixels, int k) {
+  return pixels * (uint64_t(k) * kSlotBytes + kTailBytesPerPixel) + kCounterBytes;
+}
+
 class HybridTransparency final : public Technique {
  public:
   explicit HybridTransparency(const ParamSet& params)
@@ -43,10 +50,10 @@ class HybridTransparency final : public Technique {
   void resize(int width, int height) override {
     for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
       set_uniform(program, HYBRID_TRANSPARENCY_WIDTH_LOCATION, width);
-    const uint64_t slots = uint64_t(width) * uint64_t(height) * uint64_t(k_);
-    check_slots_fit("hybrid_transparency", k_, width, height, slots * 4, "each core buffer");
-    keys_ = make_buffer(GLsizeiptr(slots * 4));
-    colors_ = make_buffer(GLsizeiptr(slots * 4));
+    const uint64_t pixels = uint64_t(width) * uint64_t(height), core_bytes = core_buffer_bytes(pixels, k_);
+    check_slots_fit("hybrid_transparency", k_, width, height, core_bytes, "each core buffer");
+    keys_ = make_buffer(GLsizeiptr(core_bytes));
+    colors_ = make_buffer(GLsizeiptr(core_bytes));
     gl_check("allocating the hybrid transparency core of " + std::to_string(width) + "x" + std::to_string(height) +
              "x" + std::to_string(k_));
 
@@ -55,8 +62,7 @@ class HybridTransparency final : public Technique {
     tail_count_ = make_texture_2d(GL_R32F, width, height);
     tail_framebuffer_ =
         make_target_framebuffer({&tail_sum_, &tail_count_}, "hybrid_transparency: tail framebuffer (RGBA32F + R32F)");
-    bytes_allocated_ =
-        uint64_t(width) * uint64_t(height) * (uint64_t(k_) * kSlotBytes + kTailBytesPerPixel) + kCounterBytes;
+    bytes_allocated_ = storage_bytes(pixels, k_);
   }
 
   void render(const Frame& frame) override {
@@ -126,6 +132,10 @@ void register_technique_hybrid_transparency(TechniqueRegistry& registry) {
       .stages = {"clear", "fill", "store", "compose"},
       .quality_sweep = {{"k", {"1", "2", "4", "8", "16"}}},
       .create = make_technique<HybridTransparency>,
+      .storage_need = [](const ParamSet& params, const FrameContent& content) {
+        const int k = int(params.integer("k"));
+        return StorageNeed{core_buffer_bytes(content.pixels(), k), storage_bytes(content.pixels(), k)};
+      },
   });
 }
 

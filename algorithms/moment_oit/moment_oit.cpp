@@ -54,6 +54,12 @@ double paper_moment_bias(const MomentConfig& config, bool half) {
   }
 }
 
+// b0, the moments and the RGBA accumulation per pixel (6 moments use an RGBA
+// and an RG target): what counters() reports and storage_need declares.
+uint64_t storage_bytes(uint64_t pixels, const MomentConfig& config, bool half) {
+  return pixels * (half ? 2u : 4u) * (1u + uint64_t(config.moments) + 4u);
+}
+
 class MomentOit final : public Technique {
  public:
   explicit MomentOit(const ParamSet& params)
@@ -124,10 +130,7 @@ class MomentOit final : public Technique {
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
-    const uint64_t scalar = half_ ? 2 : 4;
-    // b0 + the moments + the RGBA accumulation; 6 moments use an RGBA and an RG target.
-    const uint64_t per_pixel = scalar * (1 + uint64_t(config_.moments) + 4);
-    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * per_pixel;
+    c.bytes_allocated = storage_bytes(uint64_t(width_) * uint64_t(height_), config_, half_);
     c.passes = 2;
     c.extra = {{"moment_bias", moment_bias_}};
     return c;
@@ -199,6 +202,11 @@ void register_technique_moment_oit(TechniqueRegistry& registry) {
       .quality_sweep = {{"moments", {"power4", "trig2", "power6", "trig3", "power8", "trig4"}},
                         {"precision", {"half", "float"}}},
       .create = make_technique<MomentOit>,
+      // Textures only (no storage block): the budget, not the largest buffer, tiles it.
+      .storage_need = [](const ParamSet& params, const FrameContent& content) {
+        return StorageNeed{0, storage_bytes(content.pixels(), params.choice("moments", kMomentConfigs),
+                                            params.choice("precision", kPrecisions) == Precision::half)};
+      },
   });
 }
 

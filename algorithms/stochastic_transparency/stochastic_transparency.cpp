@@ -58,6 +58,10 @@ Texture make_multisample_texture(GLenum format, int samples, int width, int heig
 
 const Choices<int> kSampleCounts{{4, "4"}, {8, "8"}, {16, "16"}};  // MSAA samples of the depth pass
 
+// Per sample D32F depth and RGBA32F accumulation, per pixel R32F total
+// transmittance: what counters() reports and storage_need declares.
+uint64_t storage_bytes(uint64_t pixels, int samples) { return pixels * (20u * uint64_t(samples) + 4u); }
+
 class StochasticTransparency final : public Technique {
  public:
   explicit StochasticTransparency(const ParamSet& params)
@@ -135,8 +139,7 @@ class StochasticTransparency final : public Technique {
 
   TechniqueCounters counters() const override {
     TechniqueCounters c;
-    // Per sample D32F depth and RGBA32F accumulation, per pixel R32F total transmittance.
-    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * (20u * uint64_t(samples_) + 4u);
+    c.bytes_allocated = storage_bytes(uint64_t(width_) * uint64_t(height_), samples_);
     c.passes = 2 * uint64_t(passes_) + 1;
     c.extra = {{"effective_samples", double(samples_ * passes_)}};
     return c;
@@ -175,6 +178,11 @@ void register_technique_stochastic_transparency(TechniqueRegistry& registry) {
         return sample_count_support(params.choice("samples", kSampleCounts));
       },
       .create = make_technique<StochasticTransparency>,
+      // Textures only (no storage block): the budget, not the largest buffer, tiles it. The
+      // coverage masks hash the image pixel (oit_image_pixel), so a tile draws the same samples.
+      .storage_need = [](const ParamSet& params, const FrameContent& content) {
+        return StorageNeed{0, storage_bytes(content.pixels(), params.choice("samples", kSampleCounts))};
+      },
   });
 }
 

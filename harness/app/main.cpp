@@ -15,6 +15,7 @@
 #include "harness/app/stress.h"
 #include "harness/app/sweep_cli.h"
 #include "harness/app/viewer/view_command.h"
+#include "harness/core/output_file.h"
 #include "harness/gl/context.h"
 
 namespace {
@@ -40,6 +41,15 @@ void add_bench_options(CLI::App* command, oit::BenchOptions& options, const std:
                       "interleave each block's runs in this many rounds at least (A B C, A B C, ...; the ratios "
                       "paired by round, with 95% intervals); 1: each run whole, one after another")
       ->check(CLI::Range(1, 1000));
+}
+
+// No output of one bench or pareto invocation may be another (the JSON
+// written over the results CSV): refused before anything runs.
+void check_distinct_bench_outputs(const oit::BenchOptions& options) {
+  oit::check_distinct_outputs({{"--csv", options.csv},
+                               {"--json", options.json},
+                               {"--samples", options.samples},
+                               {"--images", options.images_dir}});
 }
 
 // Each command's options live here from parsing to running; `add` registers
@@ -113,7 +123,10 @@ void add_render_command(CLI::App& app, Commands& c) {
 void add_bench_and_pareto_commands(CLI::App& app, Commands& c) {
   auto* bench = app.add_subcommand("bench", "time every combination and append long-form CSV rows");
   add_bench_options(bench, c.bench, "");
-  c.add(bench, [&c] { return oit::run_bench(c.common, c.bench); });
+  c.add(bench, [&c] {
+    check_distinct_bench_outputs(c.bench);
+    return oit::run_bench(c.common, c.bench);
+  });
   // pareto: the bench options, with each technique's quality knobs swept.
   c.pareto.sweep.scenes = {"quads", "spheres"};
   c.pareto.sweep.sizes = {"128x128"};
@@ -125,7 +138,10 @@ void add_bench_and_pareto_commands(CLI::App& app, Commands& c) {
   // quality knobs, several times bench's runs; a quarter of the pixels keeps
   // that to minutes on software GL, and the error ranking holds at that size.
   add_bench_options(pareto, c.pareto, "; smaller than bench's default: pareto runs every knob value");
-  c.add(pareto, [&c] { return oit::run_pareto(c.common, c.pareto); });
+  c.add(pareto, [&c] {
+    check_distinct_bench_outputs(c.pareto);
+    return oit::run_pareto(c.common, c.pareto);
+  });
 }
 
 void add_adaptive_command(CLI::App& app, Commands& c) {
@@ -187,7 +203,10 @@ void add_stats_and_export_commands(CLI::App& app, Commands& c) {
                       "<stage>.<clock>.<median|min|p05|p95|mean>_ms columns")
       ->required();
   exports->add_option("--out,-o", c.export_options.out, "CSV file to write (replaced whole)")->required();
-  c.add(exports, [&c] { return oit::run_export(c.export_options); });
+  c.add(exports, [&c] {
+    oit::check_distinct_outputs({{"--wide", c.export_options.wide}, {"--out", c.export_options.out}});
+    return oit::run_export(c.export_options);
+  });
 }
 
 void add_compare_command(CLI::App& app, Commands& c) {

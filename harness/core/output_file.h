@@ -6,11 +6,16 @@
 //  - Whole files (images, cache entries) are written to a temporary file in
 //    the destination's directory, synced and renamed into place: the
 //    destination holds the old content or the whole new one, never a part.
+//    A SIGTERM or SIGINT while such a temporary file exists removes it
+//    before the process ends; one left by a process killed harder (SIGKILL,
+//    a power cut) is removed by the next write to the same destination once
+//    the process that made it is gone.
 //  - Files many processes append to (result CSVs) are locked with flock and
 //    appended one unit at a time; a failed append is cut back off.
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace oit {
 
@@ -23,6 +28,18 @@ void write_file_atomically(const std::string& path, std::string_view bytes);
 // The same for a file that must not exist yet: false (and nothing written)
 // when `path` exists, whatever it is; never replaces anything.
 bool write_new_file_atomically(const std::string& path, std::string_view bytes);
+
+// One output of a command: the option that names it ("--csv") and its path.
+struct NamedOutput {
+  std::string option;
+  std::string path;
+};
+// Throws std::invalid_argument naming both options and the path when two
+// of `outputs` are the same file (one would overwrite the other): the same
+// inode when both exist, else the same absolute path once normalised (".."
+// and links resolved as far as the path exists). Empty paths (options not
+// given) are left out. Called before anything runs or is written.
+void check_distinct_outputs(const std::vector<NamedOutput>& outputs);
 
 // All `size` bytes to `fd` (short writes and EINTR retried); throws naming
 // `path` with the system's reason (e.g. "No space left on device").

@@ -22,9 +22,16 @@ class ReferenceCache {
   bool enabled() const { return !directory_.empty(); }
   const std::string& directory() const { return directory_; }
   std::string path_for(const std::string& key) const;
-  // A missing, unreadable or malformed file is a miss, never an error; so is
-  // one whose checksum does not match or whose image holds non-finite values.
-  std::optional<Image> load(const std::string& key) const;
+  // A miss, never an error, for anything but a whole entry of `key` (of
+  // `width` x `height` where those are given, > 0): a missing file quietly;
+  // with a warning on stderr naming the file and the problem a FIFO, device,
+  // directory or unreadable file in its place (refused by what it is,
+  // without reading it), and a file whose header is foreign, whose declared
+  // image does not fit its length (checked before anything is allocated),
+  // whose image is of another size, whose checksum does not match or whose
+  // image holds non-finite values. A regular file is then replaced by the
+  // next store(); anything else in the way is left, and store() says so.
+  std::optional<Image> load(const std::string& key, int width = 0, int height = 0) const;
   // Written through write_file_atomically with a checksum at the end, so a
   // crash leaves no half file and damage is found. A failure to write only
   // costs the cache: it is reported on stderr, the run goes on.
