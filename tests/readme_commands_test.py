@@ -78,6 +78,11 @@ NOT_RUN = {
     "oitbench pareto": ("the command's name in a sentence (as written, without its required --csv, it is "
                         "CLI11's usage error)",
                         ("Cli.ParetoSweepsTheDeclaredKnobsUnlessTheUserSetsThem",)),
+    "build/harness/oitbench list --markdown --params my_oit":
+        ("prints a technique README's parameter table; my_oit stands for a new technique: the tests run the "
+         "command and hold every technique README to its output",
+         ("TechniqueReadmes.CommandPrintsTheTableAndRefusesAnUnknownTechnique",
+          "EveryTechnique/TechniqueReadme.HoldsTheGeneratedParameterTable/*")),
     "ctest -R MyOit": ("the test of the README's hypothetical my_oit technique, which does not exist", ()),
     "oitbench adaptive": ("as written over 10 minutes on llvmpipe (every switch of every technique on 4 scenes, "
                           "2 repeats)", ("AdaptiveCommand.EarlyExitAndSceneRectOnAndOffInTheTableAndTheCsv",)),

@@ -23,11 +23,10 @@
 // constant bound K (break at the first BKB_EMPTY), so the compiler unrolls
 // it into K copies, and llvmpipe runs a SIMD group of fragments in lockstep
 // with masked lanes: every copy executes for the whole group even after all
-// lanes have met BKB_EMPTY (inferred from the timing below; the compiled code
-// was not inspected). Measured (torus 256x256, k = 16, medians): the
-// same brute force with a bound the compiler cannot see took 12.5 ms instead
-// of 19.9 ms (buckets=on 11.1 ms); the rest is the extra BKB_EMPTY read and
-// the shape tests. The single-bucket path therefore bounds its loops by the
+// lanes have met BKB_EMPTY (inferred from timings, README "buckets=auto on
+// one object"; the compiled code was not inspected): the same brute force
+// with a bound the compiler cannot see came close to buckets=on, the rest
+// being the extra BKB_EMPTY read and the shape tests. The single-bucket path therefore bounds its loops by the
 // list length (bkb_whole_list), never by K.
 //
 // Curvature (Vergne et al. 2009 style, in screen space): from the four

@@ -27,8 +27,8 @@ layout(std430, binding = KBUFFER_COUNTERS_BINDING) coherent buffer KBufferCounte
 layout(location = KBUFFER_WIDTH_LOCATION) uniform int u_width;
 // Slots per pixel, 1 <= u_k <= K. A uniform, not the define K: with k=auto
 // one program (K = the next power of two) serves every k up to K, and loops
-// bounded by a uniform are not unrolled, which made compose up to 2x faster
-// on llvmpipe (README, "k=auto"). K only sizes compose's local arrays.
+// bounded by a uniform are not unrolled, which made compose faster on
+// llvmpipe (README, "k=auto"). K only sizes compose's local arrays.
 layout(location = KBUFFER_SLOTS_LOCATION) uniform int u_k;
 
 uint kbuffer_first_slot() { return oit_pixel_index(u_width) * uint(u_k); }

@@ -13,8 +13,8 @@
 // `next` pointers visited only the head, and a second loop walking the list
 // that merely read the local array made the blend loop after it stop after
 // one iteration. For the network a loop would also cost its speed: a loop
-// around the compare-exchanges made llvmpipe keep the registers in memory
-// (30x slower), so the network resolve is straight-line code.
+// around the compare-exchanges made llvmpipe keep the registers in memory,
+// so the network resolve is straight-line code.
 #include "algorithms/linked_list/resolve_common.glsl"
 
 #if defined(LL_SORT_NETWORK)

@@ -7,9 +7,9 @@ layout(location = 0) out vec4 out_color;
 // Read-only views of the lists (see linked_list.cpp: a buffer texture fetch
 // or image load is a vector gather on llvmpipe, an SSBO load is a loop over
 // the lanes). A node is two RGBA32UI texels: colour bits, then the link.
-// The nodes are read as an image: on llvmpipe (Mesa 22.3) the network
-// resolve of 32 quads took 14.5 ms with imageLoad against 19.1 ms with
-// texelFetch of the same buffer (the insertion resolve: 44.0 against 43.2).
+// The nodes are read as an image: on llvmpipe (Mesa 22.3) imageLoad made
+// the network resolve faster than texelFetch of the same buffer (the
+// insertion resolve, bound by its local array, did not change; README).
 #if defined(LL_COMPACT)
 layout(binding = LINKED_LIST_NODES_IMAGE_UNIT, r32ui) readonly uniform uimageBuffer u_nodes;
 #else

@@ -31,6 +31,14 @@ void print_params(const ParamSchema& schema) {
   }
 }
 
+// Text for a Markdown table cell: a cell ends at '|' and its row at a line
+// break, so a '|' in the text is escaped and a line break becomes a space.
+std::string markdown_cell(const std::string& text) {
+  std::string out;
+  for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c == '\n' ? ' ' : c);
+  return out;
+}
+
 }  // namespace
 
 std::string platform_text(const DeviceProfile& device) {
@@ -42,12 +50,6 @@ RunContext run_context(const DeviceProfile& device) {
 }
 
 std::string technique_table_markdown(const TechniqueRegistry& registry) {
-  // Markdown cells end at '|'; none of the registry's texts may hold one.
-  auto cell = [](const std::string& text) {
-    std::string out;
-    for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
-    return out;
-  };
   std::string table =
       "| id | technique | paper | kind | parameters (default, range) | stages |\n|---|---|---|---|---|---|\n";
   for (const auto& t : registry.all()) {
@@ -60,8 +62,19 @@ std::string technique_table_markdown(const TechniqueRegistry& registry) {
     const std::string kind = t.is_reference ? "exact (the reference)"
                              : t.exactness == Exactness::exact ? "exact"
                                                                : "approximate";
-    table += "| `" + t.id + "` | " + cell(t.display_name) + " | " + cell(t.paper) + " | " + kind + " | " +
-             cell(params.empty() ? "-" : params) + " | " + stages + " |\n";
+    table += "| `" + t.id + "` | " + markdown_cell(t.display_name) + " | " + markdown_cell(t.paper) + " | " + kind +
+             " | " + markdown_cell(params.empty() ? "-" : params) + " | " + stages + " |\n";
+  }
+  return table;
+}
+
+std::string technique_params_markdown(const TechniqueDescriptor& technique) {
+  if (technique.params.empty()) return "`" + technique.id + "` has no parameters.\n";
+  std::string table = "| parameter | default | range | description |\n|---|---|---|---|\n";
+  for (const auto& p : technique.params) {
+    const std::string default_text = p.default_value.empty() ? "empty" : "`" + p.default_value + "`";
+    table += "| `" + p.name + "` | " + default_text + " | " + markdown_cell(p.range_text()) + " | " +
+             markdown_cell(p.description) + " |\n";
   }
   return table;
 }

@@ -89,6 +89,11 @@ int run_list(const CommonOptions& common);
 // --markdown` prints it; a test holds the README to it): one row per
 // technique with its paper, kind, parameters (default and range) and stages.
 std::string technique_table_markdown(const TechniqueRegistry& registry);
+// A technique README's parameter table, generated from its descriptor
+// (`oitbench list --markdown --params ID` prints it; a test holds every
+// technique README to it): one row per parameter with its default, range
+// and description, so that each parameter is described once, in the registry.
+std::string technique_params_markdown(const TechniqueDescriptor& technique);
 int run_render(const CommonOptions& common, const RenderOptions& options);
 int run_bench(const CommonOptions& common, const BenchOptions& options);
 int run_stats(const CommonOptions& common, const StatsOptions& options);

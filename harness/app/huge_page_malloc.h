@@ -6,7 +6,7 @@
 // resolve of 32 quads at 256x256 reads a 64 MiB node pool in an order that
 // touches ~1000 distinct 4 KiB pages per 64x64 raster tile, which is more
 // than the TLB holds: it measured 8.7 ms with 4 KiB pages and 6.6 ms with
-// 2 MiB pages (llvmpipe, 2-core machine; algorithms/linked_list/README.md).
+// 2 MiB pages (llvmpipe, 2-core machine; results/reference/linked_list/README.md).
 // Kernels configured with THP in "madvise" mode (Debian's default) give huge
 // pages only to memory that asks for them, and glibc (2.35+) asks for its
 // malloc memory when GLIBC_TUNABLES holds glibc.malloc.hugetlb=1, a setting

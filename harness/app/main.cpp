@@ -57,6 +57,7 @@ void check_distinct_bench_outputs(const oit::BenchOptions& options) {
 struct Commands {
   oit::CommonOptions common;
   bool list_markdown = false;
+  std::string list_params;  // `list --markdown --params ID`: that technique's parameter table
   oit::RenderOptions render;
   oit::BenchOptions bench, pareto;
   oit::AdaptiveOptions adaptive;
@@ -89,11 +90,19 @@ void add_common_options(CLI::App& app, Commands& c) {
 
 void add_list_command(CLI::App& app, Commands& c) {
   auto* list = app.add_subcommand("list", "techniques with their parameters, scenes, device");
-  list->add_flag("--markdown", c.list_markdown,
-                 "print only the technique table of the README, from the registry (no GL)");
+  auto* markdown = list->add_flag("--markdown", c.list_markdown,
+                                  "print only the technique table of the README, from the registry (no GL)");
+  list->add_option("--params", c.list_params,
+                   "with --markdown: print only this technique's parameter table, the one in "
+                   "algorithms/ID/README.md")
+      ->needs(markdown);
   c.add(list, [&c] {
     if (!c.list_markdown) return oit::run_list(c.common);
-    std::fputs(oit::technique_table_markdown(oit::builtin_techniques()).c_str(), stdout);
+    const oit::TechniqueRegistry& registry = oit::builtin_techniques();
+    const std::string text = c.list_params.empty()
+                                 ? oit::technique_table_markdown(registry)
+                                 : oit::technique_params_markdown(registry.get(c.list_params));
+    std::fputs(text.c_str(), stdout);
     return 0;
   });
 }
