@@ -210,7 +210,7 @@ const Image& Harness::reference_image(const std::string& scene_spec, const RawPa
       << background.b;
   auto it = references_.find(key.str());
   if (it != references_.end()) return it->second;
-  if (auto cached = reference_cache_.load(key.str())) {
+  if (auto cached = reference_cache_.load(key.str(), width, height)) {
     ++references_loaded_;
     return references_.emplace(key.str(), std::move(*cached)).first->second;
   }
