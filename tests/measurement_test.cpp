@@ -103,15 +103,29 @@ std::map<std::string, std::vector<std::string>> total_rows(const test::CsvTable&
   return rows;
 }
 
+// `oitbench bench ARGUMENTS --csv` into a new folder `name`: its output, the
+// CSV and its total rows by technique.
+struct Bench {
+  test::Outcome outcome;
+  test::CsvTable table;
+  std::map<std::string, std::vector<std::string>> totals;
+};
+Bench bench(const std::string& name, const std::string& arguments, const std::string& environment = "") {
+  const std::string dir = out_dir(name);
+  Bench run{test::run_oitbench(dir, "bench " + arguments + " --csv " + dir + "/runs.csv", environment), {}, {}};
+  if (run.outcome.exit_code == 0) {
+    run.table = test::read_csv_table(dir + "/runs.csv");
+    run.totals = total_rows(run.table);
+  }
+  return run;
+}
+
 TEST(Measurement, BenchInRoundsRecordsIntervalsRatiosAndResolvedParameters) {
-  const std::string dir = out_dir("rounds");
-  const std::string csv = dir + "/runs.csv";
-  const auto outcome = test::run_oitbench(
-      dir, "bench -t unsorted -t linearized_fragment_buffer -t illustration_buffer -s torus --size 64x64 "
-           "--rounds 3 --min-frames 6 --precision 0.5 --max-seconds 20 --csv " + csv);
+  const Bench run = bench("rounds",
+                          "-t unsorted -t linearized_fragment_buffer -t illustration_buffer -s torus --size 64x64 "
+                          "--rounds 3 --min-frames 6 --precision 0.5 --max-seconds 20");
+  const auto& [outcome, table, rows] = run;
   ASSERT_EQ(outcome.exit_code, 0) << outcome.output;
-  const test::CsvTable table = test::read_csv_table(csv);
-  const auto rows = total_rows(table);
   ASSERT_EQ(rows.size(), 3u) << outcome.output;
   for (const auto& [technique, row] : rows) {
     SCOPED_TRACE(technique);
@@ -154,39 +168,30 @@ TEST(Measurement, BenchInRoundsRecordsIntervalsRatiosAndResolvedParameters) {
 }
 
 TEST(Measurement, ACapEndsARunThatMissesItsPrecision) {
-  const std::string dir = out_dir("cap");
-  const std::string csv = dir + "/runs.csv";
-  const auto outcome = test::run_oitbench(
-      dir, "bench -t unsorted -s quads --scene-set layers=2 --size 32x32 --rounds 1 --min-frames 6 --max-frames 9 "
-           "--precision 0.001 --csv " + csv);
+  const Bench run = bench("cap", "-t unsorted -s quads --scene-set layers=2 --size 32x32 --rounds 1 --min-frames 6 "
+                                 "--max-frames 9 --precision 0.001");
+  const auto& [outcome, table, rows] = run;
   ASSERT_EQ(outcome.exit_code, 0) << outcome.output;
-  const test::CsvTable table = test::read_csv_table(csv);
-  const auto rows = total_rows(table);
   ASSERT_EQ(rows.size(), 1u);
   const std::vector<std::string> row = rows.at("unsorted");
   EXPECT_EQ(row[table.column("frames")], "9");
   EXPECT_EQ(row[table.column("precision_reached")], "false");
   EXPECT_NE(outcome.output.find("precision 0.001 not reached after 9 frames"), std::string::npos) << outcome.output;
   // --frames fixes the count and sets no precision target.
-  const auto fixed = test::run_oitbench(
-      dir, "bench -t unsorted -s quads --scene-set layers=2 --size 32x32 --frames 4 --csv " + dir + "/fixed.csv");
-  ASSERT_EQ(fixed.exit_code, 0) << fixed.output;
-  const test::CsvTable fixed_table = test::read_csv_table(dir + "/fixed.csv");
-  const std::vector<std::string> fixed_row = total_rows(fixed_table).at("unsorted");
-  EXPECT_EQ(fixed_row[fixed_table.column("frames")], "4");
-  EXPECT_EQ(fixed_row[fixed_table.column("precision_reached")], "");
+  const Bench fixed = bench("fixed", "-t unsorted -s quads --scene-set layers=2 --size 32x32 --frames 4");
+  ASSERT_EQ(fixed.outcome.exit_code, 0) << fixed.outcome.output;
+  const std::vector<std::string> fixed_row = fixed.totals.at("unsorted");
+  EXPECT_EQ(fixed_row[fixed.table.column("frames")], "4");
+  EXPECT_EQ(fixed_row[fixed.table.column("precision_reached")], "");
 }
 
 TEST(Measurement, ClocksFromNvmlAreRecordedAndAMovedClockIsFlagged) {
-  const std::string dir = out_dir("nvml");
-  const std::string csv = dir + "/runs.csv";
   // The stand-in NVML reports an SM clock 30% higher at every read.
-  const auto outcome = test::run_oitbench(
-      dir, "bench -t unsorted -s quads --scene-set layers=2 --size 32x32 --frames 3 --csv " + csv,
-      "OIT_NVML_LIBRARY=" + std::string(OIT_FAKE_NVML));
+  const Bench run = bench("nvml", "-t unsorted -s quads --scene-set layers=2 --size 32x32 --frames 3",
+                          "OIT_NVML_LIBRARY=" + std::string(OIT_FAKE_NVML));
+  const auto& [outcome, table, rows] = run;
   ASSERT_EQ(outcome.exit_code, 0) << outcome.output;
-  const test::CsvTable table = test::read_csv_table(csv);
-  const std::vector<std::string> row = total_rows(table).at("unsorted");
+  const std::vector<std::string> row = rows.at("unsorted");
   const int start = std::stoi(row[table.column("gpu_sm_mhz_start")]);
   const int end = std::stoi(row[table.column("gpu_sm_mhz_end")]);
   EXPECT_GT(end, start * 12 / 10);
