@@ -70,6 +70,17 @@ TEST(Doctor, RefusesAnApproximateTechniqueAndASweptValue) {
   EXPECT_NE(swept.output.find("give one value per key"), std::string::npos) << swept.output;
 }
 
+// The one rule every judge shares: exact classes are held to the reference
+// on a run that counted no dropped fragment, approximate ones never.
+TEST(ExactnessClasses, HeldToTheReferenceOnlyWithoutCountedDrops) {
+  EXPECT_TRUE(held_to_reference(Exactness::exact, 0));
+  EXPECT_FALSE(held_to_reference(Exactness::exact, 1));
+  EXPECT_TRUE(held_to_reference(Exactness::exact_while_storage_covers, 0));
+  EXPECT_FALSE(held_to_reference(Exactness::exact_while_storage_covers, 65536));
+  EXPECT_FALSE(held_to_reference(Exactness::approximate, 0));
+  EXPECT_STREQ(to_string(Exactness::exact_while_storage_covers), "exact while storage covers");
+}
+
 // The stress subset names cases that exist (a renamed case would make the
 // doctor run nothing).
 TEST(Doctor, StressSubsetNamesReducedCases) {
