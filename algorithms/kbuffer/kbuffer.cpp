@@ -213,7 +213,9 @@ void register_technique_kbuffer(TechniqueRegistry& registry) {
                  ParamSpec::integer("auto_k_memory_mb", 1024, 1, 1 << 20,
                                     "k=auto only: most MiB of slot storage (24 bytes per slot); k is capped to fit")},
       .stages = {"count", "clear", "fill", "store", "compose"},  // count: only with k=auto
-      .exactness = Exactness::exact,
+      // k slots per pixel: exact where k covers the depth complexity; with
+      // tail=drop every fragment beyond them is counted in fragments_dropped.
+      .exactness = Exactness::exact_while_storage_covers,
       .quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32"}}, {"tail", kTails.names()}},
       .adaptive_switches = {{"k_auto",
                              "sizes k from the view's depth complexity (a counting pass) instead of the worst-case "

@@ -104,6 +104,11 @@ void register_technique_multi_layer_alpha_blending(TechniqueRegistry& registry) 
       .params = {ParamSpec::integer("k", 4, 1, 32,
                                     "layers per pixel; a fragment that makes k + 1 merges the two farthest")},
       .stages = {"clear", "fill", "compose"},
+      // Exact when k covers the depth complexity, but a fragment beyond k is
+      // merged, not dropped, and fragments_dropped counts lock failures
+      // only: a run that counted nothing may still be approximate, so it
+      // cannot promise exact_while_storage_covers.
+      .exactness = Exactness::approximate,
       .quality_sweep = {{"k", {"1", "2", "4", "8", "16"}}},
       .create = make_technique<MultiLayerAlphaBlending>,
       .storage_need = [](const ParamSet& params, const FrameContent& content) {

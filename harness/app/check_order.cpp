@@ -13,16 +13,22 @@ std::vector<std::string> order_variants(int seeds) {
   return orders;
 }
 
+const char* order_check_kind(const TechniqueDescriptor& technique, const OrderCheck& check) {
+  if (check.exact) return "exact";
+  return technique.exactness == Exactness::approximate ? "approximate" : "truncated";
+}
+
 OrderCheck check_order(Harness& harness, const TechniqueDescriptor& technique, const RunSpec& base, int seeds) {
   OrderCheck check;
   check.technique = technique.id;
-  check.exact = technique.exactness == Exactness::exact;
   RunSpec spec = base;
   spec.technique = technique.id;
   spec.submission_order = "original";
   const RunResult original = harness.run(spec);
   check.status = to_string(original.status);
   check.message = original.message;
+  check.fragments_dropped = original.counters.fragments_dropped;
+  check.exact = held_to_reference(technique.exactness, check.fragments_dropped);
   if (original.status != RunStatus::ok) return check;
   auto moved = [&](const std::string& order) {
     spec.submission_order = order;
@@ -75,10 +81,10 @@ int run_check_order(const CommonOptions& common, const CheckOrderOptions& option
     const char* verdict = c.status != "ok" ? c.status.c_str() : c.passed ? "pass" : "FAIL";
     failures += c.status == "ok" && !c.passed;
     if (c.status == "ok") {
-      std::printf("%-22s %-12s %-9s %14.3g %14.3g  %s\n", t->id.c_str(), c.exact ? "exact" : "approximate", verdict,
+      std::printf("%-22s %-12s %-9s %14.3g %14.3g  %s\n", t->id.c_str(), order_check_kind(*t, c), verdict,
                   c.repeat_difference, c.largest_difference, c.worst_order.empty() ? "-" : c.worst_order.c_str());
     } else {
-      std::printf("%-22s %-12s %-9s %14s %14s  %s\n", t->id.c_str(), c.exact ? "exact" : "approximate", verdict, "",
+      std::printf("%-22s %-12s %-9s %14s %14s  %s\n", t->id.c_str(), order_check_kind(*t, c), verdict, "",
                   "", c.message.c_str());
     }
   }

@@ -25,11 +25,15 @@ struct OrderCheck {
   double repeat_difference = 0;   // same order, second frame set
   double largest_difference = 0;  // over every other order
   std::string worst_order;
-  bool exact = false;
-  bool passed = true;             // exact techniques: every difference within tolerance
+  uint64_t fragments_dropped = 0;  // by the original-order frame
+  bool exact = false;             // held to its exact_tolerance on this run (held_to_reference)
+  bool passed = true;             // held runs: every difference within tolerance
 };
 
 std::vector<std::string> order_variants(int seeds);
+// The check's kind column: "exact" (held to its tolerance), "truncated" (an
+// exact class that counted dropped fragments) or "approximate".
+const char* order_check_kind(const TechniqueDescriptor& technique, const OrderCheck& check);
 OrderCheck check_order(Harness& harness, const TechniqueDescriptor& technique, const RunSpec& base, int seeds);
 int run_check_order(const CommonOptions& common, const CheckOrderOptions& options);
 

@@ -10,6 +10,7 @@
 #include "harness/app/adaptive.h"
 #include "harness/app/check_order.h"
 #include "harness/app/commands.h"
+#include "harness/app/doctor.h"
 #include "harness/app/huge_page_malloc.h"
 #include "harness/app/pareto.h"
 #include "harness/app/stress.h"
@@ -63,6 +64,7 @@ struct Commands {
   oit::AdaptiveOptions adaptive;
   oit::StressOptions stress;
   oit::CheckOrderOptions order;
+  oit::DoctorOptions doctor;
   oit::StatsOptions stats;
   oit::ExportOptions export_options;
   oit::ViewOptions view;
@@ -197,6 +199,18 @@ void add_check_order_command(CLI::App& app, Commands& c) {
   c.add(cmd, [&c] { return oit::run_check_order(c.common, c.order); });
 }
 
+void add_doctor_command(CLI::App& app, Commands& c) {
+  auto* cmd = app.add_subcommand("doctor", "check this device before trusting its numbers: profile, clocks, frame "
+                                            "floor, and every exact technique held to its class here (exit 3 if not)");
+  oit::add_techniques_cli_option(cmd, c.doctor.techniques, "; the exact ones among them are checked");
+  cmd->add_option("--set", c.doctor.technique_sets,
+                  "key=value or technique.key=value: a parameter the checks run with (repeatable)");
+  cmd->add_option("--size", c.doctor.size, "WIDTHxHEIGHT of every check");
+  cmd->add_option("--stress-timeout", c.doctor.stress_timeout_s, "seconds per stress case before it counts as a hang")
+      ->check(CLI::Range(1.0, 86400.0));
+  c.add(cmd, [&c] { return oit::run_doctor(c.common, c.doctor); });
+}
+
 void add_stats_and_export_commands(CLI::App& app, Commands& c) {
   auto* stats = app.add_subcommand("stats", "fragments per pixel of one scene view: triangles, objects, depth "
                                              "complexity, list-length histogram, Psi, heatmap");
@@ -245,6 +259,7 @@ int main(int argc, char** argv) {
   add_adaptive_command(app, c);
   add_stress_command(app, c);
   add_check_order_command(app, c);
+  add_doctor_command(app, c);
   add_stats_and_export_commands(app, c);
   add_compare_command(app, c);
   c.add(oit::add_view_command(app, c.view), [&c] { return oit::run_view(c.common, c.view); });

@@ -3,6 +3,9 @@
 // each run on every technique in its own process (so a crash or a hang is a
 // verdict, not the end of the suite), judged, printed as a table and
 // written to CSV.
+#include <glm/glm.hpp>
+
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,6 +59,11 @@ struct StressOptions {
 // Channel values of a result that no correct output of `technique` holds:
 // not finite, below 0 or above its declared output_max (with float margins).
 size_t values_outside_output_range(const TechniqueDescriptor& technique, const std::vector<float>& rgba);
+
+// The closed-form image of a scene that has one (quads, stress_layers:
+// uniform over the image), from its raw parameters; nullopt for the others.
+std::optional<glm::vec4> scene_closed_form(const std::string& scene, const RawParams& raw,
+                                           const glm::vec3& background);
 
 int run_stress(const CommonOptions& common, const StressOptions& options);
 // Runs one case of one technique in a child process and judges it.

@@ -41,6 +41,19 @@ glm::vec2 Frame::near_far() const {
   return {(p[3][2] + 1.0f) / p[2][2], (p[3][2] - 1.0f) / p[2][2]};
 }
 
+const char* to_string(Exactness exactness) {
+  switch (exactness) {
+    case Exactness::exact: return "exact";
+    case Exactness::exact_while_storage_covers: return "exact while storage covers";
+    case Exactness::approximate: return "approximate";
+  }
+  return "approximate";
+}
+
+bool held_to_reference(Exactness exactness, uint64_t fragments_dropped) {
+  return exactness != Exactness::approximate && fragments_dropped == 0;
+}
+
 std::optional<double> find_figure(const std::vector<Figure>& figures, const std::string& name) {
   for (const Figure& figure : figures)
     if (figure.name == name) return figure.value;

@@ -78,7 +78,27 @@ struct SceneFacts {
   bool indexed = true;
 };
 
-enum class Exactness { exact, approximate };
+// What a technique promises about its image against the exact reference
+// (docs/ARCHITECTURE.md, "The plugin contract"):
+// - exact: within exact_tolerance of the reference on every scene whose
+//   depth complexity its default caps cover (60 fragments per pixel or
+//   more), dropping nothing there; beyond a cap it counts, in
+//   fragments_dropped, every fragment it could not keep.
+// - exact_while_storage_covers: a fixed per-pixel storage (k slots) that a
+//   scene may outgrow; every fragment the storage could not hold is counted
+//   in fragments_dropped, and a run that counted none is exact.
+// - approximate: no promise about the reference; a finite image in
+//   [0, output_max].
+enum class Exactness { exact, exact_while_storage_covers, approximate };
+
+// "exact", "exact while storage covers", "approximate": what `list`, the
+// README's technique table and the viewer call the class.
+const char* to_string(Exactness exactness);
+// Whether a run of a technique of this class that dropped
+// `fragments_dropped` fragments must match the reference within its
+// exact_tolerance: exact and exact-while-storage-covers runs that dropped
+// nothing; a run that counted its truncation is judged on finiteness only.
+bool held_to_reference(Exactness exactness, uint64_t fragments_dropped);
 
 struct FrameContent;
 
