@@ -81,6 +81,11 @@ glm::vec4 drawn_texel(const Program& program);
 // One instance of a technique with default parameters, sized width x height,
 // rendering frames into its own RGBA32F target (render_frame, as the
 // harness does) and reading each image back.
+// The parameters `given` as the harness resolves them on this device (the
+// descriptor's resolution rule, for an empty frame of width x height): what a
+// technique built outside Harness::run takes.
+ParamSet resolved_params(const TechniqueDescriptor& descriptor, const RawParams& given, int width, int height);
+
 struct TechniqueRenderer {
   std::unique_ptr<Technique> technique;
   int width, height;

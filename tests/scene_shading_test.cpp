@@ -99,7 +99,7 @@ Image run_time_branch_image(const std::string& technique, const std::string& sce
   const TechniqueDescriptor& descriptor = builtin_techniques().get(technique);
   const Scene scene = load_scene(scene_id, scene_params);
   const SceneGpu gpu(scene);
-  std::unique_ptr<Technique> instance = descriptor.create(ParamSet(descriptor.params, {}, technique));
+  std::unique_ptr<Technique> instance = descriptor.create(test::resolved_params(descriptor, {}, size, size));
   instance->resize(size, size);
   RenderTarget target(size, size);
   StageClock clock(ClockKind::wall);

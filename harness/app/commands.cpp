@@ -59,9 +59,7 @@ std::string technique_table_markdown(const TechniqueRegistry& registry) {
       params += (params.empty() ? "" : ", ") + ("`" + p.name + "` (" + default_text + "; " + p.range_text() + ")");
     }
     for (const auto& stage : t.stages) stages += (stages.empty() ? "" : ", ") + stage;
-    const std::string kind = t.is_reference ? "exact (the reference)"
-                             : t.exactness == Exactness::exact ? "exact"
-                                                               : "approximate";
+    const std::string kind = t.is_reference ? "exact (the reference)" : to_string(t.exactness);
     table += "| `" + t.id + "` | " + markdown_cell(t.display_name) + " | " + markdown_cell(t.paper) + " | " + kind +
              " | " + markdown_cell(params.empty() ? "-" : params) + " | " + stages + " |\n";
   }
@@ -99,7 +97,7 @@ int run_list(const CommonOptions& common) {
     std::string stages;
     for (const auto& s : t.stages) stages += (stages.empty() ? "" : ", ") + s;
     std::printf("  %-20s %s [%s%s]\n      paper: %s\n      stages: %s\n", t.id.c_str(), t.display_name.c_str(),
-                t.exactness == Exactness::exact ? "exact" : "approximate", t.is_reference ? ", reference" : "",
+                to_string(t.exactness), t.is_reference ? ", reference" : "",
                 t.paper.c_str(), stages.c_str());
     print_params(t.params);
   }

@@ -194,7 +194,7 @@ void Viewer::panel_technique(Slot& slot, const char* label) {
       }
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("%s (%s)\n%s", t.display_name.c_str(),
-                          t.exactness == Exactness::exact ? "exact" : "approximate", t.paper.c_str());
+                          to_string(t.exactness), t.paper.c_str());
     }
     ImGui::EndCombo();
   }
