@@ -625,6 +625,12 @@ TEST(Cli, SetAndSceneSetScopesAreCheckedAndRepeatsRefusedInEveryCommand) {
       {"check-order -t kbuffer --set kbuffer.k=0", "parameter 'k' = '0' is out of range"},
       {"check-order -s quads --scene-set torus.layers=4", "torus is not among the selected scenes (quads)"},
       {"adaptive -s quads:layers=2,layers=3", "--scene 'quads:layers=2,layers=3': 'layers' is given twice"},
+      {"render -t kbuffer --set k=2 --set k=3 -o " + kOut + "/never.png", "--set k is given twice (k=2, k=3); give it once"},
+      {"render -t kbuffer --set linked_list.max_per_pixel=2 -o " + kOut + "/never.png",
+       "linked_list is not among the selected techniques (kbuffer)"},
+      {"render -s quads --scene-set torus.layers=4 -o " + kOut + "/never.png",
+       "torus is not among the selected scenes (quads)"},
+      {"stats -s quads --scene-set layers=2 --scene-set layers=3", "--scene-set layers is given twice"},
   };
   for (const Case& c : refused) {
     const Outcome o = run_oitbench(c.arguments);
@@ -638,6 +644,16 @@ TEST(Cli, SetAndSceneSetScopesAreCheckedAndRepeatsRefusedInEveryCommand) {
   ASSERT_EQ(scoped.exit_code, 0) << scoped.output;
   EXPECT_NE(scoped.output.find("[1/2] unsorted on quads layers=4 8x8 ... "), std::string::npos) << scoped.output;
   EXPECT_NE(scoped.output.find("[2/2] unsorted on torus 8x8 ... "), std::string::npos) << scoped.output;
+  // render and stats take scoped keys as bench does.
+  const std::string image = fresh_output("scoped_render.pfm");
+  const Outcome render = run_oitbench("render -t kbuffer --set kbuffer.k=2 -s quads --scene-set quads.layers=4 "
+                                      "--size 8x8 -o " + image);
+  ASSERT_EQ(render.exit_code, 0) << render.output;
+  EXPECT_NE(render.output.find("kbuffer on quads 8x8 -> " + image + " (max error "), std::string::npos)
+      << render.output;
+  const Outcome stats = run_oitbench("stats -s quads --scene-set quads.layers=3 --size 8x8");
+  ASSERT_EQ(stats.exit_code, 0) << stats.output;
+  EXPECT_NE(stats.output.find("depth complexity  max 3,"), std::string::npos) << stats.output;
   // check-order takes --set, scoped like bench's.
   const Outcome order = run_oitbench("check-order -t kbuffer -t unsorted --set kbuffer.k=2 --size 8x8 --seeds 1");
   EXPECT_EQ(order.exit_code, 0) << order.output;

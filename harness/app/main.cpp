@@ -195,6 +195,27 @@ void add_stats_and_export_commands(CLI::App& app, Commands& c) {
   c.add(exports, [&c] { return oit::run_export(c.export_options); });
 }
 
+// key=value texts of `params`, as run_render and run_stats parse them.
+std::vector<std::string> assignments_of(const oit::RawParams& params) {
+  std::vector<std::string> texts;
+  for (const auto& [key, value] : params) texts.push_back(key + "=" + value);
+  return texts;
+}
+
+// render and stats read key=value texts themselves: they get them checked
+// and resolved as the sweeps' are (scopes, repeats, keys; technique and
+// scene named first), the scope taken off.
+void resolve_one_value_sets(Commands& c, const CLI::App* command) {
+  const oit::TechniqueRegistry& registry = oit::builtin_techniques();
+  if (command->get_name() == "render") {
+    c.render.sets = assignments_of(
+        oit::one_value_technique_params(c.render.sets, {&registry.get(c.render.technique)}, registry).front());
+    c.render.scene_sets = assignments_of(oit::one_value_scene_params(c.render.scene_sets, c.render.scene));
+  }
+  if (command->get_name() == "stats")
+    c.stats.scene_sets = assignments_of(oit::one_value_scene_params(c.stats.scene_sets, c.stats.scene));
+}
+
 // Checks of bench's and pareto's options that need to know which were
 // given; run before anything opens.
 void check_bench_options(const CLI::App* command, const oit::BenchOptions& options) {
@@ -232,6 +253,7 @@ int main(int argc, char** argv) {
     for (const auto& [command, run] : c.runs) {
       if (!*command) continue;
       if (command->get_name() == "render") oit::refuse_empty_value(command, "--memory-budget", "512M");
+      resolve_one_value_sets(c, command);
       if (command->get_name() == "bench") check_bench_options(command, c.bench);
       if (command->get_name() == "pareto") check_bench_options(command, c.pareto);
       return run();
