@@ -588,6 +588,8 @@ TEST(Cli, MistypedNamesGetTheClosestOneSuggested) {
   const std::vector<Case> cases = {
       {"benchmark", "oitbench: unknown command 'benchmark'; did you mean bench?", 2},
       {"bench --frame 5 --csv " + csv, "oitbench bench: unknown option '--frame'; did you mean --frames?", 2},
+      {"-t kbuffer bench --csv " + csv, "oitbench: -t is an option of a command: give it after the command "
+                                        "(oitbench bench -t ...)", 2},
       {"bench -t linked_lsit --csv " + csv, "unknown technique 'linked_lsit'; did you mean linked_list?", 1},
       {"bench -s quadz --csv " + csv, "unknown scene 'quadz'; did you mean quads?", 1},
       {"bench -t kbuffer --set kk=4 --csv " + csv, "--set kk=4: technique 'kbuffer' has no parameter 'kk'; did you "

@@ -107,11 +107,26 @@ inline std::string parse_error_hint(const CLI::App& app, const std::string& prog
     const CLI::Option* option = command ? command->get_option_no_throw(name) : nullptr;
     if (!option) option = app.get_option_no_throw(name);
     if (!option) {
+      const std::string where = program + (command ? " " + command->get_name() : "");
+      if (!command) {
+        // `oitbench -t kbuffer bench`: a command's option before the command
+        // (the one named later on the line, else the first that has it).
+        std::vector<const CLI::App*> owners = commands;
+        for (int later = argc - 1; later > i; --later) {
+          const auto named = std::find(subcommands.begin(), subcommands.end(), std::string(argv[later]));
+          if (named != subcommands.end()) owners.insert(owners.begin(), commands[size_t(named - subcommands.begin())]);
+        }
+        for (const CLI::App* other : owners)
+          if (other->get_option_no_throw(name))
+            return where + ": " + name + " is an option of a command: give it after the command (" + program +
+                   " " + other->get_name() + " " + name + " ...)";
+      }
+      // A one-letter option is one edit from every other: only long ones get a suggestion.
       std::vector<std::string> names;
       if (command) option_names(*command, names);
       option_names(app, names);
-      const std::string where = program + (command ? " " + command->get_name() : "");
-      return where + ": unknown option '" + name + "'" + did_you_mean(name, names);
+      const bool long_option = name.rfind("--", 0) == 0;
+      return where + ": unknown option '" + name + "'" + (long_option ? did_you_mean(name, names) : "");
     }
     value_follows = word.find('=') == std::string::npos && option->get_type_size_max() > 0;
   }
