@@ -75,6 +75,12 @@ ParamOwner scene_owner(const std::string& scene) {
   return owner;
 }
 
+std::string comma_list(const std::vector<std::string>& values) {
+  std::string text;
+  for (const auto& value : values) text += (text.empty() ? "" : ",") + value;
+  return text;
+}
+
 std::string joined(const std::vector<std::string>& names) {
   std::string text;
   for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
@@ -125,10 +131,10 @@ std::vector<Assignment> checked_assignments(const AssignmentOption& how, const s
     for (const Assignment& earlier : assignments) {
       if (earlier.scope != a.scope || earlier.key != a.key) continue;
       const std::string name = (a.scope.empty() ? "" : a.scope + ".") + a.key;
-      std::string values = joined(earlier.values) + "," + joined(a.values);
-      values.erase(std::remove(values.begin(), values.end(), ' '), values.end());
+      std::vector<std::string> values = earlier.values;
+      values.insert(values.end(), a.values.begin(), a.values.end());
       throw std::invalid_argument(how.option + " " + name + " is given twice (" + earlier.text + ", " + text + "); " +
-                                  (how.lists ? "give its values as one list: " + how.option + " " + name + "=" + values
+                                  (how.lists ? "give its values as one list: " + how.option + " " + name + "=" + comma_list(values)
                                              : "give it once"));
     }
     assignments.push_back(a);
