@@ -1,11 +1,14 @@
 #include "base/params.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+
+#include "base/suggest.h"
 
 namespace oit {
 namespace {
@@ -26,7 +29,9 @@ ParamValue parse_value(const ParamSpec& spec, const std::string& text, const std
       if (spec.accepts_auto && text == "auto") return std::string("auto");
       int64_t value = 0;
       auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-      if (ec != std::errc() || end != text.data() + text.size()) throw fail("is not an integer");
+      if (end != text.data() + text.size() || (ec != std::errc() && ec != std::errc::result_out_of_range))
+        throw fail("is not an integer");
+      if (ec == std::errc::result_out_of_range) throw fail("is out of range");
       if (value < spec.min || value > spec.max) throw fail("is out of range");
       return value;
     }
@@ -35,6 +40,8 @@ ParamValue parse_value(const ParamSpec& spec, const std::string& text, const std
       double value = 0.0;
       try {
         value = std::stod(text, &used);
+      } catch (const std::out_of_range&) {
+        throw fail("is out of range");  // 1e400: a number, too large for a double
       } catch (const std::exception&) {
         throw fail("is not a number");
       }
@@ -49,7 +56,7 @@ ParamValue parse_value(const ParamSpec& spec, const std::string& text, const std
     case ParamType::choice:
       for (const auto& choice : spec.choices)
         if (choice == text) return text;
-      throw fail("is not a valid choice");
+      throw fail("is not a valid choice" + did_you_mean(text, spec.choices));
     case ParamType::path: {
       if (text.empty()) return text;
       for (char c : text)
@@ -123,15 +130,14 @@ std::string ParamSpec::range_text() const {
 }
 
 ParamSet::ParamSet(const ParamSchema& schema, const RawParams& raw, const std::string& owner) : owner_(owner) {
+  std::vector<std::string> names;
+  for (const auto& spec : schema) names.push_back(spec.name);
   for (const auto& [key, text] : raw) {
-    bool known = false;
-    for (const auto& spec : schema) known = known || spec.name == key;
-    if (!known) {
-      std::string names;
-      for (const auto& spec : schema) names += (names.empty() ? "" : ", ") + spec.name;
-      throw std::invalid_argument(owner + " has no parameter '" + key + "'; its parameters are: " +
-                                  (names.empty() ? "(none)" : names));
-    }
+    if (std::find(names.begin(), names.end(), key) != names.end()) continue;
+    std::string list;
+    for (const auto& name : names) list += (list.empty() ? "" : ", ") + name;
+    throw std::invalid_argument(owner + " has no parameter '" + key + "'" + did_you_mean(key, names) +
+                                " (its parameters: " + (list.empty() ? "none" : list) + ")");
   }
   for (const auto& spec : schema) {
     auto it = raw.find(spec.name);

@@ -10,6 +10,8 @@
 #include <variant>
 #include <vector>
 
+#include "base/suggest.h"
+
 namespace oit {
 
 enum class ParamType { integer, real, boolean, choice, path };
@@ -80,7 +82,8 @@ class Choices {
   }
   E value(const std::string& text) const {
     if (const E* found = find(text)) return *found;
-    throw std::invalid_argument("'" + text + "' is not " + spec("", entries_.begin()->value, "").range_text());
+    throw std::invalid_argument("'" + text + "' is not " + spec("", entries_.begin()->value, "").range_text() +
+                                did_you_mean(text, names()));
   }
 
  private:

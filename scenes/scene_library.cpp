@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "base/suggest.h"
 #include "scenes/gltf_loader.h"
 #include "scenes/mesh_loader.h"
 #include "scenes/model_files.h"
@@ -184,10 +185,14 @@ void check_scene_file_spec(const std::string& spec, const RawParams& params) {
     if (!params.empty()) throw std::invalid_argument("scene file '" + spec + "' takes no scene parameters");
     return;
   }
+  std::vector<std::string> ids;
   std::string names;
-  for (const auto& descriptor : scene_library()) names += (names.empty() ? "" : ", ") + descriptor.id;
-  throw std::invalid_argument("unknown scene '" + spec + "': expected one of " + names +
-                              " or a .gltf/.glb/.obj/.off/.ply/.stl file");
+  for (const auto& descriptor : scene_library()) {
+    ids.push_back(descriptor.id);
+    names += (names.empty() ? "" : ", ") + descriptor.id;
+  }
+  throw std::invalid_argument("unknown scene '" + spec + "'" + did_you_mean(spec, ids) + " (expected one of " + names +
+                              " or a .gltf/.glb/.obj/.off/.ply/.stl file)");
 }
 
 }  // namespace

@@ -577,5 +577,193 @@ TEST(Cli, GoogleBenchmarkBinaryTakesBenchSweepOptionsAndItsOwnIterationFlags) {
       << bad.output;
 }
 
+// ---- issue 40: mistakes that deserve a better answer, and exit statuses ----
+
+TEST(Cli, MistypedNamesGetTheClosestOneSuggested) {
+  const std::string csv = fresh_output("never_typo.csv");
+  struct Case {
+    std::string arguments, expected;
+    int exit_code;
+  };
+  const std::vector<Case> cases = {
+      {"benchmark", "oitbench: unknown command 'benchmark'; did you mean bench?", 2},
+      {"bench --frame 5 --csv " + csv, "oitbench bench: unknown option '--frame'; did you mean --frames?", 2},
+      {"-t kbuffer bench --csv " + csv, "oitbench: -t is an option of a command: give it after the command "
+                                        "(oitbench bench -t ...)", 2},
+      {"bench -t linked_lsit --csv " + csv, "unknown technique 'linked_lsit'; did you mean linked_list?", 1},
+      {"bench -s quadz --csv " + csv, "unknown scene 'quadz'; did you mean quads?", 1},
+      {"bench -t kbuffer --set kk=4 --csv " + csv, "--set kk=4: technique 'kbuffer' has no parameter 'kk'; did you "
+                                                   "mean k?", 1},
+      {"bench --scene-set layrs=4 --csv " + csv, "did you mean layers?", 1},
+      {"render -s quads --scene-set layer=3 -o " + kOut + "/never.png", "did you mean layers?", 1},
+      {"render -t kbuffer --set tail=blnd -o " + kOut + "/never.png", "did you mean blend?", 1},
+      {"adaptive -t kbuffer --feature scene_rct", "did you mean scene_rect?", 1},
+  };
+  for (const Case& c : cases) {
+    const Outcome o = run_oitbench(c.arguments);
+    EXPECT_EQ(o.exit_code, c.exit_code) << c.arguments << "\n" << o.output;
+    EXPECT_NE(o.output.find(c.expected), std::string::npos) << c.arguments << "\n" << o.output;
+  }
+  EXPECT_FALSE(std::filesystem::exists(csv));
+}
+
+TEST(Cli, SetAndSceneSetScopesAreCheckedAndRepeatsRefusedInEveryCommand) {
+  const std::string csv = fresh_output("scopes.csv");
+  struct Case {
+    std::string arguments, expected;
+  };
+  const std::vector<Case> refused = {
+      {"bench --set nosuch.k=4 --csv " + csv, "--set nosuch.k=4: there is no technique 'nosuch'"},
+      {"bench -t kbuffer --set linked_list.k=4 --csv " + csv,
+       "--set linked_list.k=4: linked_list is not among the selected techniques (kbuffer)"},
+      {"bench -t kbuffer --set k=2 --set k=3 --csv " + csv, "give its values as one list: --set k=2,3"},
+      {"pareto -t kbuffer --set k=2 --set k=3 --csv " + csv, "give its values as one list: --set k=2,3"},
+      {"bench -s quads --scene-set torus.layers=4 --csv " + csv,
+       "--scene-set torus.layers=4: torus is not among the selected scenes (quads)"},
+      {"bench -s quads --scene-set layers=2 --scene-set layers=3 --csv " + csv, "--scene-set layers=2,3"},
+      {"check-order -t kbuffer --set k=2 --set k=3", "--set k is given twice (k=2, k=3); give it once"},
+      {"check-order -t kbuffer --set linked_list.max_per_pixel=2",
+       "linked_list is not among the selected techniques (kbuffer)"},
+      {"check-order -t kbuffer --set kbuffer.k=0", "parameter 'k' = '0' is out of range"},
+      {"check-order -s quads --scene-set torus.layers=4", "torus is not among the selected scenes (quads)"},
+      {"adaptive -s quads:layers=2,layers=3", "--scene 'quads:layers=2,layers=3': 'layers' is given twice"},
+      {"render -t kbuffer --set k=2 --set k=3 -o " + kOut + "/never.png", "--set k is given twice (k=2, k=3); give it once"},
+      {"render -t kbuffer --set linked_list.max_per_pixel=2 -o " + kOut + "/never.png",
+       "linked_list is not among the selected techniques (kbuffer)"},
+      {"render -s quads --scene-set torus.layers=4 -o " + kOut + "/never.png",
+       "torus is not among the selected scenes (quads)"},
+      {"stats -s quads --scene-set layers=2 --scene-set layers=3", "--scene-set layers is given twice"},
+  };
+  for (const Case& c : refused) {
+    const Outcome o = run_oitbench(c.arguments);
+    EXPECT_EQ(o.exit_code, 1) << c.arguments << "\n" << o.output;
+    EXPECT_NE(unwrapped(o.output).find(c.expected), std::string::npos) << c.arguments << "\n" << o.output;
+  }
+  EXPECT_FALSE(std::filesystem::exists(csv));
+  // Scoped to quads: torus runs at its defaults (before, torus was refused the key).
+  const Outcome scoped = run_oitbench("bench -t unsorted -s quads -s torus --scene-set quads.layers=4 --size 8x8 "
+                                      "--frames 1 --warmup 0 --csv " + csv);
+  ASSERT_EQ(scoped.exit_code, 0) << scoped.output;
+  EXPECT_NE(scoped.output.find("[1/2] unsorted on quads layers=4 8x8 ... "), std::string::npos) << scoped.output;
+  EXPECT_NE(scoped.output.find("[2/2] unsorted on torus 8x8 ... "), std::string::npos) << scoped.output;
+  // render and stats take scoped keys as bench does.
+  const std::string image = fresh_output("scoped_render.pfm");
+  const Outcome render = run_oitbench("render -t kbuffer --set kbuffer.k=2 -s quads --scene-set quads.layers=4 "
+                                      "--size 8x8 -o " + image);
+  ASSERT_EQ(render.exit_code, 0) << render.output;
+  EXPECT_NE(render.output.find("kbuffer on quads 8x8 -> " + image + " (max error "), std::string::npos)
+      << render.output;
+  const Outcome stats = run_oitbench("stats -s quads --scene-set quads.layers=3 --size 8x8");
+  ASSERT_EQ(stats.exit_code, 0) << stats.output;
+  EXPECT_NE(stats.output.find("depth complexity  max 3,"), std::string::npos) << stats.output;
+  // check-order takes --set, scoped like bench's.
+  const Outcome order = run_oitbench("check-order -t kbuffer -t unsorted --set kbuffer.k=2 --size 8x8 --seeds 1");
+  EXPECT_EQ(order.exit_code, 0) << order.output;
+}
+
+TEST(Cli, BaselineMustBeASelectedTechnique) {
+  const std::string csv = fresh_output("never_baseline.csv");
+  for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"--baseline nosuch", "--baseline 'nosuch' is not a technique id"},
+           {"--baseline linked_list:sort=insertion", "is not a technique id; did you mean linked_list?"},
+           {"-t kbuffer --baseline linked_list", "--baseline linked_list is not among the selected techniques"}}) {
+    const Outcome o = run_oitbench("bench " + arguments + " --csv " + csv);
+    EXPECT_EQ(o.exit_code, 1) << arguments << "\n" << o.output;
+    EXPECT_NE(unwrapped(o.output).find(expected), std::string::npos) << arguments << "\n" << o.output;
+  }
+  EXPECT_FALSE(std::filesystem::exists(csv));
+}
+
+TEST(Cli, ValuesThatWouldBeSilentlyWrongAreRefusedWithTheReason) {
+  const std::string csv = fresh_output("never_values.csv");
+  for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"--background -1,0,0", "'-1' is negative: colours are linear"},
+           {"--memory-budget ''", "--memory-budget is empty"},
+           {"--memory-budget 1e400", "memory size '1e400' is too large"},
+           {"--memory-budget 99999999T", "memory size '99999999T' is too large"},
+           {"--size 256", "size '256' is not of the form WIDTHxHEIGHT; did you mean 256x256?"},
+           {"--scene-set alpha=1e400", "parameter 'alpha' = '1e400' is out of range"}}) {
+    const Outcome o = run_oitbench("bench -t unsorted " + arguments + " --csv " + csv);
+    EXPECT_EQ(o.exit_code, 1) << arguments << "\n" << o.output;
+    EXPECT_NE(unwrapped(o.output).find(expected), std::string::npos) << arguments << "\n" << o.output;
+  }
+  const Outcome render = run_oitbench("render --memory-budget '' -o " + kOut + "/never.png");
+  EXPECT_EQ(render.exit_code, 1) << render.output;
+  EXPECT_NE(render.output.find("--memory-budget is empty"), std::string::npos) << render.output;
+  EXPECT_FALSE(std::filesystem::exists(csv));
+  // 256X256 is a size; --device after the subcommand counts as before it.
+  const Outcome upper = run_oitbench("bench --device software -t unsorted --size 8X8 --frames 1 --warmup 0 --csv " +
+                                     csv);
+  EXPECT_EQ(upper.exit_code, 0) << upper.output;
+  EXPECT_NE(upper.output.find("unsorted on quads 8x8 ... "), std::string::npos) << upper.output;
+  const Outcome device = run_oitbench("list --device egl:99");
+  EXPECT_NE(device.exit_code, 0);
+  EXPECT_NE(device.output.find("--device egl:99: this machine has"), std::string::npos) << device.output;
+}
+
+// The docs: with CUDA_VISIBLE_DEVICES set, auto takes that GPU or fails;
+// this machine has none, so auto must not fall back to llvmpipe.
+TEST(Cli, CudaVisibleDevicesWithoutItsGpuFailsRatherThanRenderOnSoftware) {
+  const Outcome listed = run_oitbench("--device software list");
+  ASSERT_EQ(listed.exit_code, 0) << listed.output;
+  if (listed.output.find(" CUDA device 0") != std::string::npos) GTEST_SKIP() << "this machine has the GPU";
+  const std::string out = fresh_output("cuda_visible.png");
+  const Outcome automatic = test::run_oitbench(kOut, "render --size 8x8 -o " + out, "CUDA_VISIBLE_DEVICES=0");
+  EXPECT_EQ(automatic.exit_code, 1) << automatic.output;
+  EXPECT_NE(automatic.output.find("CUDA_VISIBLE_DEVICES=0 but no EGL device is its GPU"), std::string::npos)
+      << automatic.output;
+  EXPECT_NE(automatic.output.find("--device software"), std::string::npos) << automatic.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const Outcome software =
+      test::run_oitbench(kOut, "render --device software --size 8x8 -o " + out, "CUDA_VISIBLE_DEVICES=0");
+  EXPECT_EQ(software.exit_code, 0) << software.output;
+}
+
+TEST(Cli, ExitStatusesSayWhatWentWrong) {
+  // A check that ended in an error is no pass.
+  const Outcome order = run_oitbench("check-order -t unsorted -s missing_scene.gltf --size 8x8 --seeds 1");
+  EXPECT_EQ(order.exit_code, 3) << order.output;
+  EXPECT_NE(order.output.find("error"), std::string::npos) << order.output;
+  // A bad scene value is refused before anything runs.
+  const Outcome adaptive = run_oitbench("adaptive -t kbuffer -s quads:layers=0");
+  EXPECT_EQ(adaptive.exit_code, 1) << adaptive.output;
+  EXPECT_NE(adaptive.output.find("--scene 'quads:layers=0': scene 'quads': parameter 'layers' = '0' is out of range"),
+            std::string::npos) << adaptive.output;
+  // A value an option's own check refuses is a bad value too (1); a malformed command line is 2.
+  const Outcome range = run_oitbench("bench --frames 0 --csv " + fresh_output("never_exit.csv"));
+  EXPECT_EQ(range.exit_code, 1) << range.output;
+  const Outcome missing = run_oitbench("bench");
+  EXPECT_EQ(missing.exit_code, 2) << missing.output;
+  EXPECT_NE(missing.output.find("--csv is required"), std::string::npos) << missing.output;
+}
+
+TEST(Cli, GoogleBenchmarkBinaryExitsNonZeroWhenNothingOrSomethingFailedRanAndWritesValidJson) {
+  const std::string gbench = std::string(OIT_BINARY_DIR) + "/harness/oitbench_gbench --technique unsorted --size 8x8 "
+                             "--warmup 0 --frames 2 ";
+  const Outcome none = test::run_command(kOut, gbench + "--benchmark_filter=no_such_benchmark");
+  EXPECT_EQ(none.exit_code, 1) << none.output;
+  EXPECT_NE(none.output.find("--benchmark_filter=no_such_benchmark matches none of the 1 runs"), std::string::npos)
+      << none.output;
+  const Outcome failed = test::run_command(kOut, gbench + "-s missing_scene.gltf");
+  EXPECT_EQ(failed.exit_code, kExitRunsFailed) << failed.output;
+  // Repetitions: the cv of unsorted's bytes (0 each time) is 0/0; the JSON must still parse.
+  const std::string path = fresh_output("gbench_repetitions.json");
+  ASSERT_EQ(std::system((gbench + "--benchmark_repetitions=3 --benchmark_format=json > " + path + " 2>/dev/null")
+                            .c_str()),
+            0);
+  std::ifstream in(path);
+  const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
+  ASSERT_FALSE(report.is_discarded()) << "invalid JSON in " << path;
+  EXPECT_EQ(report["benchmarks"].size(), 3u + 4u);  // 3 repetitions, then mean, median, stddev, cv
+  const Outcome csv = test::run_command(kOut, gbench + "--csv " + kOut + "/never_gbench.csv");
+  EXPECT_EQ(csv.exit_code, 1) << csv.output;
+  EXPECT_NE(csv.output.find("oitbench_gbench writes no CSV of its own; run `oitbench bench --csv"), std::string::npos)
+      << csv.output;
+  // GL timer queries on llvmpipe: warned about.
+  const Outcome clock = test::run_command(kOut, gbench + "--clock gl");
+  EXPECT_EQ(clock.exit_code, 0) << clock.output;
+  EXPECT_NE(clock.output.find("warning: --clock gl on llvmpipe"), std::string::npos) << clock.output;
+}
+
 }  // namespace
 }  // namespace oit

@@ -5,8 +5,10 @@
 #include <memory>
 #include <stdexcept>
 
+#include "base/suggest.h"
 #include "harness/app/commands.h"
 #include "harness/core/results_csv.h"
+#include "scenes/scene_library.h"
 
 namespace oit {
 
@@ -23,7 +25,11 @@ void parse_scene_spec(const std::string& text, std::string& scene, RawParams& pa
   while (start <= rest.size()) {
     const size_t comma = std::min(rest.find(',', start), rest.size());
     try {
-      parse_assignment(rest.substr(start, comma - start), params);
+      RawParams one;
+      parse_assignment(rest.substr(start, comma - start), one);
+      if (params.count(one.begin()->first))
+        throw std::invalid_argument("'" + one.begin()->first + "' is given twice; give it once");
+      params.insert(*one.begin());
     } catch (const std::exception& e) {
       throw std::invalid_argument("--scene '" + text + "': " + e.what());
     }
@@ -136,7 +142,8 @@ int run_adaptive(const CommonOptions& common, const AdaptiveOptions& options) {
     if (std::find(known.begin(), known.end(), wanted) == known.end()) {
       std::string list;
       for (const auto& name : known) list += (list.empty() ? "" : ", ") + name;
-      throw std::invalid_argument("--feature " + wanted + ": the selected techniques offer " + list);
+      throw std::invalid_argument("--feature " + wanted + ": the selected techniques offer " + list +
+                                  did_you_mean(wanted, known));
     }
   }
   int width = 0, height = 0;
@@ -147,6 +154,12 @@ int run_adaptive(const CommonOptions& common, const AdaptiveOptions& options) {
   for (const auto& text : scenes) {
     parsed_scenes.emplace_back();
     parse_scene_spec(text, parsed_scenes.back().first, parsed_scenes.back().second);
+    // A bad scene or value fails here, not as an error line after the other runs.
+    try {
+      canonical_scene_params(parsed_scenes.back().first, parsed_scenes.back().second);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument("--scene '" + text + "': " + e.what());
+    }
   }
 
   auto context = create_headless_context(parse_device_choice(common.device), common.debug_gl);
@@ -228,7 +241,13 @@ int run_adaptive(const CommonOptions& common, const AdaptiveOptions& options) {
               options.frames, options.repeats, device.renderer.c_str(), csv_context.platform.c_str(),
               to_string(harness.default_clock()).c_str(),
               csv ? " | rows appended to " : "", options.csv.c_str());
-  return 0;
+  // Skipped runs (a model not installed) are fine; a run that failed is not.
+  const size_t failed = size_t(std::count_if(rows.begin(), rows.end(),
+                                             [](const Row& r) { return r.status == RunStatus::error; }));
+  if (failed == 0) return 0;
+  std::fprintf(stderr, "oitbench adaptive: %zu feature/scene pair%s ended in an error (the lines above say why)\n",
+               failed, failed == 1 ? "" : "s");
+  return kExitRunsFailed;
 }
 
 }  // namespace oit

@@ -1,6 +1,10 @@
 #include "harness/app/bench_report.h"
 
+#include <sys/ioctl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdlib>
 #include <cstdio>
 #include <map>
 #include <sstream>
@@ -160,6 +164,44 @@ std::string wrap_after(size_t column, const std::string& text) {
   return wrapped;
 }
 
+std::string wrap_text(const std::string& text, size_t width, size_t indent) {
+  std::string wrapped;
+  std::istringstream lines(text);
+  bool first_line = true;
+  for (std::string line; std::getline(lines, line); first_line = false) {
+    if (!first_line) wrapped += '\n';
+    // Leading spaces are the line's own indentation: kept.
+    const size_t lead = std::min(line.find_first_not_of(' '), line.size());
+    wrapped += line.substr(0, lead);
+    size_t column = lead;
+    bool line_start = true;
+    std::istringstream words(line.substr(lead));
+    for (std::string word; words >> word; line_start = false) {
+      if (!line_start && column + 1 + word.size() > width) {
+        wrapped += "\n" + std::string(indent, ' ');
+        column = indent;
+      } else if (!line_start) {
+        wrapped += ' ';
+        column += 1;
+      }
+      wrapped += word;
+      column += word.size();
+    }
+  }
+  return wrapped;
+}
+
+size_t terminal_width() {
+  if (const char* columns = std::getenv("COLUMNS")) {
+    char* end = nullptr;
+    const long value = std::strtol(columns, &end, 10);
+    if (end != columns && *end == '\0' && value >= 20 && value <= 10000) return size_t(value);
+  }
+  winsize size{};
+  if (isatty(STDOUT_FILENO) && ioctl(STDOUT_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col >= 20) return size.ws_col;
+  return kConsoleWidth;
+}
+
 std::string clock_text(double seconds) {
   const long total = long(seconds + 0.5);
   char text[32];
@@ -168,7 +210,7 @@ std::string clock_text(double seconds) {
   return text;
 }
 
-Progress::Progress(size_t runs) : runs_(runs), start_(std::chrono::steady_clock::now()) {}
+Progress::Progress(size_t runs, Clock clock) : runs_(runs), clock_(std::move(clock)), start_(clock_()) {}
 
 std::string Progress::start_text(size_t index, const RunSpec& spec) const {
   const std::string text = "[" + std::to_string(index + 1) + "/" + std::to_string(runs_) + "] " +
@@ -177,10 +219,11 @@ std::string Progress::start_text(size_t index, const RunSpec& spec) const {
   return fit(text, kConsoleWidth - 40) + " ... ";
 }
 
-std::string Progress::timing_text(size_t done) const {
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+std::string Progress::Timing::text() const {
+  const double elapsed = std::chrono::duration<double>(progress_.clock_() - progress_.start_).count();
+  const size_t runs = progress_.runs_;
   std::string text = " [elapsed " + clock_text(elapsed);
-  if (done > 0 && done < runs_) text += ", ETA " + clock_text(elapsed / double(done) * double(runs_ - done));
+  if (done_ > 0 && done_ < runs) text += ", ETA " + clock_text(elapsed / double(done_) * double(runs - done_));
   return text + "]";
 }
 

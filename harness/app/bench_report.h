@@ -4,6 +4,7 @@
 // and an estimate of what is left, and the summary table at the end, every
 // line at most kConsoleWidth columns.
 #include <chrono>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,18 +28,47 @@ std::string wrap_after(size_t column, const std::string& text);
 // "1:05" (minutes:seconds) or "2:01:05" from seconds.
 std::string clock_text(double seconds);
 
+// `text` word wrapped to lines of at most `width` columns (a longer word
+// stays whole on its own line): each of its lines keeps its own leading
+// spaces and continues on lines indented by `indent` spaces.
+std::string wrap_text(const std::string& text, size_t width, size_t indent);
+
+// The width to wrap stdout to: $COLUMNS when set, else the terminal's
+// width, else (not a terminal) kConsoleWidth.
+size_t terminal_width();
+
 // Elapsed time since construction and a linear estimate of the rest.
 class Progress {
  public:
-  explicit Progress(size_t runs);
+  using Clock = std::function<std::chrono::steady_clock::time_point()>;
+  // `clock`: the time now (tests pass their own).
+  explicit Progress(size_t runs, Clock clock = std::chrono::steady_clock::now);
   // "[3/12] kbuffer k=8 on quads layers=4 256x256 camera random:4:1@2 ... ",
   // cut to leave 40 columns for the outcome.
   std::string start_text(size_t index, const RunSpec& spec) const;
-  // " [elapsed 0:12, ETA 0:40]" after `done` runs of the total (no ETA after the last).
-  std::string timing_text(size_t done) const;
+
+  // " [elapsed 0:12, ETA 0:40]" after `done` runs of the total (no ETA
+  // after the last), the ETA from the time the done runs took. The clock is
+  // read when the text is made: on conversion to std::string or when
+  // appended to a run's outcome, so that in `run_one(spec) +
+  // progress.timing_text(i + 1)` it is read after the run, whichever
+  // operand C++ evaluates first.
+  class Timing {
+   public:
+    Timing(const Progress& progress, size_t done) : progress_(progress), done_(done) {}
+    std::string text() const;
+    operator std::string() const { return text(); }  // NOLINT: read on conversion, by design
+    friend std::string operator+(std::string outcome, const Timing& timing) { return outcome + timing.text(); }
+
+   private:
+    const Progress& progress_;
+    size_t done_;
+  };
+  Timing timing_text(size_t done) const { return Timing(*this, done); }
 
  private:
   size_t runs_;
+  Clock clock_;
   std::chrono::steady_clock::time_point start_;
 };
 

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "scenes/scene_library.h"
+
 namespace oit {
 
 std::vector<std::string> order_variants(int seeds) {
@@ -58,28 +60,31 @@ OrderCheck check_order(Harness& harness, const TechniqueDescriptor& technique, c
 }
 
 int run_check_order(const CommonOptions& common, const CheckOrderOptions& options) {
-  auto context = create_headless_context(parse_device_choice(common.device), common.debug_gl);
-  Harness harness(*context, builtin_techniques());
+  // Every option is checked before a context opens.
+  const std::vector<const TechniqueDescriptor*> techniques = selected_techniques(options.techniques, builtin_techniques());
+  const std::vector<RawParams> params = one_value_technique_params(options.sets, techniques, builtin_techniques());
   RunSpec base;
   base.scene = options.scene;
-  for (const auto& s : options.scene_sets) parse_assignment(s, base.scene_params);
+  base.scene_params = one_value_scene_params(options.scene_sets, options.scene);
+  canonical_scene_params(base.scene, base.scene_params);
+  for (size_t i = 0; i < techniques.size(); ++i)
+    ParamSet(techniques[i]->params, params[i], "technique '" + techniques[i]->id + "'");
   parse_size(size_for(options.size, harness.device()), base.width, base.height);
   base.warmup = 0;
   base.frames = 1;
-  std::vector<const TechniqueDescriptor*> techniques;
-  for (const auto& id : options.techniques) {
-    if (id == "all")
-      for (const auto& t : builtin_techniques().all()) techniques.push_back(&t);
-    else
-      techniques.push_back(&builtin_techniques().get(id));
-  }
+  auto context = create_headless_context(parse_device_choice(common.device), common.debug_gl);
+  Harness harness(*context, builtin_techniques());
   int failures = 0;
   std::printf("%-22s %-12s %-9s %14s %14s  %s\n", "technique", "kind", "verdict", "same order", "other orders",
               "worst order / message");
-  for (const auto* t : techniques) {
-    const OrderCheck c = check_order(harness, *t, base, options.seeds);
+  for (size_t i = 0; i < techniques.size(); ++i) {
+    const TechniqueDescriptor* t = techniques[i];
+    RunSpec spec = base;
+    spec.params = params[i];
+    const OrderCheck c = check_order(harness, *t, spec, options.seeds);
     const char* verdict = c.status != "ok" ? c.status.c_str() : c.passed ? "pass" : "FAIL";
-    failures += c.status == "ok" && !c.passed;
+    // A technique that could not be checked is no pass: an error counts as a failure.
+    failures += (c.status == "ok" && !c.passed) || c.status == "error";
     if (c.status == "ok") {
       std::printf("%-22s %-12s %-9s %14.3g %14.3g  %s\n", t->id.c_str(), order_check_kind(*t, c), verdict,
                   c.repeat_difference, c.largest_difference, c.worst_order.empty() ? "-" : c.worst_order.c_str());
@@ -91,8 +96,9 @@ int run_check_order(const CommonOptions& common, const CheckOrderOptions& option
   std::printf("\nlargest max-abs difference from the original-order image over: the same order again, reversed, "
               "shuffled:1..%d, objects_shuffled:1..%d | %s %s %s | device: %s\n",
               options.seeds, options.seeds, options.scene.c_str(), options.size.c_str(),
-              failures ? "| exact techniques that moved: FAIL" : "", harness.device().renderer.c_str());
-  return failures > 0 ? 3 : 0;
+              failures ? "| FAIL: an exact technique moved or a check ended in an error" : "",
+              harness.device().renderer.c_str());
+  return failures > 0 ? kExitCheckFailed : 0;
 }
 
 }  // namespace oit

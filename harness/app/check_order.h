@@ -10,8 +10,13 @@
 
 namespace oit {
 
+// Exit code of check-order (and stress) when a check failed.
+inline constexpr int kExitCheckFailed = 3;
+
 struct CheckOrderOptions {
   std::vector<std::string> techniques{"all"};
+  // "key=value" or "technique.key=value", one value each (one_value_technique_params).
+  std::vector<std::string> sets;
   std::string scene = "quads";
   std::vector<std::string> scene_sets;
   std::string size = "64x64";
@@ -35,6 +40,9 @@ std::vector<std::string> order_variants(int seeds);
 // exact class that counted dropped fragments) or "approximate".
 const char* order_check_kind(const TechniqueDescriptor& technique, const OrderCheck& check);
 OrderCheck check_order(Harness& harness, const TechniqueDescriptor& technique, const RunSpec& base, int seeds);
+// Exit code 3 (kExitCheckFailed) when an exact technique moved beyond its
+// tolerance or a technique's check ended in an error; 0 otherwise (skipped
+// techniques included).
 int run_check_order(const CommonOptions& common, const CheckOrderOptions& options);
 
 }  // namespace oit

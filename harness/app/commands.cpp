@@ -26,9 +26,12 @@ std::unique_ptr<GlContext> open_context(const CommonOptions& common) {
 
 void print_params(const ParamSchema& schema) {
   for (const auto& p : schema) {
-    std::printf("      %-24s default %-8s %s — %s\n", p.name.c_str(), p.default_value.c_str(), p.range_text().c_str(),
-                p.description.c_str());
+    char head[96];
+    std::snprintf(head, sizeof head, "      %-24s default %-8s ", p.name.c_str(), p.default_value.c_str());
+    const std::string line = head + p.range_text() + " — " + p.description;
+    std::printf("%s\n", wrap_text(line, terminal_width(), 8).c_str());
   }
+}
 }
 
 // Text for a Markdown table cell: a cell ends at '|' and its row at a line
@@ -83,7 +86,8 @@ int run_list(const CommonOptions& common) {
   std::printf("Device: %s (%s, %s)%s\n", device.renderer.c_str(), device.version.c_str(), platform_text(device).c_str(),
               device.software ? " — software GL: stage clock defaults to wall+glFinish" : "");
   // The profile the techniques' resolution rules receive (device_profile.h).
-  for (const std::string& line : device.describe()) std::printf("    %s\n", line.c_str());
+  for (const std::string& line : device.describe())
+    std::printf("%s\n", wrap_text("    " + line, terminal_width(), 8).c_str());
   std::printf("\n");
   const DeviceLimits limits = query_device_limits();
   std::printf("Limits: largest buffer %s (storage block, buffer texture); memory budget %s (%s). A technique whose storage for a frame "
@@ -423,6 +427,8 @@ int run_bench(const CommonOptions& common, const BenchOptions& options) {
   sweep.auto_warmup_ms = context->device().default_warmup_ms;
   const std::vector<RunSpec> runs = expand_sweep(sweep, builtin_techniques());
   Harness harness(*context, builtin_techniques());
+  if (const std::string warning = clock_warning(options.sweep.clock, harness.device()); !warning.empty())
+    std::fprintf(stderr, "oitbench bench: %s\n", warning.c_str());
   BenchSession session(harness, options);
   const std::string header = "oitbench bench: " + std::to_string(runs.size()) + " runs on " +
                              harness.device().renderer + ", clock " + clock_name(options, harness) + " -> " +

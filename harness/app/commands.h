@@ -7,10 +7,12 @@
 
 namespace oit {
 
-// Exit codes: 0 every run ok or skipped; 1 an error outside the runs (a bad
-// value, an unreadable or foreign file); CLI11's own non-zero codes for
-// malformed options; 3 stress or check-order found a failure; 4 bench or
-// pareto wrote every row but some runs are error rows.
+// Exit codes: 0 every run ok or skipped; 1 a bad value or an error outside
+// the runs (an unreadable or foreign file; CLI11's value errors included); 2
+// a malformed command line (an unknown command or option, a missing --csv);
+// 3 stress, check-order or doctor found a failure (check-order's error
+// verdicts too); 4 bench, pareto, adaptive or gbench wrote every row but
+// some runs are error rows.
 inline constexpr int kExitRunsFailed = 4;
 
 // The CSV's `platform` column and the `Device:` lines: how the context was

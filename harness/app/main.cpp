@@ -73,21 +73,28 @@ struct Commands {
   void add(CLI::App* command, std::function<int()> run) { runs.emplace_back(command, std::move(run)); }
 };
 
+// --device and --debug-gl go before the subcommand or after it (`oitbench
+// bench --device software ...`): every subcommand takes them too, into the
+// same options.
 void add_common_options(CLI::App& app, Commands& c) {
-  app.add_option("--device", c.common.device,
-                 "auto (GPU if present, else software; with CUDA_VISIBLE_DEVICES, as SLURM sets it, that GPU), gpu, "
-                 "software, or egl:N (the N-th EGL device `list` prints)")
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            try {
-              oit::parse_device_choice(text);
-              return std::string();
-            } catch (const std::invalid_argument& e) {
-              return std::string(e.what());
-            }
-          },
-          "auto|gpu|software|egl:N"));
-  app.add_flag("--debug-gl", c.common.debug_gl, "create a debug context and print KHR_debug messages");
+  std::vector<CLI::App*> commands = app.get_subcommands([](CLI::App*) { return true; });
+  commands.insert(commands.begin(), &app);
+  for (CLI::App* command : commands) {
+    command->add_option("--device", c.common.device,
+                        "auto (GPU if present, else software; with CUDA_VISIBLE_DEVICES, as SLURM sets it, that GPU "
+                        "or an error), gpu, software, or egl:N (the N-th EGL device `list` prints)")
+        ->check(CLI::Validator(
+            [](std::string& text) {
+              try {
+                oit::parse_device_choice(text);
+                return std::string();
+              } catch (const std::invalid_argument& e) {
+                return std::string(e.what());
+              }
+            },
+            "auto|gpu|software|egl:N"));
+    command->add_flag("--debug-gl", c.common.debug_gl, "create a debug context and print KHR_debug messages");
+  }
 }
 
 void add_list_command(CLI::App& app, Commands& c) {
@@ -113,7 +120,7 @@ void add_render_command(CLI::App& app, Commands& c) {
   oit::RenderOptions& render = c.render;
   auto* cmd = app.add_subcommand("render", "render one image (.png: 8-bit sRGB of the composite, .pfm: linear float RGB)");
   cmd->add_option("--technique,-t", render.technique, "technique id (see `list`)");
-  cmd->add_option("--set", render.sets, "technique parameter key=value (repeatable)");
+  cmd->add_option("--set", render.sets, "technique parameter key=value or technique.key=value (repeatable)");
   oit::add_scene_cli_options(cmd, render.scene, render.scene_sets);
   cmd->add_option("--size", render.size, "WIDTHxHEIGHT");
   cmd->add_option("--background", render.background, "r,g,b (linear)");
@@ -191,6 +198,8 @@ void add_check_order_command(CLI::App& app, Commands& c) {
   auto* cmd = app.add_subcommand("check-order", "how far each technique's image moves when the triangles "
                                                  "are submitted in other orders (exact ones must not)");
   oit::add_techniques_cli_option(cmd, c.order.techniques);
+  cmd->add_option("--set", c.order.sets,
+                  "key=value or technique.key=value: technique parameter, one value (repeatable)");
   oit::add_scene_cli_options(cmd, c.order.scene, c.order.scene_sets);
   cmd->add_option("--size", c.order.size,
                   "WIDTHxHEIGHT (smaller than the other commands' default: every technique renders the scene "
@@ -242,6 +251,35 @@ void add_compare_command(CLI::App& app, Commands& c) {
   c.add(compare, [compare] { return oit::run_compare(compare->remaining()); });
 }
 
+// key=value texts of `params`, as run_render and run_stats parse them.
+std::vector<std::string> assignments_of(const oit::RawParams& params) {
+  std::vector<std::string> texts;
+  for (const auto& [key, value] : params) texts.push_back(key + "=" + value);
+  return texts;
+}
+
+// render and stats read key=value texts themselves: they get them checked
+// and resolved as the sweeps' are (scopes, repeats, keys; technique and
+// scene named first), the scope taken off.
+void resolve_one_value_sets(Commands& c, const CLI::App* command) {
+  const oit::TechniqueRegistry& registry = oit::builtin_techniques();
+  if (command->get_name() == "render") {
+    c.render.sets = assignments_of(
+        oit::one_value_technique_params(c.render.sets, {&registry.get(c.render.technique)}, registry).front());
+    c.render.scene_sets = assignments_of(oit::one_value_scene_params(c.render.scene_sets, c.render.scene));
+  }
+  if (command->get_name() == "stats")
+    c.stats.scene_sets = assignments_of(oit::one_value_scene_params(c.stats.scene_sets, c.stats.scene));
+}
+
+// Checks of bench's and pareto's options that need to know which were
+// given; run before anything opens.
+void check_bench_options(const CLI::App* command, const oit::BenchOptions& options) {
+  oit::refuse_empty_value(command, "--memory-budget", "512M");
+  if (command->count("--baseline") > 0)
+    oit::validate_baseline(options.baseline, options.sweep.techniques, oit::builtin_techniques());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -252,7 +290,6 @@ int main(int argc, char** argv) {
   // Every option's default in --help, subcommands included (they copy this).
   app.option_defaults()->always_capture_default();
   Commands c;
-  add_common_options(app, c);
   add_list_command(app, c);
   add_render_command(app, c);
   add_bench_and_pareto_commands(app, c);
@@ -263,11 +300,22 @@ int main(int argc, char** argv) {
   add_stats_and_export_commands(app, c);
   add_compare_command(app, c);
   c.add(oit::add_view_command(app, c.view), [&c] { return oit::run_view(c.common, c.view); });
+  add_common_options(app, c);  // after the subcommands: each takes them too
 
-  CLI11_PARSE(app, argc, argv);
   try {
-    for (const auto& [command, run] : c.runs)
-      if (*command) return run();
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return oit::report_parse_error(app, e, "oitbench", argc, argv);
+  }
+  try {
+    for (const auto& [command, run] : c.runs) {
+      if (!*command) continue;
+      if (command->get_name() == "render") oit::refuse_empty_value(command, "--memory-budget", "512M");
+      resolve_one_value_sets(c, command);
+      if (command->get_name() == "bench") check_bench_options(command, c.bench);
+      if (command->get_name() == "pareto") check_bench_options(command, c.pareto);
+      return run();
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "oitbench: error: %s\n", e.what());
     return 1;

@@ -20,9 +20,13 @@ struct SweepOptions {
   std::vector<std::string> techniques{"all"};
   std::vector<std::string> scenes{"quads"};
   // "key=v1,v2" or "technique.key=v1,v2"; a key applies to the selected
-  // techniques that have it (and must exist in at least one of them).
+  // techniques that have it (and must exist in at least one of them), a
+  // scoped one to its technique only (which must be selected), where it
+  // overrides the unscoped key; a key given twice for one scope is an error.
   std::vector<std::string> technique_sets;
-  std::vector<std::string> scene_sets;  // "key=v1,v2"
+  // "key=v1,v2" or "scene.key=v1,v2", as technique_sets: a key applies to
+  // the selected scenes that have it (and must exist in at least one).
+  std::vector<std::string> scene_sets;
   std::vector<std::string> sizes{kDefaultSize};
   // Camera specs (scenes/cameras.h); a random:N:SEED set becomes N runs.
   std::vector<std::string> cameras{"default"};
@@ -49,6 +53,11 @@ struct SweepOptions {
   std::string memory_budget;
 };
 
+// The techniques `ids` name ("all": every registered one), each once, in
+// the order given; throws naming an unknown id.
+std::vector<const TechniqueDescriptor*> selected_techniques(const std::vector<std::string>& ids,
+                                                            const TechniqueRegistry& registry);
+
 // Every combination of the options, in the sweep's order (scene, scene
 // parameters, camera, size, technique, parameters, scene rectangle). Each
 // combination's technique and scene parameters are checked first
@@ -61,6 +70,33 @@ std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRe
 // checked: it stays an error row of its runs.
 void validate_sweep(const std::vector<RunSpec>& runs, const TechniqueRegistry& registry);
 
+// For the commands that run each technique once, one value per key
+// (render, check-order, view): the parameters `--set key=value` and
+// `--set technique.key=value` give each of `techniques`, in their order. The
+// texts are checked as a sweep's are: a scope that is no technique or not a
+// selected one, a key no selected technique has (with the closest one
+// suggested) and a key given twice are errors naming the text. A key a
+// technique's own scope sets overrides the unscoped one for it.
+std::vector<RawParams> one_value_technique_params(const std::vector<std::string>& sets,
+                                                  const std::vector<const TechniqueDescriptor*>& techniques,
+                                                  const TechniqueRegistry& registry);
+// The same for `--scene-set` and the one scene of render, check-order,
+// stats and view (`scene.key=value` must name that scene); an unknown scene
+// is named first.
+RawParams one_value_scene_params(const std::vector<std::string>& scene_sets, const std::string& scene);
+
+// bench/pareto --baseline: throws when it is no technique id (suggesting the
+// closest, or the id of "id:key=value") or not among `techniques` (the -t
+// list, "all" included); otherwise the summary would quietly divide by
+// each block's fastest run instead.
+void validate_baseline(const std::string& baseline, const std::vector<std::string>& techniques,
+                       const TechniqueRegistry& registry);
+
+// A warning for stderr when `clock` ("auto", "gl", "wall", "both") asks for
+// GL timer queries on a software device, whose per-pass times they get
+// wrong (docs/REFERENCE.md, Timing); "" otherwise.
+std::string clock_warning(const std::string& clock, const DeviceProfile& device);
+
 // The key the run's CSV rows will carry (parameters canonical, defaults
 // filled in, as the harness writes them), for `bench --resume`; nullopt when
 // a parameter is invalid (that run is an error row, never finished).
@@ -71,8 +107,11 @@ void apply_repetition(const SweepOptions& options, RunSpec& spec);
 
 // `text`, or for "auto" the device's default size.
 std::string size_for(const std::string& text, const DeviceProfile& device);
-// WIDTHxHEIGHT; "auto" parses as 256x256 (use size_for once the device is known).
+// "256x256" or "256X256", 1 .. 16384 each; throws naming the text (a lone
+// "256" with "did you mean 256x256?"). "auto" parses as 256x256 (use
+// size_for once the device is known).
 void parse_size(const std::string& text, int& width, int& height);
+// "r,g,b", linear: finite and >= 0 each; throws naming the text.
 glm::vec3 parse_background(const std::string& text);
 // "on" -> true, "off" -> false; throws naming the text otherwise.
 bool parse_on_off(const std::string& option, const std::string& text);

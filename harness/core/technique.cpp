@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/suggest.h"
 #include "harness/core/stage_clock.h"
 #include "harness/gl/uniforms.h"
 
@@ -85,12 +86,14 @@ void TechniqueRegistry::add(TechniqueDescriptor descriptor) {
 }
 
 const TechniqueDescriptor& TechniqueRegistry::get(const std::string& id) const {
-  std::string ids;
+  std::vector<std::string> ids;
   for (const auto& technique : techniques_) {
     if (technique.id == id) return technique;
-    ids += (ids.empty() ? "" : ", ") + technique.id;
+    ids.push_back(technique.id);
   }
-  throw std::invalid_argument("unknown technique '" + id + "'; registered: " + ids);
+  std::string list;
+  for (const auto& known : ids) list += (list.empty() ? "" : ", ") + known;
+  throw std::invalid_argument("unknown technique '" + id + "'" + did_you_mean(id, ids) + " (registered: " + list + ")");
 }
 
 const TechniqueDescriptor& TechniqueRegistry::reference() const {

@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdlib>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -94,18 +96,17 @@ uint64_t parse_memory_size(const std::string& text) {
       {"", 1.0},         {"b", 1.0},          {"k", 1024.0},       {"kb", 1024.0},     {"kib", 1024.0},
       {"m", 1048576.0},  {"mb", 1048576.0},   {"mib", 1048576.0},  {"g", 1073741824.0}, {"gb", 1073741824.0},
       {"gib", 1073741824.0}, {"t", 1099511627776.0}, {"tb", 1099511627776.0}, {"tib", 1099511627776.0}};
-  size_t used = 0;
-  double number = 0.0;
-  try {
-    number = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
+  char* end = nullptr;
+  errno = 0;
+  const double number = std::strtod(text.c_str(), &end);
+  const bool overflow = errno == ERANGE && number > 1.0;  // 1e400: HUGE_VAL
+  const size_t used = size_t(end - text.c_str());
   std::string unit = text.substr(used);
   std::transform(unit.begin(), unit.end(), unit.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   const auto scale = units.find(unit);
-  if (used == 0 || scale == units.end() || !std::isfinite(number) || number * scale->second < 1.0 ||
-      number * scale->second > 1.8e19) {
+  if (used != 0 && scale != units.end() && (overflow || (std::isfinite(number) && number * scale->second > 1.8e19)))
+    throw std::invalid_argument("memory size '" + text + "' is too large: at most 16E (2^64 bytes)");
+  if (used == 0 || scale == units.end() || !std::isfinite(number) || number * scale->second < 1.0) {
     throw std::invalid_argument("memory size '" + text + "' is not a positive size such as 512M, 2G or 1.5GiB");
   }
   return uint64_t(number * scale->second);

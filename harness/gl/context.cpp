@@ -167,6 +167,13 @@ std::unique_ptr<GlContext> create_headless_context(const DeviceChoice& choice, b
                                  e.what());
       }
     }
+    // A job given a GPU must not time another one, nor llvmpipe, unnoticed.
+    if (const char* visible = std::getenv("CUDA_VISIBLE_DEVICES"); visible && *visible) {
+      throw std::runtime_error(std::string("CUDA_VISIBLE_DEVICES=") + visible +
+                               " but no EGL device is its GPU (CUDA device 0; NVIDIA's EGL driver reports it): "
+                               "give --device software to render on the CPU, --device egl:N for a device `oitbench "
+                               "--device software list` shows, or unset CUDA_VISIBLE_DEVICES");
+    }
     for (const EglDevice& device : hardware) {
       try {
         return open_device(device, debug);
