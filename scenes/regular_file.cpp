@@ -9,9 +9,7 @@
 #include <stdexcept>
 
 namespace oit {
-namespace {
-
-std::string kind_of(mode_t mode) {
+std::string file_kind(mode_t mode) {
   if (S_ISREG(mode)) return "";
   if (S_ISDIR(mode)) return "a directory";
   if (S_ISFIFO(mode)) return "a FIFO";
@@ -20,8 +18,6 @@ std::string kind_of(mode_t mode) {
   if (S_ISSOCK(mode)) return "a socket";
   return "a special file";
 }
-
-}  // namespace
 
 RegularFile::RegularFile(const std::string& path) : path_(path) {
   // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer.
@@ -37,7 +33,7 @@ RegularFile::RegularFile(const std::string& path) : path_(path) {
     ::close(fd_);
     throw std::invalid_argument(path + ": cannot be examined: " + std::strerror(error));
   }
-  if (const std::string kind = kind_of(info.st_mode); !kind.empty()) {
+  if (const std::string kind = file_kind(info.st_mode); !kind.empty()) {
     ::close(fd_);
     throw std::invalid_argument(path + ": is " + kind + ", not a regular file");
   }

@@ -7,10 +7,16 @@
 // check and the open. Sizes come from the same descriptor, so a caller can
 // check what a header declares against the file's length before it
 // allocates anything.
+#include <sys/types.h>
+
 #include <cstdint>
 #include <string>
 
 namespace oit {
+
+// What a file of stat mode `mode` is, for messages: "" for a regular file,
+// else "a directory", "a FIFO", "a character device", ... (links followed).
+std::string file_kind(mode_t mode);
 
 // The largest scene file (a mesh, a glTF or a buffer it names) read.
 inline constexpr uint64_t kMaxSceneFileBytes = uint64_t(2) << 30;

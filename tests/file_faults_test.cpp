@@ -23,21 +23,10 @@ namespace oit {
 namespace {
 
 namespace fs = std::filesystem;
-const std::string kOut = std::string(OIT_BINARY_DIR) + "/test_output/file_faults";
 
-std::string fresh_dir(const std::string& name) {
-  const std::string dir = kOut + "/" + name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+std::string fresh_dir(const std::string& name) { return test::fresh_dir("file_faults", name); }
 
-std::string contents_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using test::contents_of;
 
 const std::string kBenchOf = "bench --technique unsorted --size 8x8 --frames 1 --warmup 0 --scene ";
 const std::string kBench = kBenchOf + "quads";

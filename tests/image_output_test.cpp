@@ -26,24 +26,13 @@
 namespace oit {
 namespace {
 
-const std::string kOut = std::string(OIT_BINARY_DIR) + "/test_output/image_output";
 
-std::string fresh_dir(const std::string& name) {
-  const std::string dir = kOut + "/" + name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+std::string fresh_dir(const std::string& name) { return test::fresh_dir("image_output", name); }
 
 using test::Png;
 using test::load_png;
 
-std::string contents_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using test::contents_of;
 
 Image uniform(int width, int height, float r, float g, float b) {
   Image image{width, height, {}};

@@ -17,13 +17,6 @@
 namespace oit {
 namespace {
 
-std::string out_dir(const std::string& name) {
-  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_out/measurement/" + name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
 std::vector<double> ascending(int n) {
   std::vector<double> values;
   for (int i = 1; i <= n; ++i) values.push_back(double(i));
@@ -111,7 +104,7 @@ struct Bench {
   std::map<std::string, std::vector<std::string>> totals;
 };
 Bench bench(const std::string& name, const std::string& arguments, const std::string& environment = "") {
-  const std::string dir = out_dir(name);
+  const std::string dir = test::fresh_dir("measurement", name);
   Bench run{test::run_oitbench(dir, "bench " + arguments + " --csv " + dir + "/runs.csv", environment), {}, {}};
   if (run.outcome.exit_code == 0) {
     run.table = test::read_csv_table(dir + "/runs.csv");

@@ -61,4 +61,20 @@ inline CsvTable read_csv_table(const std::string& path) {
   return table;
 }
 
+// A new empty folder `name` under the build's test output folder of `suite`.
+inline std::string fresh_dir(const std::string& suite, const std::string& name) {
+  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/" + suite + "/" + name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// The bytes of a file ("" when it cannot be read).
+inline std::string contents_of(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 }  // namespace oit::test

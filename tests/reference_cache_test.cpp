@@ -15,6 +15,7 @@
 #include <tuple>
 
 #include "tests/gl_fixture.h"
+#include "tests/oitbench_process.h"
 
 namespace oit {
 namespace {
@@ -119,12 +120,7 @@ TEST(ReferenceCache, AnImageHoldingNanIsNeverServedEvenWithAMatchingChecksum) {
 
 // ---- entries that are not what they claim: misses, named, never trusted ----
 
-std::string contents_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using test::contents_of;
 
 // The bytes of an entry as store() writes them (version 2: magic, key,
 // width, height, payload, FNV-1a checksum of everything before it), with

@@ -32,19 +32,9 @@ namespace {
 namespace fs = std::filesystem;
 const std::string kOut = std::string(OIT_BINARY_DIR) + "/test_output/reliability";
 
-std::string fresh_dir(const std::string& name) {
-  const std::string dir = kOut + "/" + name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+std::string fresh_dir(const std::string& name) { return test::fresh_dir("reliability", name); }
 
-std::string contents_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using test::contents_of;
 
 // `command` through /bin/sh under a resource limit: RLIMIT_FSIZE limits
 // every file it writes to `limit` bytes (SIGXFSZ ignored, so writes past it

@@ -17,20 +17,13 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "scenes/regular_file.h"
+
 namespace oit {
 namespace {
 
 std::runtime_error failure(const std::string& what, const std::string& path, int error) {
   return std::runtime_error(what + " '" + path + "': " + std::strerror(error));
-}
-
-std::string file_kind(mode_t mode) {
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
 }
 
 // Where the new content goes: the file a link names (so the link stays), or
