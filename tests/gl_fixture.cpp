@@ -202,13 +202,8 @@ std::vector<DiagnosticImage> diagnostic_images_once(const std::string& technique
 }
 
 ParamSet resolved_params(const TechniqueDescriptor& descriptor, const RawParams& given, int width, int height) {
-  const ParamSet requested(descriptor.params, given, descriptor.id);
-  if (!descriptor.resolve) return requested;
   const FrameContent content{width, height, 0, 0};
-  RawParams resolved = given;
-  for (const auto& [key, value] : descriptor.resolve(requested, {gl_context().device(), {}, content, given}))
-    resolved[key] = value;
-  return ParamSet(descriptor.params, resolved, descriptor.id);
+  return resolve_params(descriptor, {gl_context().device(), {}, content, given});
 }
 
 TechniqueRenderer::TechniqueRenderer(const TechniqueDescriptor& descriptor, int width, int height)

@@ -78,6 +78,8 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
                  std::to_string(limit) + " shape ids; the scene has " + std::to_string(scene.objects) + " objects";
         return "";
       },
+      // murray2016 searches each fragment's bucket, buckets always on.
+      .paper_preset = {{"neighbor_search", "bucket"}, {"buckets", "on"}},
       .create = make_bucketed_kbuffer,
       .storage_need = [](const ParamSet& params, const FrameContent& content) {
         const bool measure = params.boolean("measure_accuracy");

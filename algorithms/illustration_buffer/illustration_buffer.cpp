@@ -248,6 +248,14 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
         return illustration_buffer::missing_device_feature(s, device);
       },
       .resolve = illustration_buffer::resolve_parameters,
+      // carnecky2013: linked lists (Algorithm 1), the array sort (4.3), every
+      // fragment diffused in synchronous steps (eq. 8-9), the colour stored.
+      .paper_preset = {{"storage", "linked"},
+                       {"sort", "array"},
+                       {"diffusion", "steps"},
+                       {"skip_converged", "false"},
+                       {"diffusion_tolerance", "0"},
+                       {"flat_color_records", "false"}},
       .create = [](const ParamSet& params) {
         return illustration_buffer::make_illustration_buffer(illustration_buffer::settings_from(params));
       },

@@ -69,11 +69,12 @@ int run_check_order(const CommonOptions& common, const CheckOrderOptions& option
   canonical_scene_params(base.scene, base.scene_params);
   for (size_t i = 0; i < techniques.size(); ++i)
     ParamSet(techniques[i]->params, params[i], "technique '" + techniques[i]->id + "'");
-  parse_size(size_for(options.size, harness.device()), base.width, base.height);
+  parse_size(options.size, base.width, base.height);
   base.warmup = 0;
   base.frames = 1;
   auto context = create_headless_context(parse_device_choice(common.device), common.debug_gl);
   Harness harness(*context, builtin_techniques());
+  parse_size(size_for(options.size, harness.device()), base.width, base.height);
   int failures = 0;
   std::printf("%-22s %-12s %-9s %14s %14s  %s\n", "technique", "kind", "verdict", "same order", "other orders",
               "worst order / message");

@@ -32,7 +32,6 @@ void print_params(const ParamSchema& schema) {
     std::printf("%s\n", wrap_text(line, terminal_width(), 8).c_str());
   }
 }
-}
 
 // Text for a Markdown table cell: a cell ends at '|' and its row at a line
 // break, so a '|' in the text is escaped and a line break becomes a space.

@@ -32,6 +32,8 @@ TechniqueDescriptor describe_peeler(TechniqueDescriptor d, const PeelingText& te
   };
   d.stages = {"clear", "peel", "compose"};
   d.exactness = Exactness::exact;
+  // The papers peel by depth alone, a tie going to the first submitted.
+  d.paper_preset = {{"tie_break", "submission"}};
   d.adaptive_switches = {{"early_exit", text.early_exit_saves, {{"early_exit", "true"}}, {{"early_exit", "false"}}}};
   d.storage_need = [bytes_per_pixel](const ParamSet&, const FrameContent& content) {
     return StorageNeed{0, content.pixels() * bytes_per_pixel};

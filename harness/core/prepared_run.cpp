@@ -13,10 +13,7 @@ PreparedRun::PreparedRun(const TechniqueRegistry& registry, const std::string& i
       params_(requested_) {}
 
 void PreparedRun::resolve(const DeviceProfile& device, const SceneFacts& scene, const FrameContent& content) {
-  if (!descriptor_.resolve) return;
-  RawParams resolved = given_;
-  for (const auto& [key, value] : descriptor_.resolve(requested_, {device, scene, content, given_})) resolved[key] = value;
-  params_ = ParamSet(descriptor_.params, resolved, "technique '" + id() + "' (as resolved for " + device.renderer + ")");
+  params_ = resolve_params(descriptor_, {device, scene, content, given_});
 }
 
 std::string PreparedRun::unsupported(const DeviceProfile& device, const SceneFacts& facts) const {

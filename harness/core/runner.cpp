@@ -554,9 +554,12 @@ const DepthComplexity& Harness::complexity(LoadedScene& loaded, int width, int h
 }
 
 TilePlan Harness::tile_plan(const RunSpec& spec) {
-  const PreparedRun prepared(registry_, spec.technique, spec.params);
+  PreparedRun prepared(registry_, spec.technique, spec.params);
   LoadedScene& loaded = scene(spec.scene, spec.scene_params, spec.submission_order, spec.camera);
-  return prepared.plan(complexity(loaded, spec.width, spec.height), query_device_limits(spec.memory_budget));
+  const DepthComplexity& depth = complexity(loaded, spec.width, spec.height);
+  prepared.resolve(device(), {loaded.scene.triangle_count(), loaded.scene.object_count, true},
+                   FrameContent{spec.width, spec.height, depth.fragments, depth.max});
+  return prepared.plan(depth, query_device_limits(spec.memory_budget));
 }
 
 

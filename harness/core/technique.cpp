@@ -70,6 +70,20 @@ std::string supports(const TechniqueDescriptor& technique, const ParamSet& param
   return technique.extra_support_check ? technique.extra_support_check(params, scene, device) : "";
 }
 
+ParamSet resolve_params(const TechniqueDescriptor& technique, const ResolveInput& input) {
+  const std::string owner = "technique '" + technique.id + "' (as resolved for " + input.device.renderer + ")";
+  RawParams asked = input.given;
+  const ParamSet requested(technique.params, input.given, owner);
+  if (!technique.paper_preset.empty() && requested.choice(kPresetParameter) == "paper")
+    for (const auto& [key, value] : technique.paper_preset) asked.emplace(key, value);
+  if (!technique.resolve) return ParamSet(technique.params, asked, owner);
+  RawParams resolved = asked;
+  const ParamSet preset(technique.params, asked, owner);
+  for (const auto& [key, value] : technique.resolve(preset, {input.device, input.scene, input.content, asked}))
+    resolved[key] = value;
+  return ParamSet(technique.params, resolved, owner);
+}
+
 void TechniqueRegistry::add(TechniqueDescriptor descriptor) {
   for (const auto& existing : techniques_) {
     if (existing.id == descriptor.id) throw std::logic_error("technique '" + descriptor.id + "' registered twice");
@@ -81,6 +95,19 @@ void TechniqueRegistry::add(TechniqueDescriptor descriptor) {
         std::find(descriptor.stages.begin(), descriptor.stages.begin() + long(i), stage) != descriptor.stages.begin() + long(i))
       throw std::logic_error("technique '" + descriptor.id + "' declares stage '" + stage +
                              "': stages are distinct snake_case names other than 'total' (the harness's)");
+  }
+  if (!descriptor.paper_preset.empty()) {
+    std::string values;
+    for (const auto& [key, value] : descriptor.paper_preset) {
+      if (std::none_of(descriptor.params.begin(), descriptor.params.end(),
+                       [&](const ParamSpec& spec) { return spec.name == key; }))
+        throw std::logic_error("technique '" + descriptor.id + "': its paper preset sets '" + key +
+                               "', which it has no parameter of");
+      values += (values.empty() ? "" : " ") + key + "=" + value;
+    }
+    descriptor.params.push_back(ParamSpec::choice(
+        std::string(kPresetParameter), "none", {"none", "paper"},
+        "paper = the published algorithm: " + values + " (where not set); none = the defaults"));
   }
   techniques_.push_back(std::move(descriptor));
 }

@@ -184,6 +184,9 @@ struct StorageNeed {
   uint64_t total = 0;
 };
 
+// The parameter the registry adds to a technique with a paper preset.
+inline constexpr const char* kPresetParameter = "preset";
+
 // What a technique is, for the registry. A technique registers one, written
 // as a single designated initializer in its register_technique_<id> (fields
 // in this order; leave out what keeps its default):
@@ -223,6 +226,11 @@ struct TechniqueDescriptor {
   // validates the result. The technique is then built from concrete values
   // and never asks what the device is. Empty: nothing to resolve.
   std::function<RawParams(const ParamSet& requested, const ResolveInput&)> resolve;
+  // Where the defaults depart from the technique's paper: the values that run
+  // the published algorithm. The registry then adds a parameter `preset`
+  // (none or paper); with preset=paper these values replace the defaults of
+  // every parameter the user did not set, before the resolution rule runs.
+  RawParams paper_preset;
   std::function<std::unique_ptr<Technique>(const ParamSet&)> create;
   // Storage for a frame of the given content, for techniques whose storage
   // grows with the frame beyond a few W x H textures; empty: never tiled.
@@ -239,6 +247,11 @@ std::unique_ptr<Technique> make_technique(const ParamSet& params) {
   if constexpr (std::is_constructible_v<T, const ParamSet&>) return std::make_unique<T>(params);
   else return std::make_unique<T>();
 }
+
+// The parameters `input.given` as they run: the paper preset's values where
+// preset=paper and the user set nothing, then the resolution rule's
+// (TechniqueDescriptor::resolve); validated against the schema.
+ParamSet resolve_params(const TechniqueDescriptor& technique, const ResolveInput& input);
 
 // "" when a run can happen, otherwise the reason it cannot (device features,
 // scene facts, or the technique's own check).
