@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "harness/core/complexity.h"
+#include "harness/core/image.h"
 #include "harness/gl/context.h"
 #include "tests/gl_fixture.h"
 #include "scenes/scene_library.h"
@@ -773,7 +774,11 @@ TEST(IllustrationBuffer, StorageOptionsThatDoNotGoTogetherAreErrorsNamingThem) {
     const RunResult r = test::harness().run(test::one_frame("illustration_buffer", params, "quads", {}, 8));
     EXPECT_EQ(r.status, RunStatus::error) << named;
     EXPECT_NE(r.message.find(named), std::string::npos) << r.message;
-    EXPECT_THROW(d.create(ParamSet(d.params, params, "technique 'illustration_buffer'")), std::invalid_argument) << named;
+    // Built directly, with the `auto`s the harness would resolve given.
+    RawParams resolved = params;
+    resolved.insert({{"diffusion", "steps"}, {"flat_color_records", "false"}});
+    EXPECT_THROW(d.create(ParamSet(d.params, resolved, "technique 'illustration_buffer'")), std::invalid_argument)
+        << named;
   }
 }
 
@@ -821,6 +826,36 @@ TEST(IllustrationBuffer, AutoStorageFillsArraysAfterAFrameOfEvenLists) {
   }
 }
 
+// The technique with its defaults, every `auto` resolved for this device
+// and `scene` as the harness resolves them (TechniqueDescriptor::resolve),
+// rendering 48 x 48 frames one after another (test::TechniqueRenderer
+// builds the defaults unresolved).
+struct ResolvedRenderer {
+  static constexpr int kSize = 48;
+  std::unique_ptr<Technique> technique;
+  RenderTarget target{kSize, kSize};
+  StageClock clock{ClockKind::wall};
+
+  ResolvedRenderer(const TechniqueDescriptor& d, const Scene& scene) {
+    const RawParams given;
+    const ParamSet requested(d.params, given, "technique '" + d.id + "'");
+    const FrameContent content{kSize, kSize};
+    RawParams resolved;
+    for (const auto& [key, value] : d.resolve(
+             requested, {test::gl_context().device(), {scene.triangle_count(), scene.object_count, true}, content, given}))
+      resolved[key] = value;
+    technique = d.create(ParamSet(d.params, resolved, "technique '" + d.id + "'"));
+    technique->resize(kSize, kSize);
+  }
+  Image render(const SceneGpu& gpu) {
+    const Camera& camera = gpu.scene().camera;
+    const Frame frame{gpu, camera.view, camera.projection(1.0f), kSize, kSize, glm::vec3(0.0f), target.framebuffer.id(),
+                      clock};
+    render_frame(*technique, frame, false, true);
+    return read_texture_rgba32f(target.color.id(), kSize, kSize);
+  }
+};
+
 // storage=auto on a software rasterizer, when a frame's lists outgrow the
 // slots the last frame's even lists sized (the torus's, then the nested
 // spheres' six layers): that frame is filled again into exact ranges from
@@ -832,7 +867,7 @@ TEST(IllustrationBuffer, AutoStorageRefillsIntoExactRangesWhenAListOutgrowsItsSl
   const TechniqueDescriptor& d = builtin_techniques().get("illustration_buffer");
   const Scene torus = load_scene("torus", {}), nested = load_scene("nested_spheres", {});
   const SceneGpu torus_gpu(torus), nested_gpu(nested);
-  test::TechniqueRenderer moved(d, 48, 48), fresh(d, 48, 48);
+  ResolvedRenderer moved(d, torus), fresh(d, torus);
   moved.render(torus_gpu);  // the counting pass: even lists
   moved.render(torus_gpu);  // per-pixel arrays of the torus's longest list
   const double arrays_before = find_figure(moved.technique->counters().extra, "array_storage").value_or(-1.0);

@@ -1,5 +1,5 @@
 // illustration_buffer: the registry entry and the parameter schema. The
-// technique itself is in technique.cpp; see README.md.
+// technique itself is in technique.cpp and its stages (*_stage.h); see README.md.
 #include "algorithms/illustration_buffer/settings.h"
 
 
