@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <sstream>
 #include <stdexcept>
 #include <tuple>
 
@@ -974,6 +975,55 @@ TEST(IllustrationBuffer, NormalVariationOpacityIsZeroOnFlatLayersAndGrowsTowards
                                            {{"modulation", "normal_variation"}, {"normal_variation_scale", "0"}},
                                            "nested_spheres", sphere, 16, 16);
   EXPECT_EQ(*std::max_element(none.image.rgba.begin(), none.image.rgba.end()), 0.0f);
+}
+
+// The parameters a run used (RunResult::technique_params: "key=value ...").
+RawParams used_params(const RunResult& r) {
+  RawParams params;
+  std::istringstream words(r.technique_params);
+  for (std::string word; words >> word;) {
+    const size_t equals = word.find('=');
+    if (equals != std::string::npos) params[word.substr(0, equals)] = word.substr(equals + 1);
+  }
+  return params;
+}
+
+// preset=paper: every parameter the user leaves out at carnecky2013's
+// published value (README: Preset), the image of giving those values by
+// hand, and explicit parameters over the preset.
+TEST(IllustrationBuffer, PaperPresetResolvesToThePublishedValuesAndTheirImage) {
+  test::gl_context();
+  const RawParams paper = {{"neighbors", "heuristic"},   {"modulation", "silhouette_halo"},
+                           {"adaptive_alpha", "false"},  {"iterations", "20"},
+                           {"lambda_alpha", "1"},        {"lambda_beta", "0.05"},
+                           {"lambda_gamma", "0.1"},      {"profile", "none"},
+                           {"weight_z", "1"},            {"weight_n", "1"},
+                           {"storage", "linked"},        {"sort", "array"},
+                           {"diffusion", "steps"},       {"skip_converged", "false"},
+                           {"diffusion_tolerance", "0"}, {"flat_color_records", "false"}};
+  const RunResult preset =
+      test::harness().run(test::one_frame("illustration_buffer", {{"preset", "paper"}}, "torus", {}, 32));
+  ASSERT_EQ(preset.status, RunStatus::ok) << preset.message;
+  const RawParams used = used_params(preset);
+  for (const auto& [key, value] : paper) {
+    ASSERT_TRUE(used.contains(key)) << key << " in " << preset.technique_params;
+    EXPECT_EQ(used.at(key), value) << key;
+  }
+  const RunResult given = test::harness().run(test::one_frame("illustration_buffer", paper, "torus", {}, 32));
+  ASSERT_EQ(given.status, RunStatus::ok) << given.message;
+  EXPECT_EQ(largest_difference(preset.image, given.image), 0.0);
+  // The defaults (preset=none) are another configuration, with another image.
+  const RunResult defaults = test::harness().run(test::one_frame("illustration_buffer", {}, "torus", {}, 32));
+  EXPECT_GT(largest_difference(preset.image, defaults.image), 0.0);
+  // Explicit parameters win over the preset; the rest keep its values.
+  const RunResult mixed = test::harness().run(test::one_frame(
+      "illustration_buffer", {{"preset", "paper"}, {"iterations", "5"}, {"storage", "linearized"}}, "torus", {}, 32));
+  ASSERT_EQ(mixed.status, RunStatus::ok) << mixed.message;
+  const RawParams mixed_used = used_params(mixed);
+  EXPECT_EQ(mixed_used.at("iterations"), "5");
+  EXPECT_EQ(mixed_used.at("storage"), "linearized");
+  EXPECT_EQ(mixed_used.at("neighbors"), "heuristic");
+  EXPECT_EQ(mixed_used.at("skip_converged"), "false");
 }
 
 }  // namespace

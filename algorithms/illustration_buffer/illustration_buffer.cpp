@@ -94,30 +94,55 @@ Settings settings_from(const ParamSet& p) {
   return s;
 }
 
-// The resolution rule (README: device-dependent defaults). storage=auto:
-// linked where sort=dynamic needs it; linearized where fill= asks for a
-// ranged fill; else arrays_when_even on a software rasterizer and linked on
-// a GPU. diffusion=auto: sweep_where_exact on a software rasterizer without
-// a tolerance (a tolerance asks for the steps that stop small moves), steps
-// elsewhere. flat_color_records=auto: true on a software rasterizer, false
-// on a GPU. fill=auto, where the storage is ranged: framebuffer fetch where
-// the device has it.
+// preset=paper (README: Preset): carnecky2013 as published. Its neighbour
+// search (Algorithm 2, eq. 1-3 with w_z = w_n), its storage (linked lists,
+// Algorithm 1), its sort (a local array, section 4.3), its diffusion
+// (`iterations` synchronous steps of eq. 8-9 over every fragment, Fig. 9's
+// first configuration: n = 20, lambda_alpha = 1, lambda_beta = 0.05,
+// lambda_gamma = 0.1, no profile), eq. 4's initial alpha, and the fill
+// record with its colour.
+const RawParams kPaperValues = {
+    {"neighbors", "heuristic"},   {"modulation", "silhouette_halo"}, {"adaptive_alpha", "false"},
+    {"iterations", "20"},         {"lambda_alpha", "1"},             {"lambda_beta", "0.05"},
+    {"lambda_gamma", "0.1"},      {"profile", "none"},               {"weight_z", "1"},
+    {"weight_n", "1"},            {"storage", "linked"},             {"sort", "array"},
+    {"diffusion", "steps"},       {"skip_converged", "false"},       {"diffusion_tolerance", "0"},
+    {"flat_color_records", "false"}};
+const Choices<std::string> kPresets{{"none", "none"}, {"paper", "paper"}};
+
+// The resolution rule (README: device-dependent defaults). preset=paper
+// first: kPaperValues for every parameter the user did not give. Then, on
+// the values so far: storage=auto: linked where sort=dynamic needs it;
+// linearized where fill= asks for a ranged fill; else arrays_when_even on a
+// software rasterizer and linked on a GPU. diffusion=auto:
+// sweep_where_exact on a software rasterizer without a tolerance (a
+// tolerance asks for the steps that stop small moves), steps elsewhere.
+// flat_color_records=auto: true on a software rasterizer, false on a GPU.
+// fill=auto, where the storage is ranged: framebuffer fetch where the
+// device has it.
 RawParams resolve_parameters(const ParamSet& requested, const ResolveInput& input) {
   const bool software = input.device.software;
   RawParams resolved;
+  if (requested.choice("preset") == "paper")
+    for (const auto& [key, value] : kPaperValues)
+      if (!input.given.contains(key)) resolved[key] = value;
+  const auto text = [&](const std::string& key) -> std::string {
+    const auto preset = resolved.find(key);
+    return preset != resolved.end() ? preset->second : requested.choice(key);
+  };
   const SlotFill fill = requested.choice("fill", kSlotFills);
-  Storage storage = requested.choice("storage", kStorages);
+  Storage storage = kStorages.value(text("storage"));
   if (storage == Storage::automatic) {
-    storage = requested.choice("sort", kSorts) == SortMethod::dynamic ? Storage::linked
-              : fill != SlotFill::automatic                           ? Storage::linearized
-              : software                                              ? Storage::arrays_when_even
-                                                                      : Storage::linked;
+    storage = kSorts.value(text("sort")) == SortMethod::dynamic ? Storage::linked
+              : fill != SlotFill::automatic                    ? Storage::linearized
+              : software                                       ? Storage::arrays_when_even
+                                                               : Storage::linked;
     resolved["storage"] = kStorages.name(storage);
   }
   if (storage != Storage::linked) resolved["fill"] = kSlotFills.name(resolve_slot_fill(fill, input.device));
-  if (requested.choice("diffusion", kDiffusions) == Diffusion::automatic)
+  if (kDiffusions.value(text("diffusion")) == Diffusion::automatic)
     resolved["diffusion"] = software && requested.real("diffusion_tolerance") == 0.0 ? "sweep_where_exact" : "steps";
-  if (requested.choice("flat_color_records") == "auto") resolved["flat_color_records"] = software ? "true" : "false";
+  if (text("flat_color_records") == "auto") resolved["flat_color_records"] = software ? "true" : "false";
   return resolved;
 }
 
@@ -129,6 +154,13 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
       .display_name = "Illustration buffer (linked lists + geodesic neighbours, non-local opacity)",
       .paper = "Carnecky et al. 2013 (IEEE TVCG 19(5)); Pastyrik & Cmolik 2016 (CESCG)",
       .params = {
+          illustration_buffer::kPresets.spec(
+              "preset", "none",
+              "paper = every parameter the user does not give at carnecky2013's published value (README: Preset): "
+              "neighbors=heuristic, storage=linked, sort=array, diffusion=steps, skip_converged=false, "
+              "diffusion_tolerance=0, flat_color_records=false, iterations=20, lambda_alpha=1, lambda_beta=0.05, "
+              "lambda_gamma=0.1, profile=none, weight_z=weight_n=1, adaptive_alpha=false, "
+              "modulation=silhouette_halo; none = the defaults below"),
           illustration_buffer::kNeighborSearches.spec(
               "neighbors", illustration_buffer::NeighborSearch::triangle_index,
               "neighbour search: carnecky2013 Algorithm 2 (continuity measure eq. 1-3, mutual check), the same "
