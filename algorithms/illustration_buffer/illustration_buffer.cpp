@@ -110,7 +110,7 @@ const RawParams kPaperValues = {
     {"flat_color_records", "false"}};
 const Choices<std::string> kPresets{{"none", "none"}, {"paper", "paper"}};
 
-// The resolution rule (README: device-dependent defaults). preset=paper
+// The resolution rule (README: Device-dependent defaults). preset=paper
 // first: kPaperValues for every parameter the user did not give. Then, on
 // the values so far: storage=auto: linked where sort=dynamic needs it;
 // linearized where fill= asks for a ranged fill; else arrays_when_even on a

@@ -4,7 +4,7 @@
 // host's list of the pixels that hold a fragment. Llvmpipe runs a shader's
 // every path for each group of 8 invocations it is dispatched over, empty
 // pixels included (branches are masked, not skipped), so a dispatch over
-// the covered pixels alone costs what they need (README, Work saved).
+// the covered pixels alone costs what they need (README, Counters and work saved).
 layout(local_size_x = 8, local_size_y = 8) in;
 #ifdef IB_LISTED
 layout(binding = IB_LISTED_PIXELS_UNIT) uniform usamplerBuffer ib_listed_pixels;  // R32UI, in raster order

@@ -16,7 +16,8 @@ namespace {
 // storage=linearized or arrays, where the dynamic sort is not offered).
 constexpr uint32_t kSmallestArray = 4;
 // sort=auto takes the dynamic sort up to this longest list: faster there on
-// llvmpipe (README, Sort variants), the array's ranks beyond.
+// llvmpipe (results/reference/illustration_buffer/README.md, Sort variants),
+// the array's ranks beyond.
 constexpr uint32_t kLongestDynamicList = 4;
 
 }  // namespace

@@ -1,5 +1,5 @@
 // Worklists of the diffusion that skips converged fragments (skip_converged;
-// README, "Diffusion: skipping converged fragments"). A fragment's next
+// README, Diffusion). A fragment's next
 // value depends only on its own fields and on its links, and links reach
 // only the 4 adjacent pixels; so when a fragment of pixel p changes, only
 // fragments of p and of its 4 adjacent pixels can change in the next step.
