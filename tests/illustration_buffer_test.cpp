@@ -8,10 +8,12 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <sstream>
 #include <stdexcept>
 #include <tuple>
 
 #include "harness/core/complexity.h"
+#include "harness/core/image.h"
 #include "harness/gl/context.h"
 #include "tests/gl_fixture.h"
 #include "scenes/scene_library.h"
@@ -773,7 +775,11 @@ TEST(IllustrationBuffer, StorageOptionsThatDoNotGoTogetherAreErrorsNamingThem) {
     const RunResult r = test::harness().run(test::one_frame("illustration_buffer", params, "quads", {}, 8));
     EXPECT_EQ(r.status, RunStatus::error) << named;
     EXPECT_NE(r.message.find(named), std::string::npos) << r.message;
-    EXPECT_THROW(d.create(ParamSet(d.params, params, "technique 'illustration_buffer'")), std::invalid_argument) << named;
+    // Built directly, with the `auto`s the harness would resolve given.
+    RawParams resolved = params;
+    resolved.insert({{"diffusion", "steps"}, {"flat_color_records", "false"}});
+    EXPECT_THROW(d.create(ParamSet(d.params, resolved, "technique 'illustration_buffer'")), std::invalid_argument)
+        << named;
   }
 }
 
@@ -821,6 +827,36 @@ TEST(IllustrationBuffer, AutoStorageFillsArraysAfterAFrameOfEvenLists) {
   }
 }
 
+// The technique with its defaults, every `auto` resolved for this device
+// and `scene` as the harness resolves them (TechniqueDescriptor::resolve),
+// rendering 48 x 48 frames one after another (test::TechniqueRenderer
+// builds the defaults unresolved).
+struct ResolvedRenderer {
+  static constexpr int kSize = 48;
+  std::unique_ptr<Technique> technique;
+  RenderTarget target{kSize, kSize};
+  StageClock clock{ClockKind::wall};
+
+  ResolvedRenderer(const TechniqueDescriptor& d, const Scene& scene) {
+    const RawParams given;
+    const ParamSet requested(d.params, given, "technique '" + d.id + "'");
+    const FrameContent content{kSize, kSize};
+    RawParams resolved;
+    for (const auto& [key, value] : d.resolve(
+             requested, {test::gl_context().device(), {scene.triangle_count(), scene.object_count, true}, content, given}))
+      resolved[key] = value;
+    technique = d.create(ParamSet(d.params, resolved, "technique '" + d.id + "'"));
+    technique->resize(kSize, kSize);
+  }
+  Image render(const SceneGpu& gpu) {
+    const Camera& camera = gpu.scene().camera;
+    const Frame frame{gpu, camera.view, camera.projection(1.0f), kSize, kSize, glm::vec3(0.0f), target.framebuffer.id(),
+                      clock};
+    render_frame(*technique, frame, false, true);
+    return read_texture_rgba32f(target.color.id(), kSize, kSize);
+  }
+};
+
 // storage=auto on a software rasterizer, when a frame's lists outgrow the
 // slots the last frame's even lists sized (the torus's, then the nested
 // spheres' six layers): that frame is filled again into exact ranges from
@@ -832,7 +868,7 @@ TEST(IllustrationBuffer, AutoStorageRefillsIntoExactRangesWhenAListOutgrowsItsSl
   const TechniqueDescriptor& d = builtin_techniques().get("illustration_buffer");
   const Scene torus = load_scene("torus", {}), nested = load_scene("nested_spheres", {});
   const SceneGpu torus_gpu(torus), nested_gpu(nested);
-  test::TechniqueRenderer moved(d, 48, 48), fresh(d, 48, 48);
+  ResolvedRenderer moved(d, torus), fresh(d, torus);
   moved.render(torus_gpu);  // the counting pass: even lists
   moved.render(torus_gpu);  // per-pixel arrays of the torus's longest list
   const double arrays_before = find_figure(moved.technique->counters().extra, "array_storage").value_or(-1.0);
@@ -939,6 +975,55 @@ TEST(IllustrationBuffer, NormalVariationOpacityIsZeroOnFlatLayersAndGrowsTowards
                                            {{"modulation", "normal_variation"}, {"normal_variation_scale", "0"}},
                                            "nested_spheres", sphere, 16, 16);
   EXPECT_EQ(*std::max_element(none.image.rgba.begin(), none.image.rgba.end()), 0.0f);
+}
+
+// The parameters a run used (RunResult::technique_params: "key=value ...").
+RawParams used_params(const RunResult& r) {
+  RawParams params;
+  std::istringstream words(r.technique_params);
+  for (std::string word; words >> word;) {
+    const size_t equals = word.find('=');
+    if (equals != std::string::npos) params[word.substr(0, equals)] = word.substr(equals + 1);
+  }
+  return params;
+}
+
+// preset=paper: every parameter the user leaves out at carnecky2013's
+// published value (README: Preset), the image of giving those values by
+// hand, and explicit parameters over the preset.
+TEST(IllustrationBuffer, PaperPresetResolvesToThePublishedValuesAndTheirImage) {
+  test::gl_context();
+  const RawParams paper = {{"neighbors", "heuristic"},   {"modulation", "silhouette_halo"},
+                           {"adaptive_alpha", "false"},  {"iterations", "20"},
+                           {"lambda_alpha", "1"},        {"lambda_beta", "0.05"},
+                           {"lambda_gamma", "0.1"},      {"profile", "none"},
+                           {"weight_z", "1"},            {"weight_n", "1"},
+                           {"storage", "linked"},        {"sort", "array"},
+                           {"diffusion", "steps"},       {"skip_converged", "false"},
+                           {"diffusion_tolerance", "0"}, {"flat_color_records", "false"}};
+  const RunResult preset =
+      test::harness().run(test::one_frame("illustration_buffer", {{"preset", "paper"}}, "torus", {}, 32));
+  ASSERT_EQ(preset.status, RunStatus::ok) << preset.message;
+  const RawParams used = used_params(preset);
+  for (const auto& [key, value] : paper) {
+    ASSERT_TRUE(used.contains(key)) << key << " in " << preset.technique_params;
+    EXPECT_EQ(used.at(key), value) << key;
+  }
+  const RunResult given = test::harness().run(test::one_frame("illustration_buffer", paper, "torus", {}, 32));
+  ASSERT_EQ(given.status, RunStatus::ok) << given.message;
+  EXPECT_EQ(largest_difference(preset.image, given.image), 0.0);
+  // The defaults (preset=none) are another configuration, with another image.
+  const RunResult defaults = test::harness().run(test::one_frame("illustration_buffer", {}, "torus", {}, 32));
+  EXPECT_GT(largest_difference(preset.image, defaults.image), 0.0);
+  // Explicit parameters win over the preset; the rest keep its values.
+  const RunResult mixed = test::harness().run(test::one_frame(
+      "illustration_buffer", {{"preset", "paper"}, {"iterations", "5"}, {"storage", "linearized"}}, "torus", {}, 32));
+  ASSERT_EQ(mixed.status, RunStatus::ok) << mixed.message;
+  const RawParams mixed_used = used_params(mixed);
+  EXPECT_EQ(mixed_used.at("iterations"), "5");
+  EXPECT_EQ(mixed_used.at("storage"), "linearized");
+  EXPECT_EQ(mixed_used.at("neighbors"), "heuristic");
+  EXPECT_EQ(mixed_used.at("skip_converged"), "false");
 }
 
 }  // namespace

@@ -197,3 +197,27 @@ TEST(Measurement, ClocksFromNvmlAreRecordedAndAMovedClockIsFlagged) {
 
 }  // namespace
 }  // namespace oit
+
+namespace oit {
+namespace {
+
+// preset=paper: the technique's published values where the user set nothing,
+// an explicit value winning; `requested_params` keeps what was asked for.
+TEST(Resolution, PaperPresetSetsThePublishedValuesTheUserLeftOut) {
+  const RunResult paper = test::run_ok(test::one_frame("depth_peeling", {{"preset", "paper"}}, "quads", {{"layers", "4"}}, 16));
+  EXPECT_NE(paper.technique_params.find("tie_break=submission"), std::string::npos) << paper.technique_params;
+  EXPECT_NE(paper.requested_params.find("tie_break=triangle_id"), std::string::npos) << paper.requested_params;
+  const RunResult mine = test::run_ok(
+      test::one_frame("depth_peeling", {{"preset", "paper"}, {"tie_break", "triangle_id"}}, "quads", {{"layers", "4"}}, 16));
+  EXPECT_NE(mine.technique_params.find("tie_break=triangle_id"), std::string::npos) << mine.technique_params;
+  const RunResult bkb = test::run_ok(test::one_frame("bucketed_kbuffer", {{"preset", "paper"}}, "quads", {{"layers", "4"}}, 16));
+  EXPECT_NE(bkb.technique_params.find("neighbor_search=bucket"), std::string::npos) << bkb.technique_params;
+  EXPECT_NE(bkb.technique_params.find("buckets=on"), std::string::npos) << bkb.technique_params;
+  // A technique that runs its paper by default has no preset to ask for.
+  const RunResult none = test::harness().run(test::one_frame("unsorted", {{"preset", "paper"}}, "quads", {}, 8));
+  EXPECT_EQ(none.status, RunStatus::error);
+  EXPECT_NE(none.message.find("preset"), std::string::npos) << none.message;
+}
+
+}  // namespace
+}  // namespace oit

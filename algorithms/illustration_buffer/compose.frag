@@ -23,20 +23,18 @@ layout(location = 0) out vec4 out_color;
 // A frame whose diffusion swept: beta and gamma from the hop distances, and
 // alpha the colour's (the sweeps run only where eq. 4 gives every fragment
 // its own alpha and nothing moves it: stylize_init.comp).
-#define IB_FIELD_TABLE
 #include "algorithms/illustration_buffer/sweep_distances.glsl"
 #endif
 // IB_PROFILE 0: none, 1: exponential (eq. 10), 2: power (eq. 11). A define,
 // not a uniform: llvmpipe evaluates the exp and pow of a branch no lane takes.
-layout(location = IB_PROFILE_P_LOCATION) uniform float u_profile_p;
 
 float profile(float u) {
   u = clamp(u, 0.0, 1.0);
 #if IB_PROFILE == 1
-  const float floor_value = exp(-u_profile_p);
-  return (exp(-u_profile_p * (1.0 - u) * (1.0 - u)) - floor_value) / (1.0 - floor_value);
+  const float floor_value = exp(-ib.profile_p);
+  return (exp(-ib.profile_p * (1.0 - u) * (1.0 - u)) - floor_value) / (1.0 - floor_value);
 #elif IB_PROFILE == 2
-  return pow(u, u_profile_p);
+  return pow(u, ib.profile_p);
 #else
   return u;
 #endif
@@ -44,7 +42,7 @@ float profile(float u) {
 #endif
 
 void main() {
-  const uint pixel = uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);
+  const uint pixel = uint(gl_FragCoord.y) * uint(ib.width) + uint(gl_FragCoord.x);
   const uint first = ib_pixel_first(pixel), end = first + ib_pixel_count(pixel);
   vec3 accumulated = vec3(0.0);
   float transmittance = 1.0;

@@ -14,15 +14,13 @@
 // primitive order. No list, no global counter. linearized: the host already
 // knows every count (the counting pass); pixel p owns records
 // [offset[p], offset[p+1]) and its cursor starts at the offset. IB_ARRAYS
-// (storage=arrays): pixel p owns the u_slots records from p * u_slots, its
+// (storage=arrays): pixel p owns the ib.slots records from p * ib.slots, its
 // cursor starts at 0 and ends at its count (read back by the host); a
 // fragment beyond the slots is not stored but still counted, and the host
 // fills the frame again with more slots.
 #include "shaders/shading.glsl"
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 
-layout(location = IB_CAPACITY_LOCATION) uniform uint u_capacity;
-layout(location = IB_MAX_PER_PIXEL_LOCATION) uniform uint u_max_per_pixel;
 
 // The purely local opacities of carnecky2013 Fig. 11 (modulation=angle /
 // normal_variation), stored in the record's slopes.z for the compose:
@@ -31,7 +29,6 @@ layout(location = IB_MAX_PER_PIXEL_LOCATION) uniform uint u_max_per_pixel;
 //  normal_variation: min(1, scale * |grad n|), grad n = (dn/dx, dn/dy) the
 //    view normal's change per pixel (Born et al. [7]; carnecky2013: "the
 //    derivatives of the surface normal").
-layout(location = IB_NORMAL_VARIATION_SCALE_LOCATION) uniform float u_normal_variation_scale;
 layout(location = OIT_UNIFORM_PROJECTION) uniform mat4 u_projection;
 
 // Unit vector from the fragment towards the eye along its view ray: +z for
@@ -44,7 +41,6 @@ layout(location = 0) inout uint ib_cursor;
 layout(binding = IB_CURSORS_IMAGE_UNIT, r32ui) uniform uimageBuffer ib_cursors;
 #endif
 #if defined(IB_ARRAYS)
-layout(location = IB_SLOTS_LOCATION) uniform uint u_slots;
 #endif
 
 #if defined(IB_RANGED)
@@ -65,31 +61,23 @@ uint take_slot(uint pixel) {
 uint take_record(uint pixel) {
 #if defined(IB_ARRAYS)
   const uint slot = take_slot(pixel);
-  return slot < u_slots ? pixel * u_slots + slot : IB_NIL;
+  return slot < ib.slots ? pixel * ib.slots + slot : IB_NIL;
 #elif defined(IB_RANGED)
   return take_slot(pixel);
 #else
   const uint position = atomicAdd(ib_count[pixel], 1u);
   OIT_ATOMIC_RAISE(ib_longest, position + 1u);
   // Beyond the sort's array: counted here; the sort keeps the nearest max_per_pixel.
-  if (position >= u_max_per_pixel) {
+  if (position >= ib.max_per_pixel) {
     OIT_ATOMIC_COUNT(ib_dropped);
-    if (position == u_max_per_pixel) atomicAdd(ib_truncated, 1u);
+    if (position == ib.max_per_pixel) atomicAdd(ib_truncated, 1u);
   }
   uint index;
   OIT_ATOMIC_APPEND(ib_produced, index);
-  return index < u_capacity ? index : IB_NIL;  // pool overflow: the host grows the pool and re-renders
+  return index < ib.capacity ? index : IB_NIL;  // pool overflow: the host grows the pool and re-renders
 #endif
 }
 
-// The fill's list link of record `index`: the pixel's old head (storage=linked).
-uint link_record(uint pixel, uint index) {
-#if defined(IB_RANGED)
-  return IB_NIL;  // the records of a pixel are contiguous
-#else
-  return atomicExchange(ib_head[pixel], index);
-#endif
-}
 
 #ifdef IB_MEASURE
 // Ground truth for the neighbour accuracy only (parameter measure_accuracy):
@@ -107,22 +95,24 @@ void main() {
 #elif defined(IB_NORMAL_VARIATION)
   const vec3 normal = normalize(v_view_normal);
   const vec3 dndx = dFdx(normal), dndy = dFdy(normal);
-  local_opacity = min(1.0, u_normal_variation_scale * sqrt(dot(dndx, dndx) + dot(dndy, dndy)));
+  local_opacity = min(1.0, ib.normal_variation_scale * sqrt(dot(dndx, dndx) + dot(dndy, dndy)));
 #endif
 #ifdef IB_MEASURE
   const vec2 footprint = fwidth(v_uv);
 #endif
-  const uint pixel = uint(gl_FragCoord.y) * uint(u_width) + uint(gl_FragCoord.x);
+  const uint pixel = uint(gl_FragCoord.y) * uint(ib.width) + uint(gl_FragCoord.x);
   const uint index = take_record(pixel);
   if (index == IB_NIL) return;
-  const uint next = link_record(pixel, index);
-#if defined(IB_FLAT_COLOR) && defined(IB_RANGED)
-  // No link in contiguous ranges: key.w keeps the light factor (1 unlit), from
-  // which the sort rebuilds the lit colour bit for bit (shading.glsl).
-  const uvec4 key = uvec4(floatBitsToUint(depth), oit_triangle_id(), v_object_id, floatBitsToUint(oit_light_factor()));
+#if defined(IB_RANGED)
+  // IB_FILL_RANGED (bindings.h): no link in contiguous ranges; key.w keeps
+  // the light factor (1 unlit), from which the sort rebuilds the lit colour
+  // of a flat colour record bit for bit (shading.glsl).
+  const uint last_word = floatBitsToUint(oit_light_factor());
 #else
-  const uvec4 key = uvec4(floatBitsToUint(depth), oit_triangle_id(), v_object_id, next);
+  // IB_FILL_LINKED: key.w links the record to the pixel's old head.
+  const uint last_word = atomicExchange(ib_head[pixel], index);
 #endif
+  const uvec4 key = uvec4(floatBitsToUint(depth), oit_triangle_id(), v_object_id, last_word);
 #if defined(IB_SURFACE) && !defined(IB_FLAT_COLOR)
   const uvec4 surface = uvec4(floatBitsToUint(vec3(slopes, local_opacity)), ib_pack_normal(oit_view_normal()));
   ib_fragments[index] = IbFragment(oit_shade(), key, surface);

@@ -8,28 +8,28 @@
 
 #define IB_INFINITY 3.0e38
 
-// fragData: one record per fragment in fill order (48 B).
-// The list link sits in the key, so the sort's walk reads one texel per node.
+// fragData: one record per fragment in fill order (48 B), laid out as
+// bindings.h names it (IB_FILL_LINKED / IB_FILL_RANGED). In the linked
+// lists the link sits in the key, so the sort's walk reads one texel per node.
 struct IbFragment {
-  vec4 color;     // straight RGBA from oit_shade()
-  uvec4 key;      // x: view depth bits, y: stable triangle id, z: object id, w: next record of the pixel's list
-  uvec4 surface;  // bits of x: d(depth)/dx, y: d(depth)/dy per pixel, z: angle / normal_variation opacity;
-                  // w: view normal (octahedral snorm16x2). Only with Settings::records_surface (IB_SURFACE).
+  vec4 color;
+  uvec4 key;
+  uvec4 surface;
 };
 
 // The sorted lists, each pixel's fragments contiguous, nearest first, split
 // over two buffers of 32 B per record (together 64 B; one 64 B array would
 // pass llvmpipe's 128 MiB storage-block limit at 2.1M fragments):
 // fragData2: what the neighbour search compares.
+// (bindings.h: IB_GEOMETRY_SURFACE / IB_GEOMETRY_TRIANGLE / IB_GEOMETRY_NONE).
 struct IbSortedSearch {
-  uvec4 key;       // x: view depth bits, y: stable triangle id, z: object id, w: pixel index
-  uvec4 geometry;  // x: packed view normal, y: dz/dx bits, z: dz/dy bits (neighbors=triangle_index: xyz the
-                   // triangle's vertex indices, sort.comp), w: index of the fill record (fragData)
+  uvec4 key;
+  uvec4 geometry;
 };
 // fragData3: what stylize and compose read, and the links the search writes.
 struct IbSortedShade {
-  vec4 color;   // straight RGBA
-  uvec4 links;  // sorted indices of the left, right, down, up neighbours (or IB_NONE / IB_OFF_IMAGE)
+  vec4 color;
+  uvec4 links;
 };
 
 layout(std430, binding = IB_HEAD_BINDING) coherent buffer IbPixelHead { uint ib_head[]; };
@@ -51,8 +51,10 @@ layout(std430, binding = IB_COUNTERS_BINDING) coherent buffer IbCounters {
   uint ib_allocated;
 };
 
-layout(location = IB_WIDTH_LOCATION) uniform int u_width;
-layout(location = IB_HEIGHT_LOCATION) uniform int u_height;
+// The parameters of the frame and of the pass (bindings.h, frame_params.h).
+layout(std140, binding = IB_FRAME_PARAMS_BLOCK) uniform IbFrameBlock { IbFrameParams ib; };
+layout(std140, binding = IB_PASS_PARAMS_BLOCK) uniform IbPassBlock { IbPassParams ib_pass; };
+
 
 // The sort key's first word: IEEE floats compare like sign-magnitude
 // integers; this maps them to unsigned order.

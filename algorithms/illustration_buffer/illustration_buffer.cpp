@@ -1,5 +1,5 @@
 // illustration_buffer: the registry entry and the parameter schema. The
-// technique itself is in technique.cpp; see README.md.
+// technique itself is in technique.cpp and its stages (*_stage.h); see README.md.
 #include "algorithms/illustration_buffer/settings.h"
 
 
@@ -94,30 +94,48 @@ Settings settings_from(const ParamSet& p) {
   return s;
 }
 
-// The resolution rule (README: device-dependent defaults). storage=auto:
-// linked where sort=dynamic needs it; linearized where fill= asks for a
-// ranged fill; else arrays_when_even on a software rasterizer and linked on
-// a GPU. diffusion=auto: sweep_where_exact on a software rasterizer without
-// a tolerance (a tolerance asks for the steps that stop small moves), steps
-// elsewhere. flat_color_records=auto: true on a software rasterizer, false
-// on a GPU. fill=auto, where the storage is ranged: framebuffer fetch where
-// the device has it.
+// preset=paper (README: Preset; the registry adds the parameter and applies
+// these where the user set nothing): carnecky2013 as published. Its neighbour
+// search (Algorithm 2, eq. 1-3 with w_z = w_n), its storage (linked lists,
+// Algorithm 1), its sort (a local array, section 4.3), its diffusion
+// (`iterations` synchronous steps of eq. 8-9 over every fragment, Fig. 9's
+// first configuration: n = 20, lambda_alpha = 1, lambda_beta = 0.05,
+// lambda_gamma = 0.1, no profile), eq. 4's initial alpha, and the fill
+// record with its colour.
+const RawParams kPaperValues = {
+    {"neighbors", "heuristic"},   {"modulation", "silhouette_halo"}, {"adaptive_alpha", "false"},
+    {"iterations", "20"},         {"lambda_alpha", "1"},             {"lambda_beta", "0.05"},
+    {"lambda_gamma", "0.1"},      {"profile", "none"},               {"weight_z", "1"},
+    {"weight_n", "1"},            {"storage", "linked"},             {"sort", "array"},
+    {"diffusion", "steps"},       {"skip_converged", "false"},       {"diffusion_tolerance", "0"},
+    {"flat_color_records", "false"}};
+
+// The resolution rule (README: Device-dependent defaults), on the values
+// after the paper preset: storage=auto: linked where sort=dynamic needs it;
+// linearized where fill= asks for a ranged fill; else arrays_when_even on a
+// software rasterizer and linked on a GPU. diffusion=auto:
+// sweep_where_exact on a software rasterizer without a tolerance (a
+// tolerance asks for the steps that stop small moves), steps elsewhere.
+// flat_color_records=auto: true on a software rasterizer, false on a GPU.
+// fill=auto, where the storage is ranged: framebuffer fetch where the
+// device has it.
 RawParams resolve_parameters(const ParamSet& requested, const ResolveInput& input) {
   const bool software = input.device.software;
   RawParams resolved;
+  const auto text = [&](const std::string& key) -> std::string { return requested.choice(key); };
   const SlotFill fill = requested.choice("fill", kSlotFills);
-  Storage storage = requested.choice("storage", kStorages);
+  Storage storage = kStorages.value(text("storage"));
   if (storage == Storage::automatic) {
-    storage = requested.choice("sort", kSorts) == SortMethod::dynamic ? Storage::linked
-              : fill != SlotFill::automatic                           ? Storage::linearized
-              : software                                              ? Storage::arrays_when_even
-                                                                      : Storage::linked;
+    storage = kSorts.value(text("sort")) == SortMethod::dynamic ? Storage::linked
+              : fill != SlotFill::automatic                    ? Storage::linearized
+              : software                                       ? Storage::arrays_when_even
+                                                               : Storage::linked;
     resolved["storage"] = kStorages.name(storage);
   }
   if (storage != Storage::linked) resolved["fill"] = kSlotFills.name(resolve_slot_fill(fill, input.device));
-  if (requested.choice("diffusion", kDiffusions) == Diffusion::automatic)
+  if (kDiffusions.value(text("diffusion")) == Diffusion::automatic)
     resolved["diffusion"] = software && requested.real("diffusion_tolerance") == 0.0 ? "sweep_where_exact" : "steps";
-  if (requested.choice("flat_color_records") == "auto") resolved["flat_color_records"] = software ? "true" : "false";
+  if (text("flat_color_records") == "auto") resolved["flat_color_records"] = software ? "true" : "false";
   return resolved;
 }
 
@@ -248,14 +266,7 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
         return illustration_buffer::missing_device_feature(s, device);
       },
       .resolve = illustration_buffer::resolve_parameters,
-      // carnecky2013: linked lists (Algorithm 1), the array sort (4.3), every
-      // fragment diffused in synchronous steps (eq. 8-9), the colour stored.
-      .paper_preset = {{"storage", "linked"},
-                       {"sort", "array"},
-                       {"diffusion", "steps"},
-                       {"skip_converged", "false"},
-                       {"diffusion_tolerance", "0"},
-                       {"flat_color_records", "false"}},
+      .paper_preset = illustration_buffer::kPaperValues,
       .create = [](const ParamSet& params) {
         return illustration_buffer::make_illustration_buffer(illustration_buffer::settings_from(params));
       },

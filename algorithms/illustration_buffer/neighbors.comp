@@ -3,10 +3,10 @@
 // fragment looks for its geodesic neighbour in the list of each of the 4
 // adjacent pixels (left = x-1, right = x+1, down = y-1, up = y+1, GL window
 // coordinates).
-//  IB_HEURISTIC:      carnecky2013 Algorithm 2 with the continuity measure
-//                     eq. 1-3 and the mutual check (second loop over the own list).
-//                     IB_MERGE=1 (neighbors=heuristic_merge) finds the same
-//                     candidate by a walk from the depth-nearest fragment.
+// carnecky2013 Algorithm 2 with the continuity measure eq. 1-3 and the
+// mutual check (second loop over the own list). IB_MERGE
+// (neighbors=heuristic_merge) finds the same candidate by a walk from the
+// depth-nearest fragment.
 // (neighbors=triangle_index, pastyrik2016 Algorithm 3, is
 // neighbors_triangle_index.comp: one invocation per pixel.)
 // Each search is its own loop over one contiguous range (no list walking,
@@ -15,10 +15,6 @@
 #include "algorithms/illustration_buffer/per_fragment.glsl"
 #include "algorithms/illustration_buffer/views.glsl"
 
-#if defined(IB_HEURISTIC)
-layout(location = IB_WEIGHT_Z_LOCATION) uniform float u_weight_z;
-layout(location = IB_WEIGHT_N_LOCATION) uniform float u_weight_n;
-layout(location = IB_INVERSE_RADIUS_LOCATION) uniform float u_inverse_radius;  // 1 / r_obj
 
 // The parts of fragment i that eq. 1-3 use, for one direction.
 struct Probe {
@@ -37,14 +33,14 @@ Probe probe(uint s, int dx, int dy) {
 }
 
 // w_z * eps_z (eq. 1) of a fragment at eye depth z.
-float depth_term(Probe i, float z) { return u_weight_z * (abs(i.predicted - z) * u_inverse_radius); }
+float depth_term(Probe i, float z) { return ib.weight_z * (abs(i.predicted - z) * ib.inverse_radius); }
 
 // eq. 3: w_z * eps_z (eq. 1) + w_n * eps_n (eq. 2) of a candidate with key
 // `key` and unpacked normal `normal`.
 float continuity(Probe i, uvec4 key, vec3 normal) {
   if (key.z != i.object) return IB_INFINITY;
   const float epsilon_n = 1.0 - dot(i.normal, normal);
-  return depth_term(i, uintBitsToFloat(key.x)) + u_weight_n * epsilon_n;
+  return depth_term(i, uintBitsToFloat(key.x)) + ib.weight_n * epsilon_n;
 }
 // The same for sorted fragment j (its normal read only for the same object).
 float continuity(Probe i, uint j, uvec4 key) {
@@ -67,14 +63,14 @@ uint scan_candidate(Probe a, uint b_first, uint b_end, out float best_measure) {
   return best;
 }
 
-#if IB_MERGE
+#ifdef IB_MERGE
 // eq. 3 >= w_z * eps_z, so once a fragment's depth term alone exceeds the
 // best measure, no fragment farther from the predicted depth along the
 // depth-sorted list can win. The slack covers the ways eq. 3 can fall below
 // the depth term in floats: eps_n a few ulps below 0 (a dot product of unit
 // normals just above 1, times w_n) and the rounding of the sum.
 bool beyond_bound(Probe a, uvec4 key, float best_measure) {
-  return depth_term(a, uintBitsToFloat(key.x)) > best_measure * (1.0 + 1.0e-5) + u_weight_n * 1.0e-5;
+  return depth_term(a, uintBitsToFloat(key.x)) > best_measure * (1.0 + 1.0e-5) + ib.weight_n * 1.0e-5;
 }
 
 // Scores candidate b unless it lies beyond the bound (then returns false:
@@ -139,21 +135,18 @@ uint find_neighbor(uint s, uint own_pixel, int dx, int dy, uint other_pixel) {
   return best;
 }
 
-#else
-#error "neighbors.comp: define IB_HEURISTIC (neighbors=triangle_index is neighbors_triangle_index.comp)"
-#endif
 
 uint search(uint s, uint pixel, int x, int y, int dx, int dy) {
   const int nx = x + dx, ny = y + dy;
-  if (nx < 0 || ny < 0 || nx >= u_width || ny >= u_height) return IB_OFF_IMAGE;
-  return find_neighbor(s, pixel, dx, dy, uint(ny) * uint(u_width) + uint(nx));
+  if (nx < 0 || ny < 0 || nx >= ib.width || ny >= ib.height) return IB_OFF_IMAGE;
+  return find_neighbor(s, pixel, dx, dy, uint(ny) * uint(ib.width) + uint(nx));
 }
 
 void main() {
   const uint s = ib_fragment_index();
-  if (s >= u_fragments) return;
+  if (s >= ib.fragments) return;
   const uint pixel = ib_sorted_key(s).w;
-  const int x = int(pixel % uint(u_width)), y = int(pixel / uint(u_width));
+  const int x = int(pixel % uint(ib.width)), y = int(pixel / uint(ib.width));
   uvec4 links;
   links.x = search(s, pixel, x, y, -1, 0);
   links.y = search(s, pixel, x, y, 1, 0);

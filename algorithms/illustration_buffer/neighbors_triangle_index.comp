@@ -17,15 +17,15 @@
 // pixels, and each gather of candidates serves four tests per lane, where a
 // dispatch per fragment ran consecutive fragments of one pixel in the lanes,
 // all gathering the same candidate to test it once. Four, not eight: as fast
-// on 32 layers (neighbours 97-101 against 114-137 ms) and no slower than the
-// dispatch per fragment on the torus's lists of 1-4 (eight was ~1.5x slower
-// there: unrolled tests for fragments a short list does not have).
+// on deep lists and no slower than the dispatch per fragment on short ones,
+// where eight unrolls tests for fragments a short list does not have
+// (README, Neighbour search).
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 #include "algorithms/illustration_buffer/views.glsl"
 #include "algorithms/illustration_buffer/pixel_dispatch.glsl"
 
 // IB_GROUP (the host's define): 4, or 1 or 2 for frames whose lists are
-// all that short (technique.cpp, triangle_search_program).
+// all that short (neighbor_stage.cpp, NeighborStage::triangle_search).
 
 // This group's fragments (their triangles' vertex indices) and their links.
 uvec3 mine[IB_GROUP];
@@ -54,17 +54,17 @@ void scan(uint other, int d, uint pending) {
 
 // Direction d towards the adjacent pixel (x, y); IB_OFF_IMAGE outside the image.
 void search(int x, int y, int d, uint pending) {
-  if (x < 0 || y < 0 || x >= u_width || y >= u_height) {
+  if (x < 0 || y < 0 || x >= ib.width || y >= ib.height) {
     for (int i = 0; i < IB_GROUP; ++i) links[i][d] = IB_OFF_IMAGE;
     return;
   }
-  scan(uint(y) * uint(u_width) + uint(x), d, pending);
+  scan(uint(y) * uint(ib.width) + uint(x), d, pending);
 }
 
 void main() {
   uint pixel;
   if (!ib_invocation_pixel(pixel)) return;
-  const int x = int(pixel % uint(u_width)), y = int(pixel / uint(u_width));
+  const int x = int(pixel % uint(ib.width)), y = int(pixel / uint(ib.width));
   const uint first = ib_pixel_first(pixel), count = ib_pixel_count(pixel);
   for (uint group = first; group < first + count; group += uint(IB_GROUP)) {
     const uint size = min(first + count - group, uint(IB_GROUP));

@@ -67,7 +67,7 @@ struct Settings {
   SlotFill fill = SlotFill::automatic;  // storage=linearized or arrays (list_length_pass.h)
   // storage=arrays_when_even (storage is linearized then): each frame fills
   // per-pixel arrays where the last frame's lists were even enough
-  // (technique.cpp, kMostSlotsPerFragment), else runs the counting pass.
+  // (records.h, kMostSlotsPerFragment), else runs the counting pass.
   bool arrays_where_even = false;
   bool flat_color_records = true;  // unlit scenes, lit ones with ranged(): no colour in the fill record
   float normal_variation_scale = 10.0f;
@@ -81,6 +81,8 @@ struct Settings {
   // every pixel's count before the sort (linearized: from the counting pass;
   // arrays: the fill's cursors, read back).
   bool ranged() const { return linearized() || arrays(); }
+  // storage=linearized or arrays taking its slots by framebuffer fetch (fill, resolved on this device).
+  bool fetches_cursors() const { return ranged() && fills_by_framebuffer_fetch(fill); }
   bool heuristic() const { return neighbors != NeighborSearch::triangle_index; }
   // The modes that search neighbours and diffuse fields (carnecky2013 section 5).
   bool diffused() const { return uses_beta() || uses_gamma(); }
@@ -94,6 +96,8 @@ struct Settings {
   // fill leaves them out and the sort stores the triangle's vertices instead.
   bool records_surface() const { return (diffused() && heuristic()) || purely_local(); }
   bool stores_triangle_vertices() const { return diffused() && !heuristic(); }
+  // The steps of skip_converged (worklist.glsl); the sweeps need no tracking.
+  bool tracks_convergence() const { return diffused() && skip_converged && diffusion == Diffusion::steps; }
   // Whether `iterations` steps of eq. 9 take every value of 1 down to 0 or
   // below for each field used, so that the steps' result is the fixed point
   // wherever alpha cannot move (Diffusion).

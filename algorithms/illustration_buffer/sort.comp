@@ -7,8 +7,7 @@
 // records there in order. Lists longer than IB_ARRAY keep their IB_ARRAY
 // nearest fragments (the fill counted the rest as dropped): that path
 // (IB_TRUNCATES) is compiled only for frames with such a list, as llvmpipe
-// runs a branch's code even where no lane takes it (on the torus, the
-// unused path cost 1.8 of the sort's 6 ms). Lists of 0 or 1 fragments skip
+// runs a branch's code even where no lane takes it. Lists of 0 or 1 fragments skip
 // the walk and the sort.
 //
 // IB_DYNAMIC (sort=dynamic): pastyrik2016 Algorithm 2 instead of the array.
@@ -27,7 +26,7 @@
 // [offset[p], offset[p+1]), and the host checks that every pixel's fill
 // ended at the end of its counted range (SlotCursors::count_mismatched: the
 // counting pass and the fill disagreed). IB_ARRAYS: the first count[p] of
-// the u_slots records from p * u_slots, count[p] the fill's final cursor
+// the ib.slots records from p * ib.slots, count[p] the fill's final cursor
 // (the host filled again until every list fit).
 //
 // The list is walked by ONE flat loop: each iteration either takes the next
@@ -51,7 +50,6 @@ layout(binding = IB_SORT_TRIANGLES_UNIT) uniform usamplerBuffer ib_triangle_rows
 
 #if defined(IB_ARRAYS)
 layout(binding = IB_OFFSETS_UNIT) uniform usamplerBuffer ib_fill_counts;  // W*H values
-layout(location = IB_SLOTS_LOCATION) uniform uint u_slots;
 #elif defined(IB_RANGED)
 layout(binding = IB_OFFSETS_UNIT) uniform usamplerBuffer ib_offsets;  // W*H + 1 values
 #endif
@@ -85,19 +83,19 @@ bool precedes(uvec3 a, uvec3 b) { return a.x < b.x || (a.x == b.x && a.y < b.y);
 
 // Copies fill record `node` of `pixel` to sorted position `to`.
 void copy_record(uint to, uint node, uint pixel) {
-  const uvec4 key = texelFetch(ib_fragment_view, int(node * 3u + 1u));
+  const uvec4 key = texelFetch(ib_fragment_view, int(node * IB_FILL_TEXELS + IB_FILL_KEY_TEXEL));
 #if defined(IB_FLAT_COLOR) && defined(IB_RANGED)
   const vec4 flat_color = texelFetch(ib_flat_colors, int(key.y));
-  const vec4 color = vec4(flat_color.rgb * uintBitsToFloat(key.w), flat_color.a);  // key.w: the light factor (fill.frag)
+  const vec4 color = vec4(flat_color.rgb * uintBitsToFloat(key.w), flat_color.a);  // IB_FILL_RANGED: the light factor
 #elif defined(IB_FLAT_COLOR)
   const vec4 color = texelFetch(ib_flat_colors, int(key.y));
 #else
-  const vec4 color = uintBitsToFloat(texelFetch(ib_fragment_view, int(node * 3u)));
+  const vec4 color = uintBitsToFloat(texelFetch(ib_fragment_view, int(node * IB_FILL_TEXELS + IB_FILL_COLOR_TEXEL)));
 #endif
-#if defined(IB_TRIANGLE_VERTICES)
+#if defined(IB_TRIANGLE_VERTICES)  // the geometry layouts of bindings.h
   const uvec4 geometry = uvec4(texelFetch(ib_triangle_rows, int(key.y)).xyz, node);
 #elif defined(IB_SURFACE)
-  const uvec4 surface = texelFetch(ib_fragment_view, int(node * 3u + 2u));
+  const uvec4 surface = texelFetch(ib_fragment_view, int(node * IB_FILL_TEXELS + IB_FILL_SURFACE_TEXEL));
   const uvec4 geometry = uvec4(surface.w, surface.x, surface.y, node);
 #else
   const uvec4 geometry = uvec4(0u, 0u, 0u, node);  // the fill recorded no surface (Settings::records_surface)
@@ -109,12 +107,11 @@ void copy_record(uint to, uint node, uint pixel) {
 // The sort key of fill record `node`: x depth order bits, y stable triangle
 // id, z the node; and w the next node of the fill's list.
 uvec4 sort_key(uint node) {
-  const uvec4 key = texelFetch(ib_fragment_view, int(node * 3u + 1u));
+  const uvec4 key = texelFetch(ib_fragment_view, int(node * IB_FILL_TEXELS + IB_FILL_KEY_TEXEL));
   return uvec4(ib_depth_order(key.x), key.y, node, key.w);
 }
 
 #ifdef IB_DYNAMIC
-layout(location = IB_MAX_PER_PIXEL_LOCATION) uniform uint u_max_per_pixel;
 
 // Sorts the list of `length` (>= 2) nodes from `head` in place; returns the sorted head.
 // One flat loop: each step takes the next unsorted node, or moves the
@@ -155,10 +152,9 @@ uint sort_list(uint head) {
 // order. The keys are gathered into a local array first; every array index
 // is a loop counter, the same in all lanes, so llvmpipe reads the array as
 // vectors, where the insertion of keep_nearest moves a per-lane hole (a
-// gather and a scatter per step): about 3x faster at 32 layers. Short
-// contiguous lists (storage=linearized or arrays; local arrays of at most 4) re-read the
-// keys instead, which on the torus's lists of 2 took the sort from 4.6 to
-// 4.0 ms.
+// gather and a scatter per step). Short contiguous lists
+// (storage=linearized or arrays; local arrays of at most 4) re-read the keys
+// instead, which is faster for lists that short.
 #if defined(IB_RANGED) && IB_ARRAY <= 4
 #define IB_GATHER_KEYS(start, length)
 #define IB_ITEM(k) sort_key(start + (k)).xyz  // `start`: sort_whole_list's
@@ -227,7 +223,7 @@ void main() {
   uint pixel;
   if (!ib_invocation_pixel(pixel)) return;
 #if defined(IB_ARRAYS)
-  const uint start = pixel * u_slots;
+  const uint start = pixel * ib.slots;
   const uint length = texelFetch(ib_fill_counts, int(pixel)).x;
 #elif defined(IB_RANGED)
   const uint start = texelFetch(ib_offsets, int(pixel)).x;
@@ -244,7 +240,7 @@ void main() {
     return;
   }
 #ifdef IB_DYNAMIC
-  const uint kept = min(length, u_max_per_pixel);
+  const uint kept = min(length, ib.max_per_pixel);
   uint node = sort_list(start);
   const uint first = sorted_range(pixel, kept);
   for (uint i = 0u; i < kept; ++i) {

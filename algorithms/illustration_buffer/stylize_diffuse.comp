@@ -13,12 +13,12 @@
 // Variants of diffusion=steps: plain (skip_converged=false), one invocation
 // per sorted fragment; IB_WORKLIST (every step with skip_converged): one
 // invocation per queued pixel, which updates the pixel's fragments, and a
-// fragment that moved by more than u_tolerance queues the pixels around it
+// fragment that moved by more than ib.tolerance queues the pixels around it
 // for the next step (worklist.glsl). The first step's pixels are queued by
 // stylize_init. Of diffusion=sweep: IB_SWEEP, in place along the rows, and
 // IB_CHECK, whether any fragment would still move (below), both on hop
 // distances (sweep_distances.glsl).
-// With skip_converged a move of at most u_tolerance is not applied (the
+// With skip_converged a move of at most ib.tolerance is not applied (the
 // fragment keeps its value), so a fragment that is not queued has its value
 // in both field ranges.
 #include "algorithms/illustration_buffer/ib_storage.glsl"
@@ -26,16 +26,13 @@
 #include "algorithms/illustration_buffer/fields.glsl"
 #include "algorithms/illustration_buffer/views.glsl"
 
-layout(location = IB_LAMBDA_ALPHA_LOCATION) uniform float u_lambda_alpha;
-layout(location = IB_LAMBDA_BETA_LOCATION) uniform float u_lambda_beta;
-layout(location = IB_LAMBDA_GAMMA_LOCATION) uniform float u_lambda_gamma;
 
 // Eq. 9: beta and gamma of a fragment with fields `field` whose linked
 // neighbours' largest beta and gamma are `most`.
 vec2 raised(vec4 field, vec2 most) {
   const uint flags = ib_flags(field);
-  return vec2((flags & IB_FIXED_BETA) != 0u ? field.y : max(field.y, most.x - u_lambda_beta),
-              (flags & IB_FIXED_GAMMA) != 0u ? field.z : max(field.z, most.y - u_lambda_gamma));
+  return vec2((flags & IB_FIXED_BETA) != 0u ? field.y : max(field.y, most.x - ib.lambda_beta),
+              (flags & IB_FIXED_GAMMA) != 0u ? field.z : max(field.z, most.y - ib.lambda_gamma));
 }
 
 // The fields of fragment s after one iteration.
@@ -50,20 +47,19 @@ vec4 diffused(uint s, vec4 field) {
     neighbors += 1.0;
     most = max(most, other.yz);
   }
-  const float alpha = neighbors > 0.0 ? field.x + u_lambda_alpha * (alpha_difference / neighbors) : field.x;
+  const float alpha = neighbors > 0.0 ? field.x + ib.lambda_alpha * (alpha_difference / neighbors) : field.x;
   return vec4(alpha, raised(field, most), field.w);
 }
 
 #if defined(IB_WORKLIST)
 #include "algorithms/illustration_buffer/worklist.glsl"
-layout(location = IB_TOLERANCE_LOCATION) uniform float u_tolerance;
 
 // Updates fragment s; true when it moved by more than the tolerance.
 bool update(uint s) {
   const vec4 field = texelFetch(ib_fields_view, int(s));
   const vec4 next = diffused(s, field);
   const vec3 moved = abs(next.xyz - field.xyz);
-  const bool changed = max(moved.x, max(moved.y, moved.z)) > u_tolerance;
+  const bool changed = max(moved.x, max(moved.y, moved.z)) > ib.tolerance;
   ib_fields_out[s] = changed ? next : field;
   return changed;
 }
@@ -99,7 +95,6 @@ void main() {
 // Beta's and gamma's first distance whose value is 0 (F(d) <= 0): no
 // farther distance is kept (it stays IB_DISTANCE_FAR), as eq. 9 carries
 // nothing from a value of 0, so the sweeps stop where the values do.
-layout(location = IB_DISTANCE_CUTOFF_LOCATION) uniform uvec2 u_cutoff;
 
 // Eq. 9 in distances: fragment s's distances `own` after one step, each
 // unfixed one the nearest linked neighbour's + 1 where that is nearer and
@@ -111,27 +106,26 @@ uint swept(uint s, uint own) {
     if (links[d] < IB_OFF_IMAGE)
       nearest = min(nearest, ib_unpack_distances(texelFetch(ib_distances_view, int(links[d])).x) & IB_DISTANCE_FAR);
   const uvec2 mine = ib_unpack_distances(own);
-  const uvec2 offered = mix(uvec2(IB_DISTANCE_FAR), nearest + 1u, lessThan(nearest + 1u, u_cutoff));
+  const uvec2 offered = mix(uvec2(IB_DISTANCE_FAR), nearest + 1u, lessThan(nearest + 1u, uvec2(ib.cutoff_beta, ib.cutoff_gamma)));
   return ib_pack_distances(mix(min(mine, offered), mine, notEqual(mine & IB_DISTANCE_FIXED, uvec2(0u))));
 }
 
 #if defined(IB_SWEEP)
 // In place, one invocation per image row, the rows in the order of
-// u_direction.y and each walked in the order of u_direction.x. Lane k of a
+// ib_pass.direction_y and each walked in the order of ib_pass.direction_x. Lane k of a
 // SIMD group starts k pixels late, so that the row before its own (lane
 // k - 1, or the group before) has updated a pixel when it reads it: a pass
 // carries values along any path that goes only in its two directions (a
 // raster-order chamfer pass). Values read from other workgroups may be
 // old; that only slows the convergence (distances only fall).
-layout(location = IB_SWEEP_DIRECTION_LOCATION) uniform ivec2 u_direction;
 
 void main() {
-  const uint width = uint(u_width), height = uint(u_height), index = gl_GlobalInvocationID.x;
+  const uint width = uint(ib.width), height = uint(ib.height), index = gl_GlobalInvocationID.x;
   if (index >= height) return;
-  const uint y = u_direction.y > 0 ? index : height - 1u - index, lag = index % 8u;
+  const uint y = ib_pass.direction_y > 0 ? index : height - 1u - index, lag = index % 8u;
   for (uint t = 0u; t < width + 7u; ++t) {
     if (t < lag || t - lag >= width) continue;
-    const uint x = u_direction.x > 0 ? t - lag : width - 1u - (t - lag);
+    const uint x = ib_pass.direction_x > 0 ? t - lag : width - 1u - (t - lag);
     const uint pixel = y * width + x, first = ib_pixel_first(pixel), end = first + ib_pixel_count(pixel);
     for (uint s = first; s < end; ++s) {
       const uint own = texelFetch(ib_distances_view, int(s)).x, next = swept(s, own);
@@ -146,7 +140,7 @@ layout(std430, binding = IB_SWEEP_CHANGED_BINDING) writeonly buffer IbSweepChang
 
 void main() {
   const uint s = ib_fragment_index();
-  if (s >= u_fragments) return;
+  if (s >= ib.fragments) return;
   const uint own = texelFetch(ib_distances_view, int(s)).x;
   if (swept(s, own) != own) ib_sweep_changed = 1u;
 }
@@ -154,7 +148,7 @@ void main() {
 #else
 void main() {
   const uint s = ib_fragment_index();
-  if (s >= u_fragments) return;
+  if (s >= ib.fragments) return;
   ib_fields_out[s] = diffused(s, texelFetch(ib_fields_view, int(s)));
 }
 #endif

@@ -48,8 +48,6 @@ uint starting_distance(float value, bool held) {
 }
 #endif
 
-layout(location = IB_USE_BETA_LOCATION) uniform bool u_use_beta;
-layout(location = IB_USE_GAMMA_LOCATION) uniform bool u_use_gamma;
 
 // -1: the neighbour is nearer in its list, +1: deeper, 0: same layer or no
 // neighbour. `adjacent` is the pixel of the link's direction (the link lies there).
@@ -71,7 +69,7 @@ float initial_alpha(float s, uint n) { return s; }
 #ifdef IB_ALPHA_SEEDS
 // Whether a linked neighbour starts with another alpha (IB_TRACK, above).
 bool alpha_differs(float alpha, uvec4 links, uint pixel) {
-  const uint row = uint(u_width);
+  const uint row = uint(ib.width);
   const uvec4 adjacent = uvec4(pixel - 1u, pixel + 1u, pixel - row, pixel + row);
   bool differs = false;
   for (int d = 0; d < 4; ++d) {
@@ -86,7 +84,7 @@ bool alpha_differs(float alpha, uvec4 links, uint pixel) { return false; }
 
 void main() {
   const uint s = ib_fragment_index();
-  if (s >= u_fragments) return;
+  if (s >= ib.fragments) return;
   const uint pixel = ib_sorted_key(s).w;
   const uint layer = ib_layer_of(s, pixel);
   const uvec4 links = ib_sorted_links(s);
@@ -94,7 +92,7 @@ void main() {
   const float alpha = initial_alpha(own_alpha, ib_pixel_count(pixel));
 
   const bool silhouette = any(equal(links, uvec4(IB_NONE)));
-  const uint row = uint(u_width);  // links: left, right, down, up (neighbors.comp)
+  const uint row = uint(ib.width);  // links: left, right, down, up (neighbors.comp)
   const ivec4 order = ivec4(compare_layer(layer, links.x, pixel - 1u), compare_layer(layer, links.y, pixel + 1u),
                             compare_layer(layer, links.z, pixel - row), compare_layer(layer, links.w, pixel + row));
   const bool under_a_neighbor = any(equal(order, ivec4(-1)));  // my layer index is greater
@@ -102,11 +100,11 @@ void main() {
 
   float beta = 0.0, gamma = 0.0;
   uint flags = 0u;
-  if (u_use_beta && (silhouette || under_a_neighbor)) {
+  if (ib.use_beta != 0u && (silhouette || under_a_neighbor)) {
     beta = silhouette ? 1.0 : 0.0;  // the silhouette rule wins over the "underneath" rule
     flags |= IB_FIXED_BETA;
   }
-  if (u_use_gamma && over_a_neighbor) {
+  if (ib.use_gamma != 0u && over_a_neighbor) {
     gamma = 1.0;
     flags |= IB_FIXED_GAMMA;
   }

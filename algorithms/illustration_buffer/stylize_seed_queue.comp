@@ -11,13 +11,13 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = IB_SEEDS_UNIT) uniform usamplerBuffer ib_seeds_view;  // R32UI, 1 = a seed in the pixel
 
 bool seeded(int x, int y) {
-  if (x < 0 || y < 0 || x >= u_width || y >= u_height) return false;
-  return texelFetch(ib_seeds_view, y * u_width + x).x != 0u;
+  if (x < 0 || y < 0 || x >= ib.width || y >= ib.height) return false;
+  return texelFetch(ib_seeds_view, y * ib.width + x).x != 0u;
 }
 
 void main() {
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
-  if (x >= u_width || y >= u_height) return;
+  if (x >= ib.width || y >= ib.height) return;
   if (seeded(x, y) || seeded(x - 1, y) || seeded(x + 1, y) || seeded(x, y - 1) || seeded(x, y + 1))
-    ib_append(uint(y) * uint(u_width) + uint(x));
+    ib_append(uint(y) * uint(ib.width) + uint(x));
 }

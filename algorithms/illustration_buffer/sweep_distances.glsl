@@ -8,12 +8,11 @@
 // the same values bit for bit, from one 4-byte read per neighbour where the
 // fields take a 16-byte one, and no field ranges written at all.
 //
-// One uint per sorted fragment, beta's distance in bits 0-15 and gamma's
-// in 16-31; each half: the bit IB_DISTANCE_FIXED for a boundary condition
-// (a seed, fixed at 1: distance 0; or a field fixed at 0: IB_DISTANCE_FAR),
-// and the distance, IB_DISTANCE_FAR where no seed has reached it.
-#define IB_DISTANCE_FIXED 0x8000u
-#define IB_DISTANCE_FAR 0x7fffu
+// One uint per sorted fragment (bindings.h), beta's distance in bits 0-15
+// and gamma's in 16-31; each half: the bit IB_DISTANCE_FIXED for a boundary
+// condition (a seed, fixed at 1: distance 0; or a field fixed at 0:
+// IB_DISTANCE_FAR), and the distance, IB_DISTANCE_FAR where no seed has
+// reached it.
 
 layout(std430, binding = IB_DISTANCES_BINDING) buffer IbDistances { uint ib_distances[]; };
 layout(binding = IB_DISTANCES_UNIT) uniform usamplerBuffer ib_distances_view;
@@ -21,16 +20,15 @@ layout(binding = IB_DISTANCES_UNIT) uniform usamplerBuffer ib_distances_view;
 uint ib_pack_distances(uvec2 distances) { return distances.x | (distances.y << 16); }
 uvec2 ib_unpack_distances(uint both) { return uvec2(both & 0xffffu, both >> 16); }
 
-#ifdef IB_FIELD_TABLE
-// F(d) for d < u_table_size, beta's then gamma's (the host's table); 0 beyond.
+#ifdef IB_SWEPT  // the compose of a frame whose diffusion swept
+// F(d) for d < ib.table_size, beta's then gamma's (the host's table); 0 beyond.
 layout(binding = IB_FIELD_TABLE_UNIT) uniform samplerBuffer ib_field_table;
-layout(location = IB_TABLE_SIZE_LOCATION) uniform uint u_table_size;
 
 // Beta and gamma of sorted fragment s, from its distances.
 vec2 ib_swept_fields(uint s) {
   const uvec2 distances = ib_unpack_distances(texelFetch(ib_distances_view, int(s)).x) & IB_DISTANCE_FAR;
-  const bvec2 near = lessThan(distances, uvec2(u_table_size));
+  const bvec2 near = lessThan(distances, uvec2(ib.table_size));
   return vec2(near.x ? texelFetch(ib_field_table, int(distances.x)).x : 0.0,
-              near.y ? texelFetch(ib_field_table, int(u_table_size + distances.y)).x : 0.0);
+              near.y ? texelFetch(ib_field_table, int(ib.table_size + distances.y)).x : 0.0);
 }
 #endif

@@ -1,5 +1,5 @@
 // Worklists of the diffusion that skips converged fragments (skip_converged;
-// README, "Diffusion: skipping converged fragments"). A fragment's next
+// README, Diffusion). A fragment's next
 // value depends only on its own fields and on its links, and links reach
 // only the 4 adjacent pixels; so when a fragment of pixel p changes, only
 // fragments of p and of its 4 adjacent pixels can change in the next step.
@@ -23,7 +23,6 @@ layout(std430, binding = IB_WORK_OUT_BINDING) coherent buffer IbWorkOut {
 // plain add), summed on the host for the counters.
 layout(std430, binding = IB_PIXEL_UPDATES_BINDING) buffer IbPixelUpdates { uint ib_pixel_updates[]; };
 // The step the pixels queued now are for (2 = the second diffusion step).
-layout(location = IB_NEXT_STEP_LOCATION) uniform uint u_next_step;
 
 // Appends pixel q to the list being filled (one more group per 64 entries).
 void ib_append(uint q) {
@@ -33,16 +32,16 @@ void ib_append(uint q) {
 }
 
 void ib_enqueue(int x, int y) {
-  if (x < 0 || y < 0 || x >= u_width || y >= u_height) return;
-  const uint q = uint(y) * uint(u_width) + uint(x);
+  if (x < 0 || y < 0 || x >= ib.width || y >= ib.height) return;
+  const uint q = uint(y) * uint(ib.width) + uint(x);
   // A plain read first: most queued pixels are seen by several fragments.
-  if (ib_stamp[q] >= u_next_step || atomicMax(ib_stamp[q], u_next_step) >= u_next_step) return;
+  if (ib_stamp[q] >= ib_pass.next_step || atomicMax(ib_stamp[q], ib_pass.next_step) >= ib_pass.next_step) return;
   ib_append(q);
 }
 
-// Queues `pixel` and its 4 adjacent pixels for step u_next_step.
+// Queues `pixel` and its 4 adjacent pixels for step ib_pass.next_step.
 void ib_enqueue_around(uint pixel) {
-  const int x = int(pixel % uint(u_width)), y = int(pixel / uint(u_width));
+  const int x = int(pixel % uint(ib.width)), y = int(pixel / uint(ib.width));
   ib_enqueue(x, y);
   ib_enqueue(x - 1, y);
   ib_enqueue(x + 1, y);
