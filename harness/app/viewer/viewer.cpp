@@ -49,8 +49,8 @@ Viewer::Viewer(GlfwWindowContext& window, const ViewOptions& options)
 
   // Command-line mistakes are errors (as in `render`); in the panel they
   // become messages.
-  RawParams scene_params;
-  for (const auto& s : options.scene_sets) parse_assignment(s, scene_params);
+  // Scoped and checked as render's are (sweep.h).
+  const RawParams scene_params = one_value_scene_params(options.scene_sets, options.scene);
   if (std::string m = open_scene(options.scene, scene_params); !m.empty()) throw std::runtime_error(m);
   scene_input_ = options.scene;
   scene_wanted_ = scene_params;
@@ -75,12 +75,14 @@ Viewer::Viewer(GlfwWindowContext& window, const ViewOptions& options)
   b_->live.set_scene_rect(scene_rect);
   reference_->set_scene_rect(false);
   a_->wanted_id = options.technique;
-  for (const auto& s : options.sets) parse_assignment(s, a_->wanted_params);
+  a_->wanted_params =
+      one_value_technique_params(options.sets, {&registry_.get(options.technique)}, registry_).front();
   configure(*a_);
   if (!a_->message.empty()) throw std::runtime_error(a_->message);
   compare_ = !options.compare.empty();
   b_->wanted_id = compare_ ? options.compare : options.technique;
-  for (const auto& s : options.compare_sets) parse_assignment(s, b_->wanted_params);
+  b_->wanted_params =
+      one_value_technique_params(options.compare_sets, {&registry_.get(b_->wanted_id)}, registry_).front();
   if (compare_) {
     configure(*b_);
     if (!b_->message.empty()) throw std::runtime_error(b_->message);
