@@ -313,8 +313,8 @@ TEST(Cli, BenchConsoleFitsIn120ColumnsWithSpreadRatioAndNonDefaultParameters) {
                                  "--warmup 0 --frames 3 --csv " + csv);
   ASSERT_EQ(o.exit_code, 0) << o.output;
   for (const auto& line : lines_of(o.output)) EXPECT_LE(line.size(), 120u) << "'" << line << "'";
-  EXPECT_NE(o.output.find("technique                  params               status  median ms  p05-p95 ms      "
-                          "x unsorted max error   dropped noisy\n-- quads layers=4, 16x16\n"),
+  EXPECT_NE(o.output.find("technique                  params               status  median±95% ms     "
+                          "x unsorted [95%] max error   dropped noisy\n-- quads layers=4, 16x16\n"),
             std::string::npos) << o.output;
   // Progress: the runs told apart, the elapsed time, and what is left while runs remain.
   EXPECT_NE(o.output.find("[1/2] kbuffer k=4 tail=drop on quads layers=4 16x16 ... "), std::string::npos) << o.output;
@@ -328,19 +328,18 @@ TEST(Cli, BenchConsoleFitsIn120ColumnsWithSpreadRatioAndNonDefaultParameters) {
   ASSERT_FALSE(kbuffer.empty()) << o.output;
   EXPECT_EQ(kbuffer.substr(27, 21), "k=4 tail=drop        ") << kbuffer;
   EXPECT_EQ(unsorted.substr(27, 29), "                     ok      ") << unsorted;
-  EXPECT_EQ(unsorted.substr(83, 10), "      1.00") << unsorted;  // the baseline over itself
-  // The block is ordered fastest first; the CSV holds the same medians and spreads.
-  const double first = std::stod(o.output.substr(o.output.find("-- quads layers=4, 16x16\n") + 25 + 56, 9));
-  const double unsorted_ms = std::stod(unsorted.substr(56, 9)), kbuffer_ms = std::stod(kbuffer.substr(56, 9));
+  EXPECT_EQ(unsorted.substr(71, 20), "    1.00 [1.00-1.00]") << unsorted;  // the baseline over itself, every round
+  // The block is ordered fastest first; the CSV holds the same medians and intervals.
+  const double first = std::stod(o.output.substr(o.output.find("-- quads layers=4, 16x16\n") + 25 + 56, 14));
+  const double unsorted_ms = std::stod(unsorted.substr(56, 14)), kbuffer_ms = std::stod(kbuffer.substr(56, 14));
   EXPECT_EQ(first, std::min(unsorted_ms, kbuffer_ms));
   const test::CsvTable table = test::read_csv_table(csv);
   for (const auto& row : table.rows) {
     if (row[table.column("technique")] != "unsorted" || row[table.column("stage")] != "total") continue;
-    char expected[64];
-    std::snprintf(expected, sizeof expected, "%9.2f  %-15s", std::stod(row[table.column("median_ms")]),
-                  (two_decimals(row[table.column("p05_ms")]) + "-" +
-                   two_decimals(row[table.column("p95_ms")])).c_str());
-    EXPECT_EQ(unsorted.substr(56, 26), expected) << unsorted;
+    std::istringstream field(unsorted.substr(56, 14));
+    std::string median;
+    field >> median;
+    EXPECT_EQ(median.rfind(two_decimals(row[table.column("median_ms")]) + "±", 0), 0u) << unsorted;
   }
 }
 
@@ -355,7 +354,7 @@ TEST(Cli, BenchWithoutTheBaselineDividesByTheFastestAndSaysSo) {
   // The first row of the block is the fastest: 1.00.
   const size_t block = o.output.find("-- quads layers=4, 16x16\n");
   ASSERT_NE(block, std::string::npos) << o.output;
-  EXPECT_EQ(o.output.substr(block + 25 + 83, 10), "      1.00") << o.output;
+  EXPECT_EQ(o.output.substr(block + 25 + 71, 20), "                1.00") << o.output;
 }
 
 // Every combination is checked before the first run: a bad value in the
@@ -390,23 +389,24 @@ TEST(Cli, BenchValidatesEveryCombinationBeforeTheFirstRun) {
 TEST(Cli, HelpShowsEveryDefault) {
   const Outcome bench = run_oitbench("bench --help");
   EXPECT_EQ(bench.exit_code, 0) << bench.output;
-  for (const char* expected : {"--frames INT:INT in [1 - 100000]=10", "--warmup INT:INT in [0 - 1000]=2",
-                               "--size TEXT=[256x256] ...", "-t,--technique TEXT=[all] ...", "-s,--scene TEXT=[quads] ...",
+  for (const char* expected : {"--precision FLOAT:FLOAT in [0.001 - 1]=0.05", "--min-frames INT:INT in [1 - 100000]=6",
+                               "--max-frames INT:INT in [1 - 1000000]=200", "--rounds INT:INT in [1 - 1000]=6",
+                               "--warmup INT:INT in [0 - 1000]=1",
+                               "--size TEXT=[auto] ...", "-t,--technique TEXT=[all] ...", "-s,--scene TEXT=[quads] ...",
                                "--clock TEXT:{auto,gl,wall,both}=auto", "--baseline TEXT=unsorted",
                                "--camera TEXT=[default] ...", "--background TEXT=0,0,0"})
     EXPECT_NE(bench.output.find(expected), std::string::npos) << expected << "\n" << bench.output;
   const Outcome pareto = run_oitbench("pareto --help");
   EXPECT_NE(pareto.output.find("--size TEXT=[128x128] ..."), std::string::npos) << pareto.output;
-  EXPECT_NE(pareto.output.find("--frames INT:INT in [1 - 100000]=5"), std::string::npos) << pareto.output;
   EXPECT_NE(pareto.output.find("smaller than bench's default"), std::string::npos) << pareto.output;
   for (const char* command : {"render", "stats", "adaptive"}) {
     const Outcome help = run_oitbench(std::string(command) + " --help");
-    EXPECT_NE(help.output.find("--size TEXT=256x256"), std::string::npos) << command << "\n" << help.output;
+    EXPECT_NE(help.output.find("--size TEXT=auto"), std::string::npos) << command << "\n" << help.output;
   }
   const Outcome adaptive = run_oitbench("adaptive --help");
   EXPECT_NE(adaptive.output.find("--repeats INT:INT in [1 - 1000]=2"), std::string::npos) << adaptive.output;
   const Outcome gbench = test::run_command(kOut, std::string(OIT_BINARY_DIR) + "/harness/oitbench_gbench --help");
-  EXPECT_NE(gbench.output.find("--size TEXT=[256x256] ..."), std::string::npos) << gbench.output;
+  EXPECT_NE(gbench.output.find("--size TEXT=[auto] ..."), std::string::npos) << gbench.output;
   EXPECT_NE(gbench.output.find("without it --benchmark_min_time decides"), std::string::npos) << gbench.output;
 }
 

@@ -129,6 +129,8 @@ NOT_RUN = {
     "oitbench compare base.csv new.csv --ignore-param early_exit --stage peel --stage total":
         ("the README's worked A/B, whose verdict the compare test asserts", ("Analysis.Compare",)),
     "oitbench compare BASE.csv NEW.csv": ("BASE and NEW stand for two results CSVs", ("Analysis.Compare",)),
+    "oitbench compare --builds DIR_A DIR_B -- <bench arguments>":
+        ("DIR_A and DIR_B stand for two build directories", ("Analysis.Compare",)),
     "oitbench compare --builds build-old build -- <bench arguments>":
         ("build-old stands for a second build directory", ("Analysis.Compare",)),
     "xvfb-run -a oitbench view ... --frames 3 --screenshot out.png": ("needs an X server; `...` stands for the view",
@@ -420,7 +422,7 @@ class RunCommandsTest(unittest.TestCase):
             section = re.search(rf"(?ms)^  {technique} .*?(?=^  \S|\Z)", techniques)
             self.assertTrue(section, technique)
             for parameter in parameters:
-                self.assertRegex(section.group(0), rf"(?m)^      {parameter} +default .* — \S", parameter)
+                self.assertRegex(section.group(0), rf"(?m)^      {parameter} +default .* —\s+\S", parameter)
         scenes = out.split("\nScenes")[1]
         text = read("README.md")
         for scene in re.findall(r"^\| `(\w+)` \|", text[text.index("## Scenes"):], re.M):

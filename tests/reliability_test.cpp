@@ -334,7 +334,7 @@ TEST(Reliability, FourConcurrentAppendersKeepEveryRowWholeFieldByField) {
     const std::string technique = first[5];
     const int process = technique[1] - '0';
     const int run = next_run[technique]++;
-    const std::string run_id = first[first.size() - 2];
+    const std::string run_id = first[csv_column("run_id")];
     const auto expected = csv_rows(six_row_run(technique, message(process, run)), context(), run_id);
     for (size_t j = 0; j < 6; ++j) ASSERT_EQ(records[i + j], expected[j]) << "record " << i + j;
     EXPECT_EQ(first[message_column], message(process, run));
@@ -383,7 +383,7 @@ TEST(Reliability, TwoResumingBenchesOnOneCsvNeverRunAConfigurationTwice) {
   ASSERT_FALSE(records.empty());
   std::map<std::string, std::set<std::string>> run_ids;  // configuration -> runs
   for (size_t i = 1; i < records.size(); ++i)
-    run_ids[records[i][5] + " " + records[i][10] + "x" + records[i][11]].insert(records[i][records[i].size() - 2]);
+    run_ids[records[i][5] + " " + records[i][10] + "x" + records[i][11]].insert(records[i][csv_column("run_id")]);
   EXPECT_EQ(run_ids.size(), 9u);
   for (const auto& [configuration, ids] : run_ids) EXPECT_EQ(ids.size(), 1u) << configuration << " ran twice";
   const std::string logs = contents_of(dir + "/a.log") + contents_of(dir + "/b.log");

@@ -102,7 +102,7 @@ TEST_F(EveryTechnique, SameImageWithTheRectangleAsWithoutFrameAfterFrameAsItMove
   Renderer exact(reference);
   for (const TechniqueDescriptor& descriptor : builtin_techniques().all()) {
     SCOPED_TRACE(descriptor.id);
-    ASSERT_EQ(supports(descriptor, ParamSet(descriptor.params, {}, descriptor.id), test::gl_context().device(),
+    ASSERT_EQ(supports(descriptor, test::resolved_params(descriptor, {}, kSize, kSize), test::gl_context().device(),
                        SceneFacts{scene_.triangle_count(), scene_.object_count, true}),
               "");
     Renderer on(descriptor), off(descriptor);

@@ -40,7 +40,11 @@ PR_SET_PDEATHSIG = 1  # <sys/prctl.h>
 # Differ between two recordings of the same runs: timings, and the run id
 # (random per bench process).
 TIMING = {"timestamp", "median_ms", "min_ms", "p05_ms", "p95_ms", "mean_ms", "other_cpu_load", "noisy",
-          "clock_disagreement", "run_id"}
+          "clock_disagreement", "run_id",
+          # How long a run went on and what its frames showed depend on the host's speed and load too.
+          "frames", "warmup", "ci_low_ms", "ci_high_ms", "precision_reached", "rounds", "ratio", "ratio_ci_low",
+          "ratio_ci_high", "warnings", "frame_overhead_ms", "gpu_sm_mhz_start", "gpu_sm_mhz_end",
+          "gpu_mem_mhz_start", "gpu_mem_mhz_end", "gpu_temp_c_end", "samples_ms"}
 RUN_KEY = ["technique", "params", "scene", "scene_params", "camera", "width", "height", "scene_rect", "clock",
            "stage", "device", "platform"]
 

@@ -115,7 +115,7 @@ void print_row(const RunResult& r, const std::string& params, double base) {
   }
   const std::string error = r.error ? number("%.3g", r.error->max_abs) : "";
   char row[256];
-  std::snprintf(row, sizeof row, "%-26s %-20s %-7s %14s %18s %9s %9llu %s", fit(r.spec.technique, 26).c_str(),
+  std::snprintf(row, sizeof row, "%-26s %-20s %-7s %14s %20s %9s %9llu %s", fit(r.spec.technique, 26).c_str(),
                 fit(params, 20).c_str(), status.c_str(), median_text(r).c_str(), ratio_text(r, base).c_str(),
                 error.c_str(), static_cast<unsigned long long>(r.counters.fragments_dropped), r.noisy ? "yes" : "");
   std::string line = row;
@@ -233,8 +233,8 @@ void print_summary(const std::vector<RunResult>& results, const std::string& bas
   bool has_baseline = false;
   for (const auto& block : blocks) has_baseline |= block_base(block, baseline) > 0.0;
   const std::string ratio = has_baseline ? "x " + baseline : "x fastest";
-  std::printf("\n%-26s %-20s %-7s %14s %18s %9s %9s %-5s\n", "technique", "params", "status", "median±95% ms",
-              fit(ratio + " [95%]", 18).c_str(), "max error", "dropped", "noisy");
+  std::printf("\n%-26s %-20s %-7s %14s %20s %9s %9s %-5s\n", "technique", "params", "status", "median±95% ms",
+              fit(ratio + " [95%]", 20).c_str(), "max error", "dropped", "noisy");
   for (const auto& block : blocks) {
     std::printf("%s\n", fit("-- " + block_title(*block.front()), kConsoleWidth).c_str());
     const double base = block_base(block, has_baseline ? baseline : "");
@@ -249,8 +249,8 @@ void print_summary(const std::vector<RunResult>& results, const std::string& bas
                                              " did not run ok here, so ratios are over each block's fastest run)",
                           kConsoleWidth)
                           .c_str());
-  std::printf("(median±: per-frame total time and the half-width of its 95%% interval; noisy: other processes used over "
-              "%.0f%% of the cores, or the GPU's clock moved)\n",
+  std::printf("(median±: the median per-frame total time and the half-width of its 95%% interval)\n");
+  std::printf("(noisy: other processes used over %.0f%% of the cores, or the GPU's clock moved)\n",
               kNoisyLoadThreshold * 100.0);
   for (const RunResult& r : results)
     if (r.frame_overhead_ms) {

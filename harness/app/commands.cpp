@@ -300,14 +300,14 @@ void BenchSession::run_interleaved(const std::vector<RunSpec>& runs, size_t begi
   }
   // Round-robin: each round gives every run its share while any run of the
   // block still wants frames (so each round's host conditions hold for all
-  // of them), a run stopping only at its own cap.
+  // of them), a run stopping only at its own cap (--frames N: N frames).
   const int least = std::max(1, options_.rounds);
   for (int round = 0;; ++round) {
     bool wanted = false;
     for (Slot& slot : slots) wanted |= slot.active && slot.active->wants_more();
     if (round >= least && !wanted) break;
     for (Slot& slot : slots) {
-      if (!slot.active || (round >= least && slot.active->capped())) continue;
+      if (!slot.active || slot.active->capped()) continue;
       const int per_round = std::max(1, (slot.active->result().spec.frames + least - 1) / least);
       if (!harness_.render_round(*slot.active, per_round, round)) {
         slot.result = std::move(slot.active->result());

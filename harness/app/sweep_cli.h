@@ -32,7 +32,8 @@ inline void add_sweep_cli_options(CLI::App* command, SweepOptions& sweep, const 
                       "default, random:N:SEED (one run per view), random:N:SEED@I or max_list[:N:SEED] (repeatable)");
   command->add_option("--frames", sweep.frames,
                       "exactly this many timed frames per run, no precision target (default: precision-driven)")
-      ->check(CLI::Range(1, 100000));
+      ->check(CLI::Range(1, 100000))
+      ->default_str("");
   command->add_option("--precision", sweep.precision,
                       "stop a run once the 95% interval of its median total is within +-this fraction of it")
       ->check(CLI::Range(0.001, 1.0));

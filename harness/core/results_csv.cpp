@@ -156,7 +156,8 @@ std::vector<std::vector<std::string>> csv_rows(const RunResult& r, const RunCont
       for (double ms : stage->samples_ms) samples += (samples.empty() ? "" : " ") + number(ms);
     const bool measured = ran && stage;
     const std::vector<std::string> added = {
-        r.requested_params,
+        // A run that never got to its resolution asked for what it names.
+        r.requested_params.empty() ? r.technique_params : r.requested_params,
         measured ? number(stage->summary.interval.low) : "",
         measured ? number(stage->summary.interval.high) : "",
         ran && r.spec.precision > 0.0 ? (r.precision_reached ? "true" : "false") : "",

@@ -351,6 +351,9 @@ std::unique_ptr<ActiveRun> Harness::start(const RunSpec& spec, RunResult& result
     LoadedScene& loaded = scene(spec.scene, spec.scene_params, spec.submission_order, spec.camera);
     result.scene_params = loaded.scene.params;
     const SceneFacts facts{loaded.scene.triangle_count(), loaded.scene.object_count, true};
+    // The image first: at sizes the device cannot hold, this is what fails,
+    // before the counting pass spends time on them.
+    auto target = std::make_unique<RenderTarget>(spec.width, spec.height);
     const DepthComplexity& depth = complexity(loaded, spec.width, spec.height);
     prepared->resolve(device(), facts, FrameContent{spec.width, spec.height, depth.fragments, depth.max});
     result.technique_params = prepared->params().canonical();
@@ -366,9 +369,7 @@ std::unique_ptr<ActiveRun> Harness::start(const RunSpec& spec, RunResult& result
     auto active = std::unique_ptr<ActiveRun>(new ActiveRun(result));
     ActiveRun::Parts& parts = *active->parts_;
     parts.gpu = loaded.gpu.get();
-    // The image first: at sizes the device cannot hold, this is what fails,
-    // before the technique spends time on them.
-    parts.target = std::make_unique<RenderTarget>(spec.width, spec.height);
+    parts.target = std::move(target);
     {
       // The technique's programs are built for this scene's shading, here and
       // in any pass it builds while rendering (gl/shader_program.h).
