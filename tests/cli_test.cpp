@@ -598,6 +598,8 @@ TEST(Cli, MistypedNamesGetTheClosestOneSuggested) {
       {"render -s quads --scene-set layer=3 -o " + kOut + "/never.png", "did you mean layers?", 1},
       {"render -t kbuffer --set tail=blnd -o " + kOut + "/never.png", "did you mean blend?", 1},
       {"adaptive -t kbuffer --feature scene_rct", "did you mean scene_rect?", 1},
+      {"bench --clock wal --csv " + csv, "'wal' is not one of auto, gl, wall, both; did you mean wall?", 1},
+      {"render --png lineer -o " + kOut + "/never.png", "did you mean linear?", 1},
   };
   for (const Case& c : cases) {
     const Outcome o = run_oitbench(c.arguments);

@@ -31,7 +31,7 @@ void add_bench_options(CLI::App* command, oit::BenchOptions& options, const std:
                       "directory for one sRGB PNG per run (+ _error.png heatmap), named by technique, scene, "
                       "parameters, size and camera; an existing file is never replaced (_2, _3, ... instead)");
   command->add_option("--png", options.png, "display (sRGB of the composite, opaque) or linear (values, alpha = coverage)")
-      ->check(CLI::IsMember({"display", "linear"}));
+      ->check(oit::one_of({"display", "linear"}));
   command->add_flag("--resume", options.resume,
                     "leave out runs that already have an ok or skipped row in the CSV (error rows run again)");
   command->add_option("--samples", options.samples,
@@ -126,12 +126,12 @@ void add_render_command(CLI::App& app, Commands& c) {
   cmd->add_option("--background", render.background, "r,g,b (linear)");
   cmd->add_option("--out,-o", render.out, "output .png or .pfm")->required();
   cmd->add_option("--png", render.png, "display (sRGB of the composite, opaque) or linear (values, alpha = coverage)")
-      ->check(CLI::IsMember({"display", "linear"}));
+      ->check(oit::one_of({"display", "linear"}));
   cmd->add_option("--camera", render.camera,
                   "default, random:N:SEED (one image per view, _camI), random:N:SEED@I or max_list[:N:SEED]");
   cmd->add_option("--scene-rect", render.scene_rect,
                   "on: confine the technique to the scene's projected rectangle; off: full image")
-      ->check(CLI::IsMember({"on", "off"}));
+      ->check(oit::one_of({"on", "off"}));
   cmd->add_option("--memory-budget", render.memory_budget,
                   "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G "
                   "(default: the device's, see `list`)");

@@ -16,6 +16,23 @@
 
 namespace oit {
 
+// CLI11's check that a value is one of `values`, saying which it is not and
+// the closest one ("'wal' is not one of auto, gl, wall, both; did you mean wall?").
+inline CLI::Validator one_of(std::vector<std::string> values) {
+  std::string list, braces;
+  for (const auto& value : values) {
+    list += (list.empty() ? "" : ", ") + value;
+    braces += (braces.empty() ? "" : ",") + value;
+  }
+  return CLI::Validator(
+      [values, list](std::string& text) -> std::string {
+        for (const auto& value : values)
+          if (text == value) return "";
+        return "'" + text + "' is not one of " + list + did_you_mean(text, values);
+      },
+      "{" + braces + "}");
+}
+
 // `size_note` follows "repeatable" in --size's help (pareto's says why its
 // default is smaller). Defaults come from `sweep` as the caller set it.
 inline void add_sweep_cli_options(CLI::App* command, SweepOptions& sweep, const std::string& size_note = "") {
@@ -49,12 +66,12 @@ inline void add_sweep_cli_options(CLI::App* command, SweepOptions& sweep, const 
                       "device's, 500 on a GPU, 0 on software GL; see `list`)")
       ->check(CLI::Range(0.0, 600000.0));
   command->add_option("--clock", sweep.clock, "auto, gl, wall or both")
-      ->check(CLI::IsMember({"auto", "gl", "wall", "both"}));
+      ->check(one_of({"auto", "gl", "wall", "both"}));
   command->add_option("--background", sweep.background, "r,g,b (linear)");
   command->add_option("--scene-rect", sweep.scene_rects,
                       "on, off or on,off: confine techniques to the scene's projected rectangle")
       ->delimiter(',')
-      ->check(CLI::IsMember({"on", "off"}));
+      ->check(one_of({"on", "off"}));
   command->add_option("--memory-budget", sweep.memory_budget,
                       "storage a technique may use before the frame is rendered in screen tiles, e.g. 512M or 2G "
                       "(default: the device's, see `list`)");

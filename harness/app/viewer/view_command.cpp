@@ -24,10 +24,10 @@ CLI::App* add_view_command(CLI::App& app, ViewOptions& o) {
   view->add_option("--camera", o.camera, "preset: default, random:N:SEED[@I] or max_list[:N:SEED]");
   view->add_option("--compare", o.compare, "technique B for the A/B comparison");
   view->add_option("--compare-set", o.compare_sets, "technique B parameter key=value (repeatable)");
-  view->add_option("--show", o.show, "a, b or split")->check(CLI::IsMember({"a", "b", "split"}));
+  view->add_option("--show", o.show, "a, b or split")->check(oit::one_of({"a", "b", "split"}));
   view->add_option("--display", o.display,
                    "image, reference, error, list_length or diagnostic (a per-pixel field the technique offers)")
-      ->check(CLI::IsMember({"image", "reference", "error", "list_length", "diagnostic"}));
+      ->check(oit::one_of({"image", "reference", "error", "list_length", "diagnostic"}));
   view->add_option("--diagnostic", o.diagnostic,
                    "with --display diagnostic: which of the technique's fields (default: its first)");
   view->add_option("--frames", o.frames, "render N frames, then exit (0: until the window closes)")
@@ -36,7 +36,7 @@ CLI::App* add_view_command(CLI::App& app, ViewOptions& o) {
   view->add_option("--sweep-file", o.sweep_file, "text file that 'Add to sweep file' appends bench command lines to");
   view->add_option("--scene-rect", o.scene_rect,
                    "on (default): confine techniques A and B to the scene's projected rectangle; off: full image")
-      ->check(CLI::IsMember({"on", "off"}));
+      ->check(oit::one_of({"on", "off"}));
   view->add_option("--sweep-csv", o.sweep_csv, "the --csv of the appended bench command lines");
   return view;
 }
