@@ -366,6 +366,8 @@ void register_technique_linked_list(TechniqueRegistry& registry) {
           {"length_classes", "sort=network: resolves each 4x4 tile with the smallest network that holds its longest "
            "list (no sort for 0/1-fragment tiles) instead of the frame's largest network everywhere",
            {{"length_classes", "true"}}, {{"length_classes", "false"}}}},
+      // Yang et al. 2010 sort each list by insertion in a local array.
+      .paper_preset = {{"sort", "insertion"}},
       .create = make_technique<LinkedList>,
       .storage_need = [](const ParamSet& params, const FrameContent& content) {
         const PoolSizing sizing = params.choice("pool_sizing", kPoolSizings);
