@@ -91,13 +91,22 @@ class CompareTest(unittest.TestCase):
 
     def test_the_same_build_against_itself_is_the_same(self):
         out = os.path.join(self.dir, "builds")
-        result = run(["compare", "--builds", BUILD, BUILD, "--build-rounds", "6", "--out", out, "--",
+        result = run(["compare", "--builds", BUILD, BUILD, "--build-rounds", "8", "--out", out, "--",
                       "-t", "unsorted", "-t", "weighted_blended", *SMALL, "--frames", "12", "--warmup", "2"])
         rows = verdicts(result.stdout)
         totals = [v[2] for (c, s), v in rows.items() if s == "total"]
         self.assertEqual(len(totals), 2, result.stdout)
         self.assertTrue(all(v == "same" for v in totals), result.stdout + result.stderr)
-        self.assertTrue(os.path.exists(os.path.join(out, "a.csv")) and os.path.exists(os.path.join(out, "b.csv")))
+        for build in "ab":
+            self.assertEqual(sorted(os.listdir(os.path.join(out, build))),
+                             [f"round_{index:02d}.csv" for index in range(1, 9)])
+        self.assertIn("Wilcoxon signed-rank", result.stdout)
+
+    def test_too_few_build_rounds_is_refused_with_the_reason(self):
+        result = run(["compare", "--builds", BUILD, BUILD, "--build-rounds", "4", "--", "-t", "unsorted"],
+                     check=False)
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn("--build-rounds 4: give at least 8", result.stderr)
 
 
 if __name__ == "__main__":

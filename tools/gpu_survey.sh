@@ -29,7 +29,8 @@
 #   quads 2 min (150 s): 15 techniques x 2 layer counts = 30 runs, each 0.3 s
 #     warm-up and at most 1.5 s of timed frames (precision 2 %), in 3 rounds.
 #   engine, dragon 0.75 min each (75 s): 15 runs each, the same caps.
-#   compare 1.5 min (120 s): 3 techniques on 32 quads, 4 invocations per build.
+#   compare 1.5 min (120 s): 3 techniques on 32 quads, 8 invocations per build
+#     (the fewest with which the paired test can reach p < 0.01).
 #   about 7.5 minutes in all (caps: 12.5 minutes).
 # --quick: llvmpipe in CI, under 2 minutes: tiny sizes, three techniques,
 # the torus and nested spheres for the models, one short ctest; --out is
@@ -199,7 +200,7 @@ step quads "$CAP_BENCH" quads.txt "${BENCH[@]}" -s quads --scene-set "layers=$QU
 step engine "$CAP_BENCH" engine.txt "${BENCH[@]}" "${ENGINE_SCENE[@]}" --csv "$OUT/engine.csv"
 step dragon "$CAP_BENCH" dragon.txt "${BENCH[@]}" "${DRAGON_SCENE[@]}" --csv "$OUT/dragon.csv"
 if [ -n "$COMPARE_BUILD" ]; then
-  step compare "$CAP_COMPARE" compare.txt "$OITBENCH" compare --builds "$BUILD" "$COMPARE_BUILD" --out "$OUT/compare" -- \
+  step compare "$CAP_COMPARE" compare.txt "$OITBENCH" compare --builds "$BUILD" "$COMPARE_BUILD" --build-rounds 8 --out "$OUT/compare" -- \
     -t unsorted -t linked_list -t linearized_fragment_buffer -s quads --scene-set layers=32 --size "$SIZE" "${REPETITION[@]}"
 fi
 SHOWN="$SMI_QUERY; $SMI_DETAIL" step smi_end 30 smi_end.txt bash -c "$SMI"
