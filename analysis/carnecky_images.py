@@ -3,10 +3,13 @@
 The renders are `oitbench render` images that `analysis.reproduce` writes
 to <out>/images/<name>.png (white background) with their captions in
 captions.json; names start with the paper's figure (fig09_..., fig13_...).
-One row per figure: Fig. 9 diffusion settings, Figs. 10-13 constant
+One row per figure: Fig. 9's five diffusion configurations (eq. 9; eq. 9
+with eq. 10; eq. 8; eq. 8 with eq. 11; eq. 8 with n = 100: its table,
+analysis/figure_configs.py CARNECKY_FIG9), Figs. 10-13 constant
 transparency against the illustration buffer's silhouettes and halos (and
 the angle / normal variation modes of Fig. 11 and 13(b) where the build has
-them). Usage: python3 -m analysis.carnecky_images IMAGES_DIR -o grid.png
+them). Text at presentation.READABLE sizes. Usage:
+python3 -m analysis.carnecky_images IMAGES_DIR -o grid.png
 """
 import argparse
 import json
@@ -19,10 +22,10 @@ matplotlib.use("Agg")
 import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 
-from analysis import common  # noqa: E402
+from analysis import common, presentation  # noqa: E402
 from analysis.results_io import save_figure  # noqa: E402
 
-FIGURES = {"fig09": "Fig. 9: diffusion settings (torus)", "fig10": "Fig. 10: constant vs ours (spheres)",
+FIGURES = {"fig09": "Fig. 9: diffusion (torus)", "fig10": "Fig. 10: constant vs ours (spheres)",
            "fig11": "Fig. 11: transparency assignments (nested spheres)",
            "fig12": "Fig. 12: flow-like surface (concentric cylinders)", "fig13": "Fig. 13: jet engine"}
 
@@ -36,18 +39,19 @@ def draw_directory(directory):
     rows = [(figure, [n for n in present if n.startswith(figure + "_")]) for figure in FIGURES]
     rows = [(figure, names) for figure, names in rows if names]
     columns = max(len(names) for _, names in rows)
-    fig, axes = plt.subplots(len(rows), columns, figsize=(2.3 * columns, 2.5 * len(rows)), squeeze=False)
-    for line, (figure, names) in zip(axes, rows):
-        for ax in line:
-            ax.axis("off")
-        for ax, name in zip(line, names):
-            ax.imshow(mpimg.imread(os.path.join(directory, f"{name}.png")))
-            ax.set_title(present[name], fontsize=7)
-        line[0].text(-0.05, 0.5, FIGURES[figure], transform=line[0].transAxes, rotation=90, ha="right",
-                     va="center", fontsize=7)
-    fig.suptitle("carnecky2013 Figs. 9-13 with our illustration buffer (oitbench render; defaults: 20 iterations, "
-                 "silhouette + halo)", fontsize=8)
-    fig.tight_layout()
+    with plt.rc_context(presentation.READABLE):
+        fig, axes = plt.subplots(len(rows), columns, figsize=(2.6 * columns, 2.9 * len(rows)), squeeze=False)
+        for line, (figure, names) in zip(axes, rows):
+            for ax in line:
+                ax.axis("off")
+            for ax, name in zip(line, names):
+                ax.imshow(mpimg.imread(os.path.join(directory, f"{name}.png")))
+                ax.set_title(presentation.wrap(present[name]), fontsize=presentation.SMALLEST_POINTS)
+            line[0].text(-0.05, 0.5, FIGURES[figure], transform=line[0].transAxes, rotation=90, ha="right",
+                         va="center", fontsize=presentation.SMALLEST_POINTS)
+        fig.suptitle("carnecky2013 Figs. 9-13 with our illustration buffer (oitbench render; 20 iterations, "
+                     "silhouette + halo;\nFig. 9: its five columns, λγ = 0.1 in each)")
+        fig.tight_layout()
     return fig
 
 

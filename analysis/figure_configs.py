@@ -37,7 +37,8 @@ UNPINNED = {
 ILLUSTRATION_BUFFER_PAPER = {"storage": "linked", "diffusion": "steps", "skip_converged": "false",
                              "flat_color_records": "false", "diffusion_tolerance": "0"}
 ILLUSTRATION_BUFFER_FIXED = {"modulation": "silhouette_halo", "adaptive_alpha": "false", "lambda_alpha": "1",
-                             "lambda_beta": "0.05", "lambda_gamma": "0.1", "profile": "none", "exponential_p": "3",
+                             "lambda_beta": "0.05", "lambda_gamma": "0.1", "field_diffusion": "nonphysical",
+                             "profile": "none", "exponential_p": "3",
                              "power_p": "0.3", "weight_z": "1", "weight_n": "1", "weld_vertices": "true",
                              "fill": "auto", "normal_variation_scale": "10", "max_per_pixel": "64",
                              "initial_nodes_per_pixel": "8", "measure_accuracy": "false",
@@ -54,9 +55,24 @@ def illustration_buffer(**figure_knobs):
 # neighbour search (Algorithm 2), the sort of its section 4.3 (an array).
 CARNECKY = illustration_buffer(iterations="1", neighbors="heuristic", sort="array")
 # carnecky2013 Figs. 9-13 (images): its path at the 20 iterations of its
-# Fig. 12(b); each image sets its own knobs (iterations, modulation,
-# profile) on top.
+# Fig. 9 and 12(b); each image sets its own knobs (modulation, and Fig. 9's
+# below) on top.
 CARNECKY_IMAGES = illustration_buffer(iterations="20", neighbors="heuristic", sort="array")
+# carnecky2013 Fig. 9's five columns (its table: Diff., Mod., n, lambda_beta,
+# lambda_gamma, p): eq. 9; eq. 9 with eq. 10 (p = 3); eq. 8; eq. 8 with
+# eq. 11 (p = 0.3); eq. 8 with n = 100. lambda_gamma = 0.1 in all five,
+# lambda_beta = 0.05 with eq. 9 and 1.0 with eq. 8. Every knob of the
+# table set in each column (the rest: CARNECKY_IMAGES).
+CARNECKY_FIG9_EQ9 = {"field_diffusion": "nonphysical", "iterations": "20", "lambda_beta": "0.05",
+                     "lambda_gamma": "0.1", "profile": "none"}
+CARNECKY_FIG9_EQ8 = {**CARNECKY_FIG9_EQ9, "field_diffusion": "homogeneous", "lambda_beta": "1"}
+CARNECKY_FIG9 = [
+    ("fig09_1_eq9", "eq. 9, n=20, λβ=0.05", CARNECKY_FIG9_EQ9),
+    ("fig09_2_eq9_eq10", "eq. 9 + eq. 10 (p=3)", {**CARNECKY_FIG9_EQ9, "profile": "exponential", "exponential_p": "3"}),
+    ("fig09_3_eq8", "eq. 8, n=20, λβ=1", CARNECKY_FIG9_EQ8),
+    ("fig09_4_eq8_eq11", "eq. 8 + eq. 11 (p=0.3)", {**CARNECKY_FIG9_EQ8, "profile": "power", "power_p": "0.3"}),
+    ("fig09_5_eq8_n100", "eq. 8, n=100, λβ=1", {**CARNECKY_FIG9_EQ8, "iterations": "100"}),
+]
 # pastyrik2016: triangles sharing a vertex index (its Algorithm 3), the
 # dynamic sort of the list (its Algorithm 2, the faster in its Fig. 7); the
 # paper gives no iteration count: our default of 20, pinned.

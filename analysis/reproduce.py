@@ -63,7 +63,8 @@ MODEL_CAMERAS = ["default", "max_list:16:1"]
 # analysis/figure_configs.py: carnecky2013 section 7, murray2016 section 6,
 # pastyrik2016 section 4.
 PAPER = dict({name: figure.paper for name, figure in figure_configs.FIGURES.items()},
-             carnecky_images="carnecky2013 Figs. 9-13 at 512^2 (Fig. 12(b): 512x512, 20 iterations)")
+             carnecky_images="carnecky2013 Figs. 9-13 at 512^2 (Fig. 12(b): 512x512, 20 iterations; Fig. 9: its "
+                             "five diffusion configurations)")
 
 
 class Catalogue:
@@ -297,10 +298,11 @@ def layers_sweep(catalogue, quick, warmup, frames):
 
 
 def carnecky_images(catalogue, quick):
-    """carnecky2013 Figs. 9-13 as renders of comparable scenes: diffusion
-    settings (Fig. 9), constant transparency against the method (Figs. 10,
-    12, 13) and the transparency assignments of Fig. 11 this build offers
-    (angle / normal variation modes where `modulation` lists them)."""
+    """carnecky2013 Figs. 9-13 as renders of comparable scenes: Fig. 9's
+    five diffusion configurations (figure_configs.CARNECKY_FIG9), constant
+    transparency against the method (Figs. 10, 12, 13) and the transparency
+    assignments of Fig. 11 this build offers (angle / normal variation
+    modes where `modulation` lists them)."""
     if "illustration_buffer" not in catalogue.techniques:
         return []
     side = 256 if quick else 512
@@ -311,12 +313,11 @@ def carnecky_images(catalogue, quick):
     engine = ("model", (("name", "engine"),), "random:8:2@0") if "engine" in catalogue.models else torus
     flow = ("cylinders", ())
     close = ("spheres", ())
-    grid = [
-        ("fig09_iter1", "1 iteration", ib, [("iterations", "1")], torus),
-        ("fig09_iter20", "20 iterations", ib, [("iterations", "20")], torus),
-        ("fig09_iter50", "50 iterations", ib, [("iterations", "50")], torus),
-        ("fig09_exponential", "20 it., exponential p=3", ib, [("profile", "exponential")], torus),
-        ("fig09_power", "20 it., power p=0.3", ib, [("profile", "power")], torus),
+    # Fig. 9's eq. 8 columns need field_diffusion (an older build has only eq. 9: they are left out).
+    eq8 = "homogeneous" in catalogue.choices(ib, "field_diffusion")
+    grid = [(name, caption, ib, list(knobs.items()), torus) for name, caption, knobs in figure_configs.CARNECKY_FIG9
+            if eq8 or knobs["field_diffusion"] != "homogeneous"]
+    grid += [
         ("fig10_constant", "constant transparency", ib, [("modulation", "none")], close),
         ("fig10_ours", "illustration buffer", ib, [], close),
         ("fig11_constant", "(b) constant", ib, [("modulation", "none")], ("nested_spheres", ())),

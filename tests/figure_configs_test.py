@@ -28,7 +28,10 @@ def catalogue():
 
 def every_series():
     return [(name, s) for name, figure in figure_configs.FIGURES.items() for s in figure.series] + [
-        ("carnecky_images", figure_configs.Series("illustration_buffer", figure_configs.CARNECKY_IMAGES, ""))]
+        ("carnecky_images", figure_configs.Series("illustration_buffer", figure_configs.CARNECKY_IMAGES, ""))] + [
+        (f"carnecky_images {column}",
+         figure_configs.Series("illustration_buffer", {**figure_configs.CARNECKY_IMAGES, **knobs}, caption))
+        for column, caption, knobs in figure_configs.CARNECKY_FIG9]
 
 
 def as_sent(cat, series):
@@ -49,6 +52,21 @@ class PapersPathsTest(unittest.TestCase):
         self.assertEqual(figure_configs.PASTYRIK["neighbors"], "triangle_index")
         fig7 = {s.pins["sort"] for s in figure_configs.FIGURES["pastyrik_fig7"].series}
         self.assertEqual(fig7, {"array", "dynamic"})
+
+    def test_carnecky_fig9_columns_follow_the_papers_table(self):
+        # carnecky2013 Fig. 9: Diff., Mod. (p), n, lambda_beta per column; lambda_gamma = 0.1 in all.
+        table = [("nonphysical", "none", "20", "0.05"), ("nonphysical", "exponential", "20", "0.05"),
+                 ("homogeneous", "none", "20", "1"), ("homogeneous", "power", "20", "1"),
+                 ("homogeneous", "none", "100", "1")]
+        columns = figure_configs.CARNECKY_FIG9
+        self.assertEqual([(k["field_diffusion"], k["profile"], k["iterations"], k["lambda_beta"])
+                          for _, _, k in columns], table)
+        self.assertEqual({k["lambda_gamma"] for _, _, k in columns}, {"0.1"})
+        self.assertEqual((columns[1][2]["exponential_p"], columns[3][2]["power_p"]), ("3", "0.3"))
+        for (_, caption, knobs), equation in zip(columns, ["eq. 9", "eq. 9", "eq. 8", "eq. 8", "eq. 8"]):
+            self.assertTrue(caption.startswith(equation), caption)
+            self.assertEqual(("eq. 10" in caption, "eq. 11" in caption),
+                             (knobs["profile"] == "exponential", knobs["profile"] == "power"), caption)
 
     def test_peelings_canonical_first_and_both_variants_labelled(self):
         models = [s for s in figure_configs.FIGURES["models"].series if "peeling" in s.technique]

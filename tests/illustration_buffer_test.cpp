@@ -1000,7 +1000,8 @@ TEST(IllustrationBuffer, PaperPresetResolvesToThePublishedValuesAndTheirImage) {
                            {"weight_z", "1"},            {"weight_n", "1"},
                            {"storage", "linked"},        {"sort", "array"},
                            {"diffusion", "steps"},       {"skip_converged", "false"},
-                           {"diffusion_tolerance", "0"}, {"flat_color_records", "false"}};
+                           {"diffusion_tolerance", "0"}, {"flat_color_records", "false"},
+                           {"field_diffusion", "nonphysical"}};
   const RunResult preset =
       test::harness().run(test::one_frame("illustration_buffer", {{"preset", "paper"}}, "torus", {}, 32));
   ASSERT_EQ(preset.status, RunStatus::ok) << preset.message;

@@ -19,7 +19,7 @@ from unittest import mock
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
-from analysis import reproduce, results_io  # noqa: E402
+from analysis import figure_configs, reproduce, results_io  # noqa: E402
 
 FAKE = os.path.join(HERE, "fake_oitbench.py")
 KEY = ("technique", "params", "scene", "scene_params", "camera", "width", "height", "stage")
@@ -253,6 +253,21 @@ class PlanTest(unittest.TestCase):
         self.assertIn("fig13_normal_variation", names)
         self.assertNotIn("fig13_angle", names)
 
+    def test_fig9_has_the_papers_five_columns_where_the_build_has_eq8(self):
+        fig9 = figure_configs.CARNECKY_FIG9
+        with_eq8 = reproduce.Catalogue(self.catalogue_text_with_modes() + (
+            "      field_diffusion          default nonphysical one of {nonphysical, homogeneous} — eq. 9 or 8\n"
+            + "".join(f"      {knob:<24} default 1 anything — a knob of Fig. 9\n"
+                      for knob in ("iterations", "lambda_beta", "lambda_gamma", "profile", "exponential_p", "power_p"))))
+        renders = [r for r in reproduce.carnecky_images(with_eq8, quick=True) if r.name.startswith("fig09_")]
+        self.assertEqual([(r.name, r.caption) for r in renders], [(name, caption) for name, caption, _ in fig9])
+        for render, (_, _, knobs) in zip(renders, fig9):
+            self.assertEqual({k: v for k, v in render.tparams if k in knobs}, knobs, render.name)
+        # A build without eq. 8 renders the eq. 9 columns only (none mislabelled).
+        older = [r.name for r in reproduce.carnecky_images(reproduce.Catalogue(self.catalogue_text_with_modes()),
+                                                           quick=True) if r.name.startswith("fig09_")]
+        self.assertEqual(older, ["fig09_1_eq9", "fig09_2_eq9_eq10"])
+
     def catalogue_text_with_modes(self):
         return ("Techniques:\n  illustration_buffer  IB [approximate]\n"
                 "      modulation               default silhouette_halo one of {none, angle, normal_variation, "
@@ -293,7 +308,7 @@ class QuickRowsTest(unittest.TestCase):
         self.assertEqual(ks, {"auto"})
         with open(os.path.join(self.out, "images", "captions.json")) as f:
             captions = json.load(f)
-        self.assertEqual(captions["fig09_iter50"], "50 iterations")
+        self.assertEqual(captions["fig09_1_eq9"], "eq. 9, n=20, λβ=0.05")  # the fake build has no eq. 8
         self.assertTrue(all(os.path.exists(os.path.join(self.out, "images", f"{n}.png")) for n in captions))
 
 

@@ -30,6 +30,8 @@ const Choices<Diffusion> kDiffusions{{Diffusion::automatic, "auto"},
 // flat_color_records: true and false, or auto (true on a software
 // rasterizer, false on a GPU).
 const Choices<int> kFlatColorRecords{{-1, "auto"}, {1, "true"}, {0, "false"}};
+const Choices<FieldDiffusion> kFieldDiffusions{{FieldDiffusion::nonphysical, "nonphysical"},
+                                               {FieldDiffusion::homogeneous, "homogeneous"}};
 const Choices<Profile> kProfiles{{Profile::none, "none"}, {Profile::exponential, "exponential"}, {Profile::power, "power"}};
 
 // A resolved choice; throws for an `auto` the resolution rule did not resolve.
@@ -81,6 +83,7 @@ Settings settings_from(const ParamSet& p) {
   s.lambda_alpha = float(p.real("lambda_alpha"));
   s.lambda_beta = float(p.real("lambda_beta"));
   s.lambda_gamma = float(p.real("lambda_gamma"));
+  s.field_diffusion = p.choice("field_diffusion", kFieldDiffusions);
   s.profile = p.choice("profile", kProfiles);
   s.exponential_p = float(p.real("exponential_p"));
   s.power_p = float(p.real("power_p"));
@@ -99,23 +102,24 @@ Settings settings_from(const ParamSet& p) {
 // search (Algorithm 2, eq. 1-3 with w_z = w_n), its storage (linked lists,
 // Algorithm 1), its sort (a local array, section 4.3), its diffusion
 // (`iterations` synchronous steps of eq. 8-9 over every fragment, Fig. 9's
-// first configuration: n = 20, lambda_alpha = 1, lambda_beta = 0.05,
-// lambda_gamma = 0.1, no profile), eq. 4's initial alpha, and the fill
-// record with its colour.
+// first configuration: n = 20, lambda_alpha = 1, eq. 9 with lambda_beta =
+// 0.05, lambda_gamma = 0.1, no profile), eq. 4's initial alpha, and the
+// fill record with its colour.
 const RawParams kPaperValues = {
     {"neighbors", "heuristic"},   {"modulation", "silhouette_halo"}, {"adaptive_alpha", "false"},
     {"iterations", "20"},         {"lambda_alpha", "1"},             {"lambda_beta", "0.05"},
-    {"lambda_gamma", "0.1"},      {"profile", "none"},               {"weight_z", "1"},
-    {"weight_n", "1"},            {"storage", "linked"},             {"sort", "array"},
-    {"diffusion", "steps"},       {"skip_converged", "false"},       {"diffusion_tolerance", "0"},
-    {"flat_color_records", "false"}};
+    {"lambda_gamma", "0.1"},      {"field_diffusion", "nonphysical"}, {"profile", "none"},
+    {"weight_z", "1"},            {"weight_n", "1"},                 {"storage", "linked"},
+    {"sort", "array"},            {"diffusion", "steps"},            {"skip_converged", "false"},
+    {"diffusion_tolerance", "0"}, {"flat_color_records", "false"}};
 
 // The resolution rule (README: Device-dependent defaults), on the values
 // after the paper preset: storage=auto: linked where sort=dynamic needs it;
 // linearized where fill= asks for a ranged fill; else arrays_when_even on a
 // software rasterizer and linked on a GPU. diffusion=auto:
 // sweep_where_exact on a software rasterizer without a tolerance (a
-// tolerance asks for the steps that stop small moves), steps elsewhere.
+// tolerance asks for the steps that stop small moves) and with eq. 9 (the
+// sweeps reach its fixed point, never eq. 8's), steps elsewhere.
 // flat_color_records=auto: true on a software rasterizer, false on a GPU.
 // fill=auto, where the storage is ranged: framebuffer fetch where the
 // device has it.
@@ -133,8 +137,11 @@ RawParams resolve_parameters(const ParamSet& requested, const ResolveInput& inpu
     resolved["storage"] = kStorages.name(storage);
   }
   if (storage != Storage::linked) resolved["fill"] = kSlotFills.name(resolve_slot_fill(fill, input.device));
-  if (kDiffusions.value(text("diffusion")) == Diffusion::automatic)
-    resolved["diffusion"] = software && requested.real("diffusion_tolerance") == 0.0 ? "sweep_where_exact" : "steps";
+  if (kDiffusions.value(text("diffusion")) == Diffusion::automatic) {
+    const bool may_sweep = requested.real("diffusion_tolerance") == 0.0 &&
+                           requested.choice("field_diffusion", kFieldDiffusions) == FieldDiffusion::nonphysical;
+    resolved["diffusion"] = software && may_sweep ? "sweep_where_exact" : "steps";
+  }
   if (text("flat_color_records") == "auto") resolved["flat_color_records"] = software ? "true" : "false";
   return resolved;
 }
@@ -160,7 +167,8 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
               "or from the normal's screen-space variation)"),
           ParamSpec::boolean("adaptive_alpha", false, "initial alpha 1-(1-s)^(1/n) (eq. 5) instead of s (eq. 4)"),
           ParamSpec::integer("iterations", 20, 0, 1000,
-                             "diffusion iterations of alpha (eq. 8) and beta/gamma (eq. 9)"),
+                             "diffusion iterations of alpha (eq. 8) and beta/gamma (eq. 9, or eq. 8 with "
+                             "field_diffusion=homogeneous)"),
           ParamSpec::boolean("skip_converged", true,
                              "diffuse only the pixels around fragments that changed in the previous iteration (the "
                              "others would recompute their value; exact with diffusion_tolerance 0)"),
@@ -175,11 +183,21 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
               "(eq. 4, one alpha in the scene) and `iterations` steps carry beta and gamma to 0 (an error "
               "otherwise, and with a diffusion_tolerance); sweep_where_exact = sweep on the frames where that is exact, "
               "else steps (a software rasterizer's path); auto = sweep_where_exact on a software rasterizer "
-              "when diffusion_tolerance is 0, else steps"),
+              "when diffusion_tolerance is 0 and field_diffusion=nonphysical, else steps"),
           ParamSpec::real("lambda_alpha", 1.0, 0.0, 1.0,
                           "diffusion coefficient of alpha (eq. 8, normalised Laplacian)"),
-          ParamSpec::real("lambda_beta", 0.05, 0.0, 1.0, "decrement per step of the silhouette field (eq. 9)"),
-          ParamSpec::real("lambda_gamma", 0.1, 0.0, 1.0, "decrement per step of the halo field (eq. 9)"),
+          ParamSpec::real("lambda_beta", 0.05, 0.0, 1.0,
+                          "silhouette field: decrement per step (eq. 9), or diffusion coefficient with "
+                          "field_diffusion=homogeneous (eq. 8)"),
+          ParamSpec::real("lambda_gamma", 0.1, 0.0, 1.0,
+                          "halo field: decrement per step (eq. 9), or diffusion coefficient with "
+                          "field_diffusion=homogeneous (eq. 8)"),
+          illustration_buffer::kFieldDiffusions.spec(
+              "field_diffusion", illustration_buffer::FieldDiffusion::nonphysical,
+              "how beta and gamma spread from the boundaries (carnecky2013 5.4): nonphysical = eq. 9, u <- max(u, "
+              "max(u_neighbours) - lambda_u); homogeneous = eq. 8 as for alpha, u <- u + lambda_u "
+              "mean(u_neighbours - u) where u is not fixed (normalised Laplacian; lambda_u = 1: the neighbours' "
+              "mean; carnecky2013 Fig. 9's third to fifth columns); diffusion=sweep needs nonphysical"),
           illustration_buffer::kProfiles.spec(
               "profile", illustration_buffer::Profile::none,
               "profile applied to beta and gamma before compositing: eq. 10 or eq. 11"),

@@ -24,6 +24,11 @@ enum class Modulation { none, silhouette, halo, silhouette_halo, angle, normal_v
 // per frame the faster of the two on llvmpipe for the frame's longest list.
 enum class SortMethod { automatic, array, dynamic };
 enum class Profile { none, exponential, power };  // eq. 10 / eq. 11
+// How beta and gamma spread from their boundary values (carnecky2013
+// section 5.4): the paper's nonphysical process, u <- max(u, max(u_n) -
+// lambda_u) (eq. 9), or the homogeneous diffusion it uses for alpha,
+// u <- u + b_u lambda_u laplacian(u) (eq. 8; normalised Laplacian).
+enum class FieldDiffusion { nonphysical, homogeneous };
 // Where the fill puts the records: per-pixel linked lists in a pool sized
 // from the previous frame (carnecky2013 Algorithm 1), or a linearized
 // buffer (Knowles et al. 2012): a counting pass and each pixel's range
@@ -56,6 +61,7 @@ struct Settings {
   Diffusion diffusion = Diffusion::steps;  // steps or sweep
   bool sweep_where_exact = false;           // diffusion=sweep_where_exact: sweep the frames where it is exact
   float lambda_alpha = 1.0f, lambda_beta = 0.05f, lambda_gamma = 0.1f;
+  FieldDiffusion field_diffusion = FieldDiffusion::nonphysical;
   Profile profile = Profile::none;
   float exponential_p = 3.0f, power_p = 0.3f;
   float weight_z = 1.0f, weight_n = 1.0f;
@@ -105,8 +111,12 @@ struct Settings {
   // Eq. 9's values along a path from a field of 1: F(0) = 1, F(d) =
   // F(d - 1) - lambda in float, as the shaders subtract, for d < count.
   static std::vector<float> values_from_one(float lambda, uint32_t count);
-  // Whether the sweeps may run at all (some frame may still need the steps: one_alpha).
-  bool may_sweep() const { return diffused() && (diffusion == Diffusion::sweep || sweep_where_exact); }
+  // Whether the sweeps may run at all (some frame may still need the steps:
+  // one_alpha). They reach eq. 9's fixed point: never with eq. 8.
+  bool may_sweep() const {
+    return diffused() && field_diffusion == FieldDiffusion::nonphysical &&
+           (diffusion == Diffusion::sweep || sweep_where_exact);
+  }
 };
 
 Settings settings_from(const ParamSet& params);

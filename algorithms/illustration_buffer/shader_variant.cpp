@@ -31,6 +31,7 @@ ShaderDefines ShaderVariant::defines() const {
   flag(diffuse == Diffuse::worklist, "IB_WORKLIST");
   flag(diffuse == Diffuse::sweep, "IB_SWEEP");
   flag(diffuse == Diffuse::check, "IB_CHECK");
+  flag(homogeneous_fields, "IB_HOMOGENEOUS_FIELDS");
   flag(modulate, "IB_MODULATE");
   if (modulate) d.push_back({"IB_PROFILE", std::to_string(profile)});
   flag(swept, "IB_SWEPT");

@@ -36,9 +36,11 @@ struct ShaderVariant {
   // IB_SWEEP_INIT, the sweeps' distances; IB_ADAPTIVE, eq. 5.
   bool track = false, alpha_seeds = false, sweep_init = false, adaptive = false;
   // The diffusion (stylize_diffuse.comp): every fragment (plain), the listed
-  // pixels (IB_WORKLIST), a sweep (IB_SWEEP) or the sweeps' check (IB_CHECK).
+  // pixels (IB_WORKLIST), a sweep (IB_SWEEP) or the sweeps' check (IB_CHECK);
+  // IB_HOMOGENEOUS_FIELDS, beta and gamma by eq. 8 instead of eq. 9.
   enum class Diffuse { plain, worklist, sweep, check };
   Diffuse diffuse = Diffuse::plain;
+  bool homogeneous_fields = false;
   // The compose (compose.frag): IB_MODULATE with IB_PROFILE (Profile's
   // value), IB_SWEPT (fields from the sweeps' distances), IB_LOCAL_OPACITY.
   bool modulate = false, swept = false, local_opacity = false;

@@ -9,7 +9,9 @@
 //     The mean of the differences, not of the values, so that equal
 //     neighbours give exactly alpha (stylize_init relies on it);
 //  u <- max(u, max(u_neighbours) - lambda_u), u in {beta, gamma}  (eq. 9)
-//     unless the fragment's u is fixed by a boundary condition.
+//     unless the fragment's u is fixed by a boundary condition (b_u = 0);
+//  or, IB_HOMOGENEOUS_FIELDS (field_diffusion=homogeneous), eq. 8 for them
+//     as for alpha: u <- u + lambda_u * mean(u_neighbours - u) unless fixed.
 // Variants of diffusion=steps: plain (skip_converged=false), one invocation
 // per sorted fragment; IB_WORKLIST (every step with skip_converged): one
 // invocation per queued pixel, which updates the pixel's fragments, and a
@@ -27,6 +29,16 @@
 #include "algorithms/illustration_buffer/views.glsl"
 
 
+#ifdef IB_HOMOGENEOUS_FIELDS
+// Eq. 8: beta and gamma of a fragment with fields `field` whose linked
+// neighbours' beta and gamma differ from its own by `difference` in sum
+// over `neighbors` of them (> 0): the normalised Laplacian, as alpha's.
+vec2 smoothed(vec4 field, vec2 difference, float neighbors) {
+  const uint flags = ib_flags(field);
+  const vec2 moved = field.yz + vec2(ib.lambda_beta, ib.lambda_gamma) * (difference / neighbors);
+  return vec2((flags & IB_FIXED_BETA) != 0u ? field.y : moved.x, (flags & IB_FIXED_GAMMA) != 0u ? field.z : moved.y);
+}
+#else
 // Eq. 9: beta and gamma of a fragment with fields `field` whose linked
 // neighbours' largest beta and gamma are `most`.
 vec2 raised(vec4 field, vec2 most) {
@@ -34,21 +46,34 @@ vec2 raised(vec4 field, vec2 most) {
   return vec2((flags & IB_FIXED_BETA) != 0u ? field.y : max(field.y, most.x - ib.lambda_beta),
               (flags & IB_FIXED_GAMMA) != 0u ? field.z : max(field.z, most.y - ib.lambda_gamma));
 }
+#endif
 
 // The fields of fragment s after one iteration.
 vec4 diffused(uint s, vec4 field) {
   const uvec4 links = ib_sorted_links(s);
   float alpha_difference = 0.0, neighbors = 0.0;
+#ifdef IB_HOMOGENEOUS_FIELDS
+  vec2 field_difference = vec2(0.0);
+#else
   vec2 most = vec2(0.0);
+#endif
   for (int d = 0; d < 4; ++d) {
     if (links[d] >= IB_OFF_IMAGE) continue;
     const vec4 other = texelFetch(ib_fields_view, int(links[d]));
     alpha_difference += other.x - field.x;
     neighbors += 1.0;
+#ifdef IB_HOMOGENEOUS_FIELDS
+    field_difference += other.yz - field.yz;
+#else
     most = max(most, other.yz);
+#endif
   }
   const float alpha = neighbors > 0.0 ? field.x + ib.lambda_alpha * (alpha_difference / neighbors) : field.x;
+#ifdef IB_HOMOGENEOUS_FIELDS
+  return vec4(alpha, neighbors > 0.0 ? smoothed(field, field_difference, neighbors) : field.yz, field.w);
+#else
   return vec4(alpha, raised(field, most), field.w);
+#endif
 }
 
 #if defined(IB_WORKLIST)

@@ -13,7 +13,8 @@
 // can change in that step only if a linked neighbour's initial value differs
 // from its own: alpha (eq. 8 takes the mean of the differences, exactly 0
 // when they are equal), or beta / gamma of 1 (unfixed fields start at 0, and
-// eq. 9 only ever raises them towards a neighbour's value). So every
+// eq. 9 only ever raises them towards a neighbour's value; eq. 8, with
+// field_diffusion=homogeneous, moves them only by differences). So every
 // fragment with beta or gamma fixed at 1, and every fragment whose alpha
 // differs from a linked neighbour's initial alpha, queues its pixel and the
 // 4 adjacent pixels (the links of any fragment reading it lie there); no

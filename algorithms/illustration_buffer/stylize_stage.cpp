@@ -15,9 +15,10 @@ namespace {
 constexpr const char* kInit = "algorithms/illustration_buffer/stylize_init.comp";
 constexpr const char* kDiffuse = "algorithms/illustration_buffer/stylize_diffuse.comp";
 
-Program build_diffusion(ShaderVariant::Diffuse pass) {
+Program build_diffusion(ShaderVariant::Diffuse pass, const Settings& s) {
   ShaderVariant v;
   v.diffuse = pass;
+  v.homogeneous_fields = s.field_diffusion == FieldDiffusion::homogeneous;
   return build_compute_program(kDiffuse, v.defines());
 }
 
@@ -36,13 +37,13 @@ StylizeStage::StylizeStage(const Settings& s, Records& records, FrameParams& par
   // updates every fragment.
   if (s_.tracks_convergence()) {
     seed_queue_ = build_compute_program("algorithms/illustration_buffer/stylize_seed_queue.comp");
-    diffuse_listed_ = build_diffusion(ShaderVariant::Diffuse::worklist);
+    diffuse_listed_ = build_diffusion(ShaderVariant::Diffuse::worklist, s_);
   } else if (s_.diffusion == Diffusion::steps) {
-    diffuse_ = build_diffusion(ShaderVariant::Diffuse::plain);
+    diffuse_ = build_diffusion(ShaderVariant::Diffuse::plain, s_);
   }
   if (s_.may_sweep()) {
-    diffuse_sweep_ = build_diffusion(ShaderVariant::Diffuse::sweep);
-    sweep_check_ = build_diffusion(ShaderVariant::Diffuse::check);
+    diffuse_sweep_ = build_diffusion(ShaderVariant::Diffuse::sweep, s_);
+    sweep_check_ = build_diffusion(ShaderVariant::Diffuse::check, s_);
     sweep_changed_ = make_buffer(4);
     build_field_table(params);
   }

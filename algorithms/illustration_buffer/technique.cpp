@@ -31,6 +31,9 @@ void check_combination(const Settings& s) {
     throw std::invalid_argument("illustration_buffer: fill=atomic or fill=framebuffer_fetch chooses how "
                                 "storage=linearized or arrays takes its slots; with storage=linked leave fill=auto");
   const bool sweep = s.diffused() && s.diffusion == Diffusion::sweep;
+  if (sweep && s.field_diffusion == FieldDiffusion::homogeneous)
+    throw std::invalid_argument("illustration_buffer: diffusion=sweep reaches the fixed point of eq. 9; "
+                                "field_diffusion=homogeneous (eq. 8) needs diffusion=steps or auto");
   if (sweep && s.adaptive_alpha)
     throw std::invalid_argument("illustration_buffer: diffusion=sweep leaves alpha as it starts, which eq. 8 would "
                                 "diffuse with adaptive_alpha=true; use diffusion=steps or auto");
