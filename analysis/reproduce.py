@@ -628,7 +628,11 @@ def oitbench_environment(oitbench):
 
 
 def catalogue_of(oitbench, env):
-    listing = subprocess.run([oitbench, "list"], capture_output=True, text=True, env=env, check=True).stdout
+    """What `oitbench list` lists. `list` wraps its lines to COLUMNS (else
+    120 columns in a pipe), which would split a `one of {...}` (the models'
+    names) over lines the Catalogue reads one by one: the widest it takes."""
+    listing = subprocess.run([oitbench, "list"], capture_output=True, text=True, env={**env, "COLUMNS": "10000"},
+                             check=True).stdout
     return Catalogue(listing)
 
 

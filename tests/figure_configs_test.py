@@ -107,6 +107,12 @@ class AgainstTheBuildTest(unittest.TestCase):
                 if self.catalogue.is_switch(series.technique, key):
                     self.assertIn(value, ("true", "false"), f"{name}: {series.technique}.{key}={value}")
 
+    def test_the_driver_reads_the_whole_model_list_that_list_would_wrap(self):
+        # `list` wraps to 120 columns in a pipe; the model scene's names take more.
+        models = reproduce.catalogue_of(OITBENCH, dict(os.environ)).models
+        self.assertIn("engine", models)
+        self.assertIn("dragon_vrip_res4", models)
+
     def test_every_timed_technique_of_the_build_is_in_the_comparison(self):
         pinned = {s.technique for s in figure_configs.FIGURES["models"].series}
         self.assertEqual(sorted(set(self.catalogue.timed()) - pinned), [])
