@@ -15,6 +15,7 @@ import argparse
 import json
 import os
 import sys
+import textwrap
 
 import matplotlib
 
@@ -25,7 +26,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from analysis import common, presentation  # noqa: E402
 from analysis.results_io import save_figure  # noqa: E402
 
-FIGURES = {"fig09": "Fig. 9: diffusion (torus)", "fig10": "Fig. 10: constant vs ours (spheres)",
+FIGURES = {"fig09": "Fig. 9: diffusion (torus, a folded view)", "fig10": "Fig. 10: constant vs ours (spheres)",
            "fig11": "Fig. 11: transparency assignments (nested spheres)",
            "fig12": "Fig. 12: flow-like surface (concentric cylinders)", "fig13": "Fig. 13: jet engine"}
 
@@ -47,11 +48,11 @@ def draw_directory(directory):
             for ax, name in zip(line, names):
                 ax.imshow(mpimg.imread(os.path.join(directory, f"{name}.png")))
                 ax.set_title(presentation.wrap(present[name]), fontsize=presentation.SMALLEST_POINTS)
-            line[0].text(-0.05, 0.5, FIGURES[figure], transform=line[0].transAxes, rotation=90, ha="right",
-                         va="center", fontsize=presentation.SMALLEST_POINTS)
+            line[0].text(-0.05, 0.5, "\n".join(textwrap.wrap(FIGURES[figure], 30)), transform=line[0].transAxes,
+                         rotation=90, ha="right", va="center", ma="center", fontsize=presentation.SMALLEST_POINTS)
         fig.suptitle("carnecky2013 Figs. 9-13 with our illustration buffer (oitbench render; 20 iterations, "
                      "silhouette + halo;\nFig. 9: its five columns, λγ = 0.1 in each)")
-        fig.tight_layout()
+        fig.tight_layout(rect=(0, 0, 1, 1 - 0.45 / fig.get_figheight()))  # room for the two-line title
     return fig
 
 

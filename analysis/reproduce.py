@@ -314,9 +314,11 @@ def carnecky_images(catalogue, quick):
     flow = ("cylinders", ())
     close = ("spheres", ())
     # Fig. 9's eq. 8 columns need field_diffusion (an older build has only eq. 9: they are left out).
+    # A view where the torus's inner side passes over its far side: halos as well as silhouettes.
     eq8 = "homogeneous" in catalogue.choices(ib, "field_diffusion")
-    grid = [(name, caption, ib, list(knobs.items()), torus) for name, caption, knobs in figure_configs.CARNECKY_FIG9
-            if eq8 or knobs["field_diffusion"] != "homogeneous"]
+    folded_torus = ("torus", (), "random:8:2@2")
+    grid = [(name, caption, ib, list(knobs.items()), folded_torus)
+            for name, caption, knobs in figure_configs.CARNECKY_FIG9 if eq8 or knobs["field_diffusion"] != "homogeneous"]
     grid += [
         ("fig10_constant", "constant transparency", ib, [("modulation", "none")], close),
         ("fig10_ours", "illustration buffer", ib, [], close),

@@ -202,7 +202,8 @@ Image model_image(const std::vector<std::vector<int>>& layers, const std::vector
   std::vector<std::vector<float>> opacity(size_t(w * h));
   for (const Fragment& f : fragments) {  // in each pixel nearest first
     c[size_t(f.pixel)].push_back(colors[size_t(f.quad)]);
-    opacity[size_t(f.pixel)].push_back((1.0f - profiled(f.gamma, m)) * (kAlpha + (1.0f - kAlpha) * profiled(f.beta, m)));
+    const float beta = profiled(f.beta, m), gamma = profiled(f.gamma, m);
+    opacity[size_t(f.pixel)].push_back((1.0f - gamma) * (kAlpha + (1.0f - kAlpha) * beta));
   }
   for (int pixel = 0; pixel < w * h; ++pixel) {
     const glm::vec4 v = composite(c[size_t(pixel)], opacity[size_t(pixel)]);
@@ -318,8 +319,8 @@ TEST(IllustrationBufferFields, ProfilesFollowEquationsTenAndElevenAsTheCpuModel)
 // error naming both parameters, and auto runs the steps.
 TEST(IllustrationBufferFields, EquationEightCannotSweepAndAutoSteps) {
   test::gl_context();
-  const RunSpec spec = test::one_frame("illustration_buffer", {{"field_diffusion", "homogeneous"}, {"diffusion", "sweep"}},
-                                 "random_quads", kTwoQuads, kSide);
+  const RawParams sweep = {{"field_diffusion", "homogeneous"}, {"diffusion", "sweep"}};
+  const RunSpec spec = test::one_frame("illustration_buffer", sweep, "random_quads", kTwoQuads, kSide);
   const RunResult swept = test::harness().run(spec);
   EXPECT_EQ(swept.status, RunStatus::error);
   EXPECT_NE(swept.message.find("field_diffusion=homogeneous"), std::string::npos) << swept.message;
