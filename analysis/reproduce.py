@@ -234,7 +234,7 @@ def comparison(catalogue, series, notes):
 
 def pastyrik_fig7(catalogue, scenes, quick, warmup, frames):
     """pastyrik2016 Fig. 7: the illustration buffer's dynamic sort of the
-    list against the static array (figure_configs); a build whose buffer has
+    list against its static arrays (figure_configs); a build whose buffer has
     no `sort` times the same sorts in the linked lists the buffer is built
     on (every linked_list `sort` choice, the rest at its defaults)."""
     notes = []
