@@ -17,10 +17,8 @@ const Choices<Modulation> kModulations{{Modulation::none, "none"},
                                        {Modulation::angle, "angle"},
                                        {Modulation::normal_variation, "normal_variation"},
                                        {Modulation::ray_distance, "ray_distance"}};
-const Choices<SortMethod> kSorts{{SortMethod::automatic, "auto"},
-                                 {SortMethod::array, "array"},
-                                 {SortMethod::dynamic, "dynamic"},
-                                 {SortMethod::static_arrays, "static_arrays"}};
+const Choices<SortMethod> kSorts{{SortMethod::automatic, "auto"}, {SortMethod::array, "array"},
+                                 {SortMethod::dynamic, "dynamic"}, {SortMethod::static_arrays, "static_arrays"}};
 const Choices<Storage> kStorages{{Storage::automatic, "auto"},
                                   {Storage::linked, "linked"},
                                   {Storage::linearized, "linearized"},
