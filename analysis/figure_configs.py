@@ -40,7 +40,7 @@ ILLUSTRATION_BUFFER_FIXED = {"modulation": "silhouette_halo", "adaptive_alpha": 
                              "lambda_beta": "0.05", "lambda_gamma": "0.1", "field_diffusion": "nonphysical",
                              "profile": "none", "exponential_p": "3",
                              "power_p": "0.3", "weight_z": "1", "weight_n": "1", "weld_vertices": "true",
-                             "fill": "auto", "normal_variation_scale": "10", "max_per_pixel": "64",
+                             "fill": "auto", "normal_variation_scale": "10", "focus_region": "1", "max_per_pixel": "64",
                              "initial_nodes_per_pixel": "8", "measure_accuracy": "false",
                              "accuracy_footprints": "1.5"}
 
@@ -159,9 +159,11 @@ FIGURES = {
         {"quick": [(256, 256)], "full": [(600, 600)]}, "default, max_list:16:1"),
     "pastyrik_fig7": Figure(
         "pastyrik_fig7", ["pastyrik_fig7"],
-        "pastyrik2016 Fig. 7: the dynamic sort of the list against the static array (64 entries), 600x600",
-        [Series("illustration_buffer", {**PASTYRIK, "sort": sort}, f"illustration_buffer sort={sort}")
-         for sort in ("array", "dynamic")],
+        "pastyrik2016 Fig. 7: the dynamic sort of the list against the static arrays (3 x 64 entries), 600x600",
+        [Series("illustration_buffer", {**PASTYRIK, "sort": "static_arrays"},
+                "illustration_buffer sort=static_arrays (pastyrik2016 3.2: selection sort in 3 static arrays of 64)"),
+         Series("illustration_buffer", {**PASTYRIK, "sort": "dynamic"},
+                "illustration_buffer sort=dynamic (pastyrik2016 Algorithm 2: insertion sort of the list in place)")],
         "as models", {"quick": [(256, 256)], "full": [(600, 600)]}, "default, max_list:16:1"),
     "murray_models": Figure(
         "murray_models", ["murray_fps_ratio"],

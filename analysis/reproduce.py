@@ -74,11 +74,18 @@ class Catalogue:
 
     def __init__(self, text):
         self.techniques = OrderedDict()  # id -> {param: default}
-        self.descriptions = {}  # id -> {param: description (its allowed values first)}
+        self.descriptions = {}  # id -> {param: description (its allowed values first), wrapped lines joined}
         self.reference = set()
         self.models = []
-        section, current, scene = None, None, None
+        section, current = None, None
+        parameters = []  # [section, technique or scene, parameter, default, description]
         for line in text.splitlines():
+            wrapped = re.match(r"^ {8}\S", line)
+            if wrapped and parameters and parameters[-1] is not None:
+                parameters[-1][4] += " " + line.strip()  # a long range or description goes on here
+                continue
+            if parameters and parameters[-1] is not None:
+                parameters.append(None)  # what follows no longer continues that parameter
             if line.startswith("Techniques:"):
                 section = "techniques"
             elif line.startswith("Scenes"):
@@ -90,33 +97,38 @@ class Catalogue:
                     self.descriptions[current] = {}
                     if ", reference]" in line:
                         self.reference.add(current)
-                else:
-                    scene = current
             elif section and (m := re.match(r"^ {6}(\S+)\s+default (\S*)\s+(.*)", line)):
-                if section == "techniques" and current in self.techniques:
-                    self.techniques[current][m.group(1)] = m.group(2)
-                    self.descriptions[current][m.group(1)] = m.group(3)
-                elif section == "scenes" and scene == "model" and m.group(1) == "name":
-                    choices = re.search(r"one of \{([^}]*)\}", m.group(3))
-                    if choices:
-                        self.models = [c.strip() for c in choices.group(1).split(",")]
+                parameters[-1:] = [[section, current, m.group(1), m.group(2), m.group(3)]]
+        for section, owner, name, default, description in filter(None, parameters):
+            if section == "techniques" and owner in self.techniques:
+                self.techniques[owner][name] = default
+                self.descriptions[owner][name] = description
+            elif section == "scenes" and owner == "model" and name == "name":
+                choices = re.search(r"one of \{([^}]*)\}", description)
+                if choices:
+                    self.models = [c.strip() for c in choices.group(1).split(",")]
 
     def timed(self):
         """Every technique but the exact reference, the paper's four first."""
         ids = [t for t in self.techniques if t not in self.reference]
         return [t for t in COMPARISON if t in ids] + [t for t in ids if t not in COMPARISON]
 
+    def allowed(self, technique, param):
+        """What `list` says a parameter allows: its description up to the
+        dash before its meaning ("" when it is not there)."""
+        return self.descriptions.get(technique, {}).get(param, "").split(" — ")[0]
+
     def choices(self, technique, param):
         """The values `one of {...}` allows for a parameter ([] when it is not
         a choice or not there)."""
-        found = re.search(r"one of \{([^}]*)\}", self.descriptions.get(technique, {}).get(param, ""))
+        found = re.search(r"one of \{([^}]*)\}", self.allowed(technique, param))
         return [c.strip() for c in found.group(1).split(",")] if found else []
 
     def accepts_auto(self, technique, param):
-        return "or auto" in self.descriptions.get(technique, {}).get(param, "")
+        return "or auto" in self.allowed(technique, param)
 
     def is_switch(self, technique, param):
-        return self.descriptions.get(technique, {}).get(param, "").startswith("true or false")
+        return self.allowed(technique, param).startswith("true or false")
 
 
 class Sweep:
@@ -235,7 +247,7 @@ def comparison(catalogue, series, notes):
 
 def pastyrik_fig7(catalogue, scenes, quick, warmup, frames):
     """pastyrik2016 Fig. 7: the illustration buffer's dynamic sort of the
-    list against the static array (figure_configs); a build whose buffer has
+    list against its static arrays (figure_configs); a build whose buffer has
     no `sort` times the same sorts in the linked lists the buffer is built
     on (every linked_list `sort` choice, the rest at its defaults)."""
     notes = []

@@ -422,7 +422,8 @@ class RunCommandsTest(unittest.TestCase):
             section = re.search(rf"(?ms)^  {technique} .*?(?=^  \S|\Z)", techniques)
             self.assertTrue(section, technique)
             for parameter in parameters:
-                self.assertRegex(section.group(0), rf"(?m)^      {parameter} +default .* —\s+\S", parameter)
+                # A long range wraps onto the next lines before the dash.
+                self.assertRegex(section.group(0), rf"(?m)^      {parameter} +default [^—]* —\s+\S", parameter)
         scenes = out.split("\nScenes")[1]
         text = read("README.md")
         for scene in re.findall(r"^\| `(\w+)` \|", text[text.index("## Scenes"):], re.M):

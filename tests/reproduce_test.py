@@ -268,6 +268,23 @@ class PlanTest(unittest.TestCase):
                                                            quick=True) if r.name.startswith("fig09_")]
         self.assertEqual(older, ["fig09_1_eq9", "fig09_2_eq9_eq10"])
 
+    def test_wrapped_ranges_and_model_names_are_read_whole(self):
+        # `oitbench list` wraps a long range onto lines indented by 8; a
+        # technique's own lines (paper, stages) wrap too and are no parameter's.
+        text = ("Techniques:\n  illustration_buffer  IB [approximate]\n"
+                "      paper: one of {a,\n        b}\n"
+                "      modulation default none one of {none, angle,\n        ray_distance} — modes, not\n"
+                "        one of {x} or auto\n"
+                "      sort default auto one of {auto, array} — sorts\n"
+                "Scenes (--scene NAME):\n  model  real models\n"
+                "      name default bunny one of {engine, bunny,\n        dragon} — which model\n")
+        catalogue = reproduce.Catalogue(text)
+        self.assertEqual(catalogue.choices("illustration_buffer", "modulation"), ["none", "angle", "ray_distance"])
+        self.assertFalse(catalogue.accepts_auto("illustration_buffer", "modulation"))  # "or auto" in its meaning only
+        self.assertEqual(catalogue.choices("illustration_buffer", "sort"), ["auto", "array"])
+        self.assertEqual(list(catalogue.techniques["illustration_buffer"]), ["modulation", "sort"])
+        self.assertEqual(catalogue.models, ["engine", "bunny", "dragon"])
+
     def catalogue_text_with_modes(self):
         return ("Techniques:\n  illustration_buffer  IB [approximate]\n"
                 "      modulation               default silhouette_halo one of {none, angle, normal_variation, "

@@ -56,6 +56,9 @@
 #define IB_OFFSETS_UNIT 2          // storage=linearized: the fill's per-pixel ranges; arrays: the fill's counts
 // 3: free
 #define IB_FLAT_COLORS_UNIT 4      // flat_color_records: the scene's colour per stable triangle id
+// sort=static_arrays (sort_static_arrays.glsl): the entries of each of its
+// three local arrays, pastyrik2016 section 4.1's 64 (the host checks max_per_pixel against it).
+#define IB_STATIC_ENTRIES 64u
 // Image units (fill.frag; the cursors with storage=linearized or arrays and fill=atomic).
 #define IB_CURSORS_IMAGE_UNIT 0
 
@@ -126,7 +129,8 @@ struct IbFrameParams {
   float normal_variation_scale;  // fill.frag, IB_NORMAL_VARIATION
   uint table_size;             // entries per field of the sweeps' table (sweep_distances.glsl)
   uint cutoff_beta, cutoff_gamma;  // each field's first distance of value 0 (stylize_diffuse.comp)
-  uint unused_0, unused_1, unused_2;  // the block padded to a multiple of 16 bytes
+  float focus_region;          // eq. 1 of pastyrik2016 (compose.frag, IB_RAY_DISTANCE)
+  uint unused_0, unused_1;     // the block padded to a multiple of 16 bytes
 };
 // Parameters of one pass of a frame (IB_PASS_PARAMS_BLOCK, bound per pass
 // at its record: frame_params.h).

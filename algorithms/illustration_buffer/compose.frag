@@ -9,6 +9,10 @@
 // IB_LOCAL_OPACITY (modulation=angle / normal_variation): the opacity the
 // fill computed (fill.frag), read from the fragment's fill record, which
 // these modes leave in place (no field ranges).
+// IB_RAY_DISTANCE (modulation=ray_distance): pastyrik2016 eq. 1, the opacity
+// of sample s_i from the view-depth distance to the next sample s_j behind it,
+// saturate(|s_i.depth - s_j.depth| / focusRegion), in place of its own
+// alpha; the farthest kept sample has none behind it: saturate(inf) = 1.
 #include "shaders/compose.glsl"
 #include "algorithms/illustration_buffer/ib_storage.glsl"
 // The sorted ranges, colours and fields are read through the buffer-texture
@@ -46,6 +50,9 @@ void main() {
   const uint first = ib_pixel_first(pixel), end = first + ib_pixel_count(pixel);
   vec3 accumulated = vec3(0.0);
   float transmittance = 1.0;
+#ifdef IB_RAY_DISTANCE
+  float depth = end > first ? uintBitsToFloat(ib_sorted_key(first).x) : 0.0;  // s_i's view depth
+#endif
   for (uint i = first; i < end; ++i) {
     const vec4 c = ib_sorted_color(i);
 #if defined(IB_MODULATE)
@@ -58,6 +65,13 @@ void main() {
     const float opacity = (1.0 - profile(field.z)) * (alpha + (1.0 - alpha) * profile(field.y));
 #elif defined(IB_LOCAL_OPACITY)
     const float opacity = uintBitsToFloat(ib_fragments[ib_sorted_geometry(i).w].surface.z);
+#elif defined(IB_RAY_DISTANCE)
+    float opacity = 1.0;
+    if (i + 1u < end) {
+      const float next = uintBitsToFloat(ib_sorted_key(i + 1u).x);
+      opacity = clamp(abs(depth - next) / ib.focus_region, 0.0, 1.0);
+      depth = next;
+    }
 #else
     const float opacity = c.a;
 #endif

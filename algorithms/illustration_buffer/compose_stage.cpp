@@ -11,6 +11,7 @@ ComposeStage::ComposeStage(const Settings& s) {
   v.modulate = s.diffused();
   v.profile = int(s.profile);
   v.local_opacity = !s.diffused() && s.purely_local();
+  v.ray_distance = s.modulation == Modulation::ray_distance;
   compose_ = build_fullscreen_program("algorithms/illustration_buffer/compose.frag", v.defines());
   if (s.diffused() && s.may_sweep()) {  // the swept frames' compose reads the hop distances (sweep_distances.glsl)
     v.swept = true;

@@ -25,6 +25,7 @@ FrameParams::FrameParams(const Settings& s, uint32_t steps) {
   values.tolerance = s.diffusion_tolerance;
   values.profile_p = s.profile == Profile::power ? s.power_p : s.exponential_p;
   values.normal_variation_scale = s.normal_variation_scale;
+  values.focus_region = s.focus_region;
   frame_ = make_buffer(sizeof(IbFrameParams), nullptr, GL_DYNAMIC_STORAGE_BIT);
   GLint alignment = 1;
   glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);

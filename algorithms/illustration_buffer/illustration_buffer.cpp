@@ -15,9 +15,10 @@ const Choices<Modulation> kModulations{{Modulation::none, "none"},
                                        {Modulation::halo, "halo"},
                                        {Modulation::silhouette_halo, "silhouette_halo"},
                                        {Modulation::angle, "angle"},
-                                       {Modulation::normal_variation, "normal_variation"}};
+                                       {Modulation::normal_variation, "normal_variation"},
+                                       {Modulation::ray_distance, "ray_distance"}};
 const Choices<SortMethod> kSorts{{SortMethod::automatic, "auto"}, {SortMethod::array, "array"},
-                                 {SortMethod::dynamic, "dynamic"}};
+                                 {SortMethod::dynamic, "dynamic"}, {SortMethod::static_arrays, "static_arrays"}};
 const Choices<Storage> kStorages{{Storage::automatic, "auto"},
                                   {Storage::linked, "linked"},
                                   {Storage::linearized, "linearized"},
@@ -80,6 +81,7 @@ Settings settings_from(const ParamSet& p) {
   s.arrays_where_even = storage == Storage::arrays_when_even;
   s.flat_color_records = resolved(p, "flat_color_records", kFlatColorRecords) == 1;
   s.normal_variation_scale = float(p.real("normal_variation_scale"));
+  s.focus_region = float(p.real("focus_region"));
   s.lambda_alpha = float(p.real("lambda_alpha"));
   s.lambda_beta = float(p.real("lambda_beta"));
   s.lambda_gamma = float(p.real("lambda_gamma"));
@@ -164,7 +166,9 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
               "opacity modulation (carnecky2013 section 5): none = plain alpha blending (no neighbour search, no "
               "stylize), silhouette = beta field, halo = gamma field, or both; angle and normal_variation = the "
               "purely local baselines of carnecky2013 Fig. 11 (opacity from the angle between normal and view ray, "
-              "or from the normal's screen-space variation)"),
+              "or from the normal's screen-space variation); ray_distance = pastyrik2016 eq. 1, the opacity "
+              "saturate(|depth - next depth| / focus_region) from the distance along the ray to the next sample "
+              "(the farthest: 1; no neighbour search, no stylize)"),
           ParamSpec::boolean("adaptive_alpha", false, "initial alpha 1-(1-s)^(1/n) (eq. 5) instead of s (eq. 4)"),
           ParamSpec::integer("iterations", 20, 0, 1000,
                              "diffusion iterations of alpha (eq. 8) and beta/gamma (eq. 9, or eq. 8 with "
@@ -211,8 +215,10 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
           illustration_buffer::kSorts.spec(
               "sort", illustration_buffer::SortMethod::automatic,
               "array = rank sort in a local array (carnecky2013 4.3); dynamic = insertion sort of the linked list in "
-              "the buffers (pastyrik2016 Algorithm 2; storage=linked only); auto = dynamic when the lists are linked "
-              "and the frame's longest has at most 4 fragments, else array; the same records either way"),
+              "the buffers (pastyrik2016 Algorithm 2; storage=linked only); static_arrays = selection sort in three "
+              "local arrays of 64 entries whatever the lists (pastyrik2016 3.2 and Fig. 7; max_per_pixel <= 64); "
+              "auto = dynamic when the lists are linked and the frame's longest has at most 4 fragments, else "
+              "array; the same records either way"),
           illustration_buffer::kStorages.spec(
               "storage", illustration_buffer::Storage::automatic,
               "where the fill puts the records (the same records and image either way): linked = per-pixel "
@@ -240,6 +246,9 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
           ParamSpec::real("normal_variation_scale", 10.0, 0.0, 1000.0,
                           "modulation=normal_variation: opacity = min(1, scale * |grad n|), grad n the view normal's "
                           "change per pixel (dFdx, dFdy)"),
+          ParamSpec::real("focus_region", 1.0, 1e-6, 1e6,
+                          "modulation=ray_distance: focusRegion of pastyrik2016 eq. 1, the view-space distance to the "
+                          "next sample at which a sample becomes opaque"),
           ParamSpec::integer("max_per_pixel", 64, 1, 1024,
                              "sort array size; longer lists keep their nearest max_per_pixel fragments (counted)"),
           ParamSpec::integer("initial_nodes_per_pixel", 8, 1, 1024,

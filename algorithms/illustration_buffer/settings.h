@@ -17,12 +17,16 @@ enum class NeighborSearch { heuristic, heuristic_merge, triangle_index };
 // blending; no neighbour search, no stylize), beta (silhouette), gamma
 // (halo) or both; or one of the purely local baselines of its Fig. 11
 // (opacity from the angle between normal and view ray, or from the
-// normal's screen-space variation; no neighbour search, no stylize).
-enum class Modulation { none, silhouette, halo, silhouette_halo, angle, normal_variation };
+// normal's screen-space variation; no neighbour search, no stylize); or
+// pastyrik2016's eq. 1, the opacity from the distance along the ray to the
+// next sample (ray_distance; in the compose, no neighbour search, no stylize).
+enum class Modulation { none, silhouette, halo, silhouette_halo, angle, normal_variation, ray_distance };
 // The sort: ranks in a local array (carnecky2013 section 4.3), or
 // pastyrik2016's Algorithm 2, insertion sort of the linked list in place, or
-// per frame the faster of the two on llvmpipe for the frame's longest list.
-enum class SortMethod { automatic, array, dynamic };
+// per frame the faster of the two on llvmpipe for the frame's longest list;
+// or pastyrik2016's selection sort in three static arrays of 64 entries
+// (its section 3.2 and Fig. 7), never chosen by auto.
+enum class SortMethod { automatic, array, dynamic, static_arrays };
 enum class Profile { none, exponential, power };  // eq. 10 / eq. 11
 // How beta and gamma spread from their boundary values (carnecky2013
 // section 5.4): the paper's nonphysical process, u <- max(u, max(u_n) -
@@ -77,6 +81,7 @@ struct Settings {
   bool arrays_where_even = false;
   bool flat_color_records = true;  // unlit scenes, lit ones with ranged(): no colour in the fill record
   float normal_variation_scale = 10.0f;
+  float focus_region = 1.0f;  // modulation=ray_distance: eq. 1's focusRegion, in view-space units
   bool measure_accuracy = false;
   double accuracy_footprints = 1.5;
 

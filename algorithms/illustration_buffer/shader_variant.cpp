@@ -20,6 +20,7 @@ ShaderDefines ShaderVariant::defines() const {
   flag(normal_variation, "IB_NORMAL_VARIATION");
   if (sort_array > 0) d.push_back({"IB_ARRAY", std::to_string(sort_array)});
   flag(dynamic_sort, "IB_DYNAMIC");
+  flag(static_arrays, "IB_STATIC_ARRAYS");
   flag(truncates, "IB_TRUNCATES");
   flag(triangle_vertices, "IB_TRIANGLE_VERTICES");
   flag(merge, "IB_MERGE");
@@ -36,6 +37,7 @@ ShaderDefines ShaderVariant::defines() const {
   if (modulate) d.push_back({"IB_PROFILE", std::to_string(profile)});
   flag(swept, "IB_SWEPT");
   flag(local_opacity, "IB_LOCAL_OPACITY");
+  flag(ray_distance, "IB_RAY_DISTANCE");
   return d;
 }
 

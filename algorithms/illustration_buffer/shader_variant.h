@@ -22,11 +22,12 @@ struct ShaderVariant {
   // local opacity the fill computes.
   bool flat_color = false, measure = false, surface = false, angle = false, normal_variation = false;
   // The sort (sort.comp): IB_ARRAY, its local array's size (0: none);
-  // IB_DYNAMIC, pastyrik2016's insertion sort; IB_TRUNCATES, the path for
-  // lists longer than the array; IB_TRIANGLE_VERTICES, the geometry layout
+  // IB_DYNAMIC, pastyrik2016's insertion sort; IB_STATIC_ARRAYS, its
+  // selection sort in static arrays; IB_TRUNCATES, the path for lists longer
+  // than the array; IB_TRIANGLE_VERTICES, the geometry layout
   // IB_GEOMETRY_TRIANGLE.
   uint32_t sort_array = 0;
-  bool dynamic_sort = false, truncates = false, triangle_vertices = false;
+  bool dynamic_sort = false, static_arrays = false, truncates = false, triangle_vertices = false;
   // The neighbour searches: IB_MERGE (neighbors.comp, heuristic_merge);
   // IB_GROUP, fragments per group (neighbors_triangle_index.comp; 0: none).
   bool merge = false;
@@ -42,8 +43,9 @@ struct ShaderVariant {
   Diffuse diffuse = Diffuse::plain;
   bool homogeneous_fields = false;
   // The compose (compose.frag): IB_MODULATE with IB_PROFILE (Profile's
-  // value), IB_SWEPT (fields from the sweeps' distances), IB_LOCAL_OPACITY.
-  bool modulate = false, swept = false, local_opacity = false;
+  // value), IB_SWEPT (fields from the sweeps' distances), IB_LOCAL_OPACITY,
+  // IB_RAY_DISTANCE (pastyrik2016 eq. 1).
+  bool modulate = false, swept = false, local_opacity = false, ray_distance = false;
   int profile = 0;
 
   ShaderDefines defines() const;

@@ -18,6 +18,12 @@
 // nodes are copied as above. Equal keys keep list order in both variants,
 // so the records are the same.
 //
+// IB_STATIC_ARRAYS (sort=static_arrays): pastyrik2016 section 3.2's
+// "Sorting in Array of Fixed Size" as its section 4.1 measured it: three
+// local arrays of IB_STATIC_ENTRIES (64) whatever the frame's lists, the
+// list loaded into them, selection-sorted, and copied out as above
+// (sort_static_arrays below).
+//
 // IB_RANGED (storage=linearized or arrays): the pixel's fill records are
 // contiguous (fill.frag), read in order with no list walk, and the sorted
 // range is the one the host computed from the kept lengths (ib_head,
@@ -146,7 +152,11 @@ uint sort_list(uint head) {
 }
 #endif
 
-#ifndef IB_DYNAMIC
+#ifdef IB_STATIC_ARRAYS
+#include "algorithms/illustration_buffer/sort_static_arrays.glsl"
+#endif
+
+#if !defined(IB_DYNAMIC) && !defined(IB_STATIC_ARRAYS)
 // The whole list fits the array: each fragment is copied to its rank, the
 // number of fragments before it in (depth, triangle) order, ties in list
 // order. The keys are gathered into a local array first; every array index
@@ -247,6 +257,8 @@ void main() {
     copy_record(first + i, node, pixel);
     node = ib_next[node];
   }
+#elif defined(IB_STATIC_ARRAYS)
+  sort_static_arrays(start, length, pixel);
 #else
 #ifdef IB_TRUNCATES
   if (length > uint(IB_ARRAY)) {

@@ -28,7 +28,11 @@ SortChoice SortStage::choose(const FillResult& fill) const {
   SortChoice c;
   c.dynamic = s_.sort == SortMethod::dynamic ||
               (s_.sort == SortMethod::automatic && !s_.ranged() && fill.longest <= kLongestDynamicList);
-  if (!c.dynamic) {
+  if (s_.sort == SortMethod::static_arrays) {
+    c.static_arrays = true;
+    c.array = IB_STATIC_ENTRIES;
+    c.truncates = fill.longest > c.array;
+  } else if (!c.dynamic) {
     c.array = std::min(s_.max_per_pixel, std::max(kSmallestArray, std::bit_ceil(std::max<uint32_t>(fill.longest, 1))));
     c.truncates = fill.longest > c.array;
   }
@@ -51,7 +55,7 @@ void SortStage::run(const Frame& frame, const FramePlan& plan, const FillResult&
 }
 
 GLuint SortStage::program(const FramePlan& plan, const FillResult& fill, const SortChoice& choice) {
-  const Variant key{choice.array, plan.flat_records, choice.truncates, fill.arrays()};
+  const Variant key{choice.array, plan.flat_records, choice.truncates, fill.arrays(), choice.static_arrays};
   auto it = programs_.find(key);
   if (it == programs_.end()) {
     ShaderVariant v;
@@ -62,7 +66,8 @@ GLuint SortStage::program(const FramePlan& plan, const FillResult& fill, const S
     v.flat_color = plan.flat_records;
     v.truncates = choice.truncates;
     v.dynamic_sort = choice.dynamic;
-    v.sort_array = choice.array;
+    v.static_arrays = choice.static_arrays;
+    v.sort_array = choice.static_arrays ? 0 : choice.array;  // IB_STATIC_ENTRIES sizes the static arrays
     v.triangle_vertices = s_.stores_triangle_vertices();
     v.surface = s_.records_surface();
     it = programs_.emplace(key, build_compute_program("algorithms/illustration_buffer/sort.comp", v.defines())).first;

@@ -1,7 +1,8 @@
 #pragma once
 // The sort (stage "sort"): each pixel's fill records into a contiguous
 // range of sorted records, nearest first (carnecky2013 section 4.3, or
-// pastyrik2016 Algorithm 2 with sort=dynamic), with each record's colour
+// pastyrik2016 Algorithm 2 with sort=dynamic, or its static arrays with
+// sort=static_arrays), with each record's colour
 // (the flat colour by triangle id with flat colour records) and, for
 // neighbors=triangle_index, its triangle's vertex indices from the triangle
 // table this stage keeps per scene.
@@ -18,9 +19,10 @@ namespace oit::illustration_buffer {
 
 // The sort a frame runs, from its plan and its fill's longest list.
 struct SortChoice {
-  bool dynamic = false;    // pastyrik2016's insertion sort (no array)
-  uint32_t array = 0;      // the local array's size
-  bool truncates = false;  // a list is longer than the array
+  bool dynamic = false;        // pastyrik2016's insertion sort (no array)
+  bool static_arrays = false;  // pastyrik2016's static arrays (array: IB_STATIC_ENTRIES)
+  uint32_t array = 0;          // the local array's size
+  bool truncates = false;      // a list is longer than the array
 };
 
 class SortStage {
@@ -29,7 +31,8 @@ class SortStage {
   // The sort's local array: the frame's longest list rounded up to a power
   // of two (a few programs serve every frame), at most max_per_pixel. The
   // dynamic sort (sort=dynamic; sort=auto on linked lists up to
-  // kLongestDynamicList) has no array.
+  // kLongestDynamicList) has no array; sort=static_arrays has the paper's
+  // IB_STATIC_ENTRIES whatever the lists.
   SortChoice choose(const FillResult& fill) const;
   void run(const Frame& frame, const FramePlan& plan, const FillResult& fill, const SortChoice& choice,
            const FillStage& fill_stage, const Grid& grid);
@@ -43,8 +46,9 @@ class SortStage {
   const Settings& s_;
   Records& records_;
   // By local array size (0: the dynamic sort), flat colours, whether a list
-  // is longer than the array, and whether the fill records are per-pixel arrays.
-  using Variant = std::tuple<uint32_t, bool, bool, bool>;
+  // is longer than the array, whether the fill records are per-pixel arrays,
+  // and whether the arrays are the static ones.
+  using Variant = std::tuple<uint32_t, bool, bool, bool, bool>;
   std::map<Variant, Program> programs_;
   // neighbors=triangle_index: the triangle table (SceneGpu::serial of its scene).
   Buffer triangles_;

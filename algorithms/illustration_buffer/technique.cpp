@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
+#include "algorithms/illustration_buffer/bindings.h"
 #include "algorithms/illustration_buffer/compose_stage.h"
 #include "algorithms/illustration_buffer/fill_stage.h"
 #include "algorithms/illustration_buffer/neighbor_stage.h"
@@ -27,6 +29,11 @@ void check_combination(const Settings& s) {
     throw std::invalid_argument(
         "illustration_buffer: sort=dynamic sorts the fill's linked lists and needs storage=linked (storage=linearized "
         "and arrays sort each pixel's contiguous range with sort=array or auto)");
+  if (s.sort == SortMethod::static_arrays && s.max_per_pixel > IB_STATIC_ENTRIES)
+    throw std::invalid_argument("illustration_buffer: sort=static_arrays sorts in pastyrik2016's static arrays of " +
+                                std::to_string(IB_STATIC_ENTRIES) + " entries, which cannot keep max_per_pixel=" +
+                                std::to_string(s.max_per_pixel) + " fragments; set max_per_pixel <= " +
+                                std::to_string(IB_STATIC_ENTRIES) + " or use sort=array");
   if (!s.ranged() && s.fill != SlotFill::automatic)
     throw std::invalid_argument("illustration_buffer: fill=atomic or fill=framebuffer_fetch chooses how "
                                 "storage=linearized or arrays takes its slots; with storage=linked leave fill=auto");
@@ -152,6 +159,7 @@ TechniqueCounters IllustrationBuffer::counters() const {
              {"neighbor_passes", plan_.modulated ? 1.0 : 0.0},
              {"stylize_passes", stylize_.passes(plan_)},
              {"dynamic_sort", sort_choice_.dynamic ? 1.0 : 0.0, Combine::max},
+             {"static_arrays_sort", sort_choice_.static_arrays ? 1.0 : 0.0, Combine::max},
              {"sweep_diffusion", plan_.swept ? 1.0 : 0.0, Combine::max}};
   if (plan_.modulated && s_.neighbors == NeighborSearch::triangle_index)
     c.extra.push_back({"isolated_triangles", double(sort_.isolated_triangles()), Combine::max});
