@@ -139,8 +139,8 @@ class ReproduceTest(unittest.TestCase):
         murray = {r["name"]: r["arguments"] for r in sweeps["murray_images"]["renders"]}
         self.assertIn("renders only", sweeps["murray_images"]["skipped"])
         self.assertIn("1200x800", murray["fig08_b"])
-        self.assertIn("opacity_transfer=depth_range", murray["fig08_b"])
-        self.assertIn("slot_layout=paper", murray["fig01_oit"])
+        self.assertIn("1000x1000", murray["fig01_ours"])
+        self.assertEqual(murray["fig01_oit"][:3], ["render", "--technique", "kbuffer"])
 
     def test_plots_only_draws_each_device_of_a_merged_csv_apart(self):
         self.reproduce("--only", "layers", "--no-plots")
