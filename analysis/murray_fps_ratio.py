@@ -60,7 +60,7 @@ def draw(runs, args=None):
     rows, by_layout = ratios(runs)
     points = sorted(set().union(*(r.index for r in by_layout.values())),
                     key=lambda p: min(r.get(p, np.inf) for r in by_layout.values()))
-    fig, ax = plt.subplots(figsize=(9, 4.5))
+    fig, ax = plt.subplots(figsize=(max(9.0, 2.0 + 0.42 * len(points)), 5))
     positions = np.arange(len(points))
     width = 0.8 / len(by_layout)
     colour = presentation.technique_style("bucketed_kbuffer").colour
