@@ -10,8 +10,9 @@ series and pins live here only); `--list-commands` prints what it plans,
 and the test checks every planned bench against this table.
 
 Pins that select the papers' variants (ILLUSTRATION_BUFFER_PAPER,
-PEELING_CANONICAL, BUCKETED_KBUFFER_PAPER) name the paper and section; the
-other values are the build's defaults of 2026-11-27, frozen.
+PEELING_CANONICAL, BUCKETED_KBUFFER_PAPER, the *_PAPER_SLOTS of the k-buffers)
+name the paper and section; the other values are the build's defaults of
+2026-11-27, frozen (slot_layout=full: the default of 2026-11-28).
 """
 from collections import namedtuple
 
