@@ -2,6 +2,7 @@
 the `extra` counters as columns, and a title naming device, resolution and
 date (times are only comparable within one device)."""
 import argparse
+import os
 import sys
 
 import matplotlib
@@ -126,6 +127,43 @@ def cli(description, draw, extra_arguments=None):
         save_figure(fig, args.out, dpi=110)
     except (NoData, ResultsError, OSError) as e:
         sys.exit(f"{description.split(':')[0]}: {e}")
+    print(f"wrote {args.out}")
+
+
+def image_grid(directory, rows, title, panel=(2.4, 2.4)):
+    """A figure of rendered PNGs from `directory`: `rows` is [(label,
+    [(image name, caption), ...])], one row each, the label on its left;
+    `panel`: inches per image (width, height)."""
+    import matplotlib.image as mpimg
+    import matplotlib.pyplot as plt
+
+    width = max(len(items) for _, items in rows)
+    with plt.rc_context({"axes.titlesize": 7, "axes.labelsize": 7}):
+        fig, axes = plt.subplots(len(rows), width, figsize=(panel[0] * width, panel[1] * len(rows)), squeeze=False)
+        for ax in axes.flat:
+            ax.set_visible(False)
+        for line, (label, items) in zip(axes, rows):
+            for c, (name, caption) in enumerate(items):
+                line[c].set_visible(True)
+                line[c].imshow(mpimg.imread(os.path.join(directory, f"{name}.png")))
+                line[c].set(xticks=[], yticks=[], title=caption, ylabel=label if c == 0 else "")
+        fig.suptitle(title, fontsize=8)
+        fig.tight_layout()
+    return fig
+
+
+def images_cli(description, draw_directory):
+    """The command line of an image grid: a folder of renders (with its
+    captions.json) in, -o PNG out; `draw_directory(folder)` returns the figure."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("images", help="folder with captions.json and the PNGs")
+    parser.add_argument("-o", "--out", required=True)
+    args = parser.parse_args()
+    try:
+        fig = draw_directory(args.images)
+    except (NoData, FileNotFoundError) as e:
+        sys.exit(f"{description.split(':')[0]}: {e}")
+    save_figure(fig, args.out, dpi=110)
     print(f"wrote {args.out}")
 
 

@@ -10,8 +10,9 @@ series and pins live here only); `--list-commands` prints what it plans,
 and the test checks every planned bench against this table.
 
 Pins that select the papers' variants (ILLUSTRATION_BUFFER_PAPER,
-PEELING_CANONICAL, BUCKETED_KBUFFER_PAPER) name the paper and section; the
-other values are the build's defaults of 2026-11-27, frozen.
+PEELING_CANONICAL, BUCKETED_KBUFFER_PAPER, the *_PAPER_SLOTS of the k-buffers)
+name the paper and section; the other values are the build's defaults of
+2026-11-27, frozen (slot_layout=full: the default of 2026-11-28).
 """
 from collections import namedtuple
 
@@ -85,14 +86,20 @@ PASTYRIK = illustration_buffer(iterations="20", neighbors="triangle_index", sort
 PEELING_CANONICAL = {"max_passes": "64", "early_exit": "true", "tie_break": "submission"}
 PEELING_EXACT_TIES = {**PEELING_CANONICAL, "tie_break": "triangle_id"}
 
-KBUFFER = {"k": "16", "tail": "drop", "auto_k_memory_mb": "1024"}
+KBUFFER = {"k": "16", "tail": "drop", "auto_k_memory_mb": "1024", "slot_layout": "full"}
+# murray2016 section 6: the classic dual-pass k-buffer in 64 bits per
+# fragment (32-bit depth, RGBA8 colour), the OIT its Figs. 1, 8, 9 time.
+KBUFFER_PAPER_SLOTS = {**KBUFFER, "slot_layout": "paper"}
 # murray2016: its neighbour query scans the fragment's bucket (section 5,
-# Fig. 5, with the reverse check), buckets on whatever the scene. Its slots
-# are 8 bytes; ours 20 (no parameter selects 8-byte slots: the README says so).
+# Fig. 5, with the reverse check), buckets on whatever the scene. Our slots
+# are 20 bytes (a kappa word besides Z, B, colour and normal) unless
+# slot_layout=paper, the paper's 128 bits (section 6), which murray_models
+# times beside ours; the other sweeps keep ours.
 BUCKETED_KBUFFER_FIXED = {"reverse_check": "true", "color_transfer": "mean_curvature_shading",
                           "opacity_transfer": "front_focus", "depth_bits": "16", "curvature_scale": "1",
-                          "measure_accuracy": "false", "auto_k_memory_mb": "1024"}
+                          "measure_accuracy": "false", "auto_k_memory_mb": "1024", "slot_layout": "full"}
 BUCKETED_KBUFFER_PAPER = {**BUCKETED_KBUFFER_FIXED, "k": "16", "buckets": "on", "neighbor_search": "bucket"}
+BUCKETED_KBUFFER_PAPER_SLOTS = {**BUCKETED_KBUFFER_PAPER, "slot_layout": "paper"}
 
 # Every other technique of the comparison at the build's defaults, frozen.
 OTHERS = {
@@ -169,8 +176,11 @@ FIGURES = {
         "murray_models", ["murray_fps_ratio"],
         "murray2016 Figs. 1, 8, 9: OIT k-buffer against the stylised bucketed k-buffer, 16 layers, 1000x1000 "
         "(Fig. 8's bike: 1200x800)",
-        [Series("kbuffer", KBUFFER, "kbuffer (OIT, constant transparency)"),
-         Series("bucketed_kbuffer", BUCKETED_KBUFFER_PAPER, "bucketed_kbuffer (paper's bucket query; 20 B slots)")],
+        [Series("kbuffer", KBUFFER_PAPER_SLOTS, "kbuffer (OIT; the paper's 8 B slots)"),
+         Series("bucketed_kbuffer", BUCKETED_KBUFFER_PAPER_SLOTS,
+                "bucketed_kbuffer (paper's bucket query; the paper's 16 B slots)"),
+         Series("kbuffer", KBUFFER, "kbuffer (OIT; our 24 B slots)"),
+         Series("bucketed_kbuffer", BUCKETED_KBUFFER_PAPER, "bucketed_kbuffer (paper's bucket query; our 20 B slots)")],
         "as models", {"quick": [(256, 256)], "full": [(1000, 1000), (1200, 800)]}, "default"),
     "psi_scenes": Figure(
         "psi_scenes", ["pastyrik_psi"], "pastyrik2016 section 5: synthetic scenes of Psi 0..1, 600x600",

@@ -7,7 +7,8 @@ Usage (from the repository root, after `bash setup.sh build`):
 
 One CSV per sweep under --out (murray_fig10, carnecky_fig14, carnecky_fig15,
 models, pastyrik_fig7, murray_models, psi_scenes, layers), heatmaps under --out/heatmaps,
-the carnecky2013 Figs. 9-13 renders under --out/images, the PNG plots next
+the carnecky2013 Figs. 9-13 renders under --out/images, murray2016 Figs. 1 and
+5-9 under --out/murray_images, the PNG plots next
 to them. Resumable: before starting a bench the driver reads the sweep's CSV
 and leaves out every run (technique, its swept parameters, scene, swept scene
 parameters, camera, width, height) that the CSV already holds whole (all its
@@ -64,7 +65,9 @@ MODEL_CAMERAS = ["default", "max_list:16:1"]
 # pastyrik2016 section 4.
 PAPER = dict({name: figure.paper for name, figure in figure_configs.FIGURES.items()},
              carnecky_images="carnecky2013 Figs. 9-13 at 512^2 (Fig. 12(b): 512x512, 20 iterations; Fig. 9: its "
-                             "five diffusion configurations)")
+                             "five diffusion configurations)",
+             murray_images="murray2016 Figs. 1, 5-9 at 1000x1000 (Fig. 8's bike: 1200x800) with each figure's "
+                           "transfer functions")
 
 
 class Catalogue:
@@ -350,6 +353,57 @@ def carnecky_images(catalogue, quick):
             for name, caption, t, tp, where in grid]
 
 
+def murray_images(catalogue):
+    """murray2016 Figs. 1 and 5-9 as renders of the closest packaged models,
+    at the paper's sizes in both modes (a few renders), each with the
+    transfer functions the figure shows: OIT with constant transparency
+    (kbuffer) against the bucketed k-buffer's stylisations."""
+    if "bucketed_kbuffer" not in catalogue.techniques or "kbuffer" not in catalogue.techniques:
+        return []
+    bkb, kb = "bucketed_kbuffer", "kbuffer"
+    examples = os.path.join(REPO, "algorithms", "bucketed_kbuffer", "examples")
+    opaque = [("opacity_transfer_file", os.path.join(examples, "opacity_opaque.txt"))]
+    front_opaque = [("opacity_transfer_file", os.path.join(examples, "opacity_front_opaque_3x3.txt"))]
+    # A random view frames the whole bounding sphere: the engine's own camera crops it.
+    engine = ("model", (("name", "engine"),), "random:8:2@0")
+    cad = next((path for path in CAD_FILES if os.path.exists(path)), None)
+    plant = (cad, (), "random:8:2@0") if cad else ("model", (("name", "spider"),))
+    bones, creature = ("model", (("name", "bones"), ("alpha", "0.6"))), ("model", (("name", "armadillo"),))
+    big, bike, small = (1000, 1000), (1200, 800), (512, 512)
+    grid = [
+        ("fig01_oit", "(left) OIT, constant transparency", kb, [], engine, big),
+        ("fig01_opaque", "(centre) shading on opaque surfaces", bkb, opaque, engine, big),
+        ("fig01_ours", "(right) ours, Fig. 7(a)", bkb, [], engine, big),
+        ("fig05_simple", "(a) simple check", bkb, [("reverse_check", "false")], ("cylinders", ()), small),
+        ("fig05_reverse", "(b) reverse check", bkb, [], ("cylinders", ()), small),
+        # Fig. 6 shows colour functions: constant opacity, so that only the colour changes.
+        ("fig06_a", "(a) mean curvature shading", bkb, [("opacity_transfer", "identity")], creature, small),
+        ("fig06_b", "(b) bright curved, dark flat", bkb,
+         [("color_transfer", "curved_bright"), ("opacity_transfer", "identity")], creature, small),
+        ("fig07_a", "(a) front focus", bkb, [], creature, small),
+        ("fig07_b", "(b) depth range", bkb, [("opacity_transfer", "depth_range")], creature, small),
+        ("fig08_a", "(a) bike: Fig. 7(a)", bkb, [], engine, bike),
+        ("fig08_b", "(b) bike: Fig. 7(b)", bkb, [("opacity_transfer", "depth_range")], engine, bike),
+        ("fig08_c", "(c) powerplant: Fig. 7(a)", bkb, [], plant, big),
+        ("fig08_d", "(d) powerplant: front opaque", bkb, front_opaque, plant, big),
+        ("fig09_a", "(a) OIT, opacity 0.6", kb, [], bones, big),
+        ("fig09_b", "(b) mean curvature shading only", bkb, [("opacity_transfer", "identity")], bones, big),
+        ("fig09_c", "(c) mean curvature transparency", bkb, [], bones, big),
+    ]
+    pins = {bkb: figure_configs.BUCKETED_KBUFFER_PAPER_SLOTS, kb: figure_configs.KBUFFER_PAPER_SLOTS}
+    # A model this build does not package is left out (its figure loses that panel).
+    grid = [g for g in grid if g[4][0] != "model" or dict(g[4][1])["name"] in catalogue.models]
+    return [Render(name, caption, t, pins_for(catalogue, t, {**pins[t], **dict(tp)}, []), where[0], where[1],
+                   where[2] if len(where) > 2 else "default", size[0], size[1])
+            for name, caption, t, tp, where, size in grid]
+
+
+def render_directory(out, sweep):
+    """Where a render sweep's images go: carnecky2013's in <out>/images (as
+    committed), every other's in <out>/<sweep name>."""
+    return os.path.join(out, "images" if sweep.name == "carnecky_images" else sweep.name)
+
+
 def plan(catalogue, quick, views=None):
     """The sweeps and the plots each feeds. Quick: small enough for software
     GL on 2 cores; full: the papers' sizes and parameters (PAPER; fragments
@@ -363,14 +417,16 @@ def plan(catalogue, quick, views=None):
     models = Sweep("models", model_points(catalogue, series, scenes, MODEL_CAMERAS, sizes_of("models", quick), notes),
                    [(module, {"heatmaps": True} if module == "pastyrik_fig10" else {})
                     for module in figure_configs.FIGURES["models"].plots], warmup, frames, notes=notes)
-    images = carnecky_images(catalogue, quick)
+    images, murray = carnecky_images(catalogue, quick), murray_images(catalogue)
     return ([murray_fig10(catalogue, quick, warmup, frames)] + carnecky_sweeps(catalogue, quick, warmup, frames, views)
             + [models, pastyrik_fig7(catalogue, scenes, quick, warmup, frames),
                murray_models(catalogue, scenes, quick, warmup, frames),
                psi_scenes(catalogue, quick, warmup, frames),
                layers_sweep(catalogue, quick, warmup, frames),
                Sweep("carnecky_images", [], [("carnecky_images", {"images": True})], 0, 0,
-                     "" if images else "illustration_buffer is not in this build", images)])
+                     "" if images else "illustration_buffer is not in this build", images),
+               Sweep("murray_images", [], [("murray_images", {"images": True})], 0, 0,
+                     "" if murray else "kbuffer or bucketed_kbuffer is not in this build", murray)])
 
 
 def tokens(text):
@@ -519,7 +575,7 @@ def render_arguments(render):
 
 def run_renders(sweep, args, env):
     """The sweep's images not yet in <out>/images (resumable like the benches)."""
-    directory = os.path.join(args.out, "images")
+    directory = render_directory(args.out, sweep)
     os.makedirs(directory, exist_ok=True)
     started = []
     for render in sweep.renders:
@@ -561,7 +617,7 @@ def draw_images(sweep, args):
     for module_name, _ in sweep.plots:
         module = importlib.import_module(f"analysis.{module_name}")
         out = os.path.join(args.out, f"{module_name}.png")
-        draw_and_save(lambda: module.draw_directory(os.path.join(args.out, "images")), out, module_name, drawn)
+        draw_and_save(lambda: module.draw_directory(render_directory(args.out, sweep)), out, module_name, drawn)
     return drawn
 
 

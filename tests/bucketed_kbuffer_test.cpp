@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <tuple>
+#include <vector>
 
 #include "algorithms/bucketed_kbuffer/transfer_functions.h"
 #include "harness/core/error_metrics.h"
@@ -24,24 +26,7 @@ using test::work_saved;
 constexpr const char* kId = "bucketed_kbuffer";
 constexpr double kRgba8Step = 1.0 / 255.0;
 
-// Largest change of a composite (rgb and alpha) when each layer's colour and
-// alpha are rounded to RGBA8, i.e. each is off by at most d = 0.5/255:
-//   out = sum_i T_i a_i c_i + T_n bg,  T_i = prod_{j<i} (1 - a_j)
-//   |d out / d c_i| = T_i a_i           (these sum to at most 1)
-//   |d out / d a_i| = T_i |c_i - R_i|  <= T_i  (R_i: composite behind i, in [0, 1])
-//   |d (1 - T_n) / d a_i| = T_n / (1 - a_i) <= T_i
-// Along the segment between exact and stored values each a_j may be up to d
-// smaller, so bound = d * (1 + sum_i prod_{j<i} (1 - a + d)), plus float
-// rounding of the compose.
-double packing_bound(double alpha, int layers) {
-  const double d = 0.5 * kRgba8Step;
-  double transmittance_sum = 0.0, transmittance = 1.0;
-  for (int i = 0; i < layers; ++i) {
-    transmittance_sum += transmittance;
-    transmittance *= 1.0 - alpha + d;
-  }
-  return d * (1.0 + transmittance_sum) + 1e-5;
-}
+using test::packing_bound;
 
 // The bucket/brute-force searches that `buckets` selects, not the default
 // merge search.
@@ -411,6 +396,55 @@ TEST(BucketedKBuffer, InvalidParametersAreErrorsNamingTheParameter) {
     EXPECT_EQ(r.status, RunStatus::error) << name;
     EXPECT_NE(r.message.find("'" + name + "'"), std::string::npos) << r.message;
   }
+}
+
+// slot_layout=paper: murray2016's 128 bits per fragment (Z, B, colour,
+// normal; section 6), the colour stylized in the neighbour pass as kappa is
+// found: the full layout's image bit for bit, 4 bytes a slot less, the same
+// counts, but no found masks kept (no link counts, no diagnostic images).
+TEST(BucketedKBuffer, PaperSlotLayoutGivesTheSameImageInSixteenBytesASlot) {
+  struct Case {
+    RawParams params;
+    std::string scene;
+    RawParams scene_params;
+  };
+  const int size = 48;
+  const uint64_t pixels = uint64_t(size) * size;
+  const std::vector<Case> cases = {
+      {{{"k", "16"}}, "quads", {{"layers", "16"}, {"objects", "4"}}},
+      {bucket_search({{"k", "16"}, {"color_transfer", "curved_bright"}, {"opacity_transfer", "depth_range"}}),
+       "spheres", {}},
+      {{{"k", "8"}, {"opacity_transfer", "identity"}}, "torus", {}},
+      {unstylized({{"k", "16"}}), "spheres", {}}};
+  for (const auto& [params, scene, scene_params] : cases) {
+    RawParams paper = params;
+    paper["slot_layout"] = "paper";
+    const RunResult a = run(paper, scene, scene_params, size), b = run(params, scene, scene_params, size);
+    EXPECT_EQ(compare_images(a.image, b.image).max_abs, 0.0) << scene;
+    EXPECT_EQ(b.counters.bytes_allocated - a.counters.bytes_allocated, pixels * std::stoull(params.at("k")) * 4u);
+    EXPECT_EQ(extra_counter(a, "bits_per_fragment"), 128.0);
+    EXPECT_EQ(a.counters.fragments_stored, b.counters.fragments_stored) << scene;
+    EXPECT_EQ(a.counters.fragments_dropped, b.counters.fragments_dropped) << scene;
+    EXPECT_FALSE(find_figure(a.counters.extra, "neighbor_links").has_value()) << scene;
+    EXPECT_GT(a.counters.fragments_stored, 0u);
+  }
+  // Z + B + colour + normal, the counter, both transfer textures.
+  const RunResult quads = run({{"k", "16"}, {"slot_layout", "paper"}}, "quads", {{"layers", "16"}}, size);
+  EXPECT_EQ(quads.counters.bytes_allocated, pixels * 16u * 16u + 4u + 4096u + 16384u);
+  EXPECT_TRUE(test::diagnostic_images_once(kId, {{"slot_layout", "paper"}}, "quads", {{"layers", "4"}}, 16, 16).empty());
+}
+
+// measure_accuracy keeps the features word in either layout, so the paper
+// layout's links and curvatures can be measured: they are the full layout's.
+TEST(BucketedKBuffer, PaperSlotLayoutFindsTheSameLinksAndCurvatures) {
+  const RawParams measured = {{"k", "16"}, {"measure_accuracy", "true"}, {"curvature_scale", "0.2"}};
+  RawParams paper = measured;
+  paper["slot_layout"] = "paper";
+  const RunResult a = run(paper, "spheres", {}, 64), b = run(measured, "spheres", {}, 64);
+  for (const char* name : {"link_checksum", "neighbor_links", "kappa_samples", "kappa_mean_error"})
+    EXPECT_EQ(extra_counter(a, name), extra_counter(b, name)) << name;
+  EXPECT_GT(extra_counter(a, "neighbor_links"), 0.0);
+  EXPECT_EQ(compare_images(a.image, b.image).max_abs, 0.0);
 }
 
 }  // namespace

@@ -186,6 +186,42 @@ TEST(KBuffer, AutoKIsCappedByItsMemoryBudgetAndCountsWhatItDrops) {
   EXPECT_LE(capped.counters.bytes_allocated - pixels * 4u, uint64_t(1) << 20);
 }
 
+// slot_layout=paper: murray2016's 8-byte slot (key + RGBA8 colour). The
+// image is the reference within the RGBA8 packing bound (full: float
+// rounding), exactly 8 bytes a slot, the same counts.
+TEST(KBuffer, PaperSlotsTakeEightBytesAndStayWithinTheRgba8PackingBound) {
+  const uint64_t pixels = kSize * kSize;
+  const RunResult paper = run_ok(spec_of({{"k", "32"}, {"slot_layout", "paper"}}, "quads", kQuads32, kSize));
+  const RunResult full = run_ok(spec_of({{"k", "32"}}, "quads", kQuads32, kSize));
+  ASSERT_TRUE(paper.error.has_value());
+  EXPECT_LE(paper.error->max_abs, test::packing_bound(0.3, 32));
+  EXPECT_LE(test::max_abs_difference(paper.image, full.image), test::packing_bound(0.3, 32));
+  EXPECT_GT(paper.error->max_abs, full.error->max_abs) << "the colours were quantised";
+  EXPECT_EQ(paper.counters.bytes_allocated, pixels * 32u * 8u + 8u);
+  EXPECT_EQ(paper.counters.fragments_stored, 32u * pixels);
+  EXPECT_EQ(paper.counters.fragments_dropped, 0u);
+  const RunResult cut = run_ok(spec_of({{"k", "8"}, {"slot_layout", "paper"}}, "quads", kQuads32, kSize));
+  EXPECT_EQ(cut.counters.fragments_stored, 8u * pixels);
+  EXPECT_EQ(cut.counters.fragments_dropped, 24u * pixels);
+}
+
+// Without the owner word, ties are ordered by packed colour: the image does
+// not depend on the submission order (though it is not the reference's
+// triangle-id order), and every tied fragment keeps a slot of its own.
+TEST(KBuffer, PaperSlotsOrderTiesByColourInAnySubmissionOrder) {
+  const std::string path = write_tied_quads_gltf();
+  const RawParams paper = {{"k", "4"}, {"slot_layout", "paper"}};
+  const RunResult original = run_ok(spec_of(paper, path, {}, 16));
+  EXPECT_EQ(original.counters.fragments_stored, 4u * 16u * 16u);
+  for (const char* order : {"reversed", "shuffled:7"})
+    EXPECT_TRUE(identical(run_ok(spec_of(paper, path, {}, 16, order)).image, original.image)) << order;
+  const RawParams deep = {{"k", "32"}, {"slot_layout", "paper"}};
+  const RunResult spheres = run_ok(spec_of(deep, "spheres", {}, 48));
+  EXPECT_EQ(spheres.counters.fragments_dropped, 0u);
+  EXPECT_TRUE(identical(run_ok(spec_of(deep, "spheres", {}, 48, "shuffled:3")).image, spheres.image));
+  EXPECT_LE(spheres.error->max_abs, test::packing_bound(0.4, 6));
+}
+
 TEST(KBuffer, DeclaresTheAutoKSwitch) {
   const auto& switches = builtin_techniques().get("kbuffer").adaptive_switches;
   ASSERT_EQ(switches.size(), 1u);

@@ -123,7 +123,7 @@ class ReproduceTest(unittest.TestCase):
         listed = json.loads(printed)
         sweeps = {s["name"]: s for s in listed["sweeps"]}
         self.assertEqual(list(sweeps), ["murray_fig10", "carnecky_fig14", "carnecky_fig15", "models", "pastyrik_fig7",
-                                        "murray_models", "psi_scenes", "layers", "carnecky_images"])
+                                        "murray_models", "psi_scenes", "layers", "carnecky_images", "murray_images"])
         # The same invocations as a dry run, without the binary and --csv.
         self.assertEqual(sorted(map(tuple, (b for s in listed["sweeps"] for b in s["benches"]))),
                          sorted(tuple(c[1:c.index("--csv")]) for c in dry if c[1] == "bench"))
@@ -135,6 +135,12 @@ class ReproduceTest(unittest.TestCase):
         self.assertIn("renders only", sweeps["carnecky_images"]["skipped"])
         self.assertIn(["--set", "modulation=none"], [r["arguments"][3:5] for r in sweeps["carnecky_images"]["renders"]])
         self.assertEqual(sweeps["layers"]["plots"], ["time_per_fragment"])
+        # murray2016's images at the paper's sizes in either mode, Fig. 8's bike at 1200x800.
+        murray = {r["name"]: r["arguments"] for r in sweeps["murray_images"]["renders"]}
+        self.assertIn("renders only", sweeps["murray_images"]["skipped"])
+        self.assertIn("1200x800", murray["fig08_b"])
+        self.assertIn("1000x1000", murray["fig01_ours"])
+        self.assertEqual(murray["fig01_oit"][:3], ["render", "--technique", "kbuffer"])
 
     def test_plots_only_draws_each_device_of_a_merged_csv_apart(self):
         self.reproduce("--only", "layers", "--no-plots")

@@ -122,7 +122,7 @@ SlotStatistics slot_statistics(const SlotReadback& slots, int k, int shape_bits)
       continue;
     }
     ++s.stored;
-    s.links += uint64_t(std::popcount((slots.features[i] >> 16) & kAllFourNeighbours));
+    if (!slots.features.empty()) s.links += uint64_t(std::popcount((slots.features[i] >> 16) & kAllFourNeighbours));
     if (!slots.links.empty()) {
       for (int byte = 0; byte < 4; ++byte) hash = (hash ^ ((slots.links[i] >> (8 * byte)) & 0xffu)) * 16777619u;
     }

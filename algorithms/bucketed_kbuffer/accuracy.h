@@ -12,7 +12,7 @@ constexpr uint32_t kEmptyKey = 0xffffffffu;
 struct SlotReadback {
   std::vector<uint32_t> keys;      // Z (shape-major after the sort pass)
   std::vector<uint32_t> normals;   // packed normal, 0 = no data stored
-  std::vector<uint32_t> features;  // kappa (float16) | found mask << 16
+  std::vector<uint32_t> features;  // kappa (float16) | found mask << 16; empty: none kept
   std::vector<uint32_t> links;     // measure_accuracy only
   std::vector<float> expected;     // analytic k1 + k2, measure_accuracy only
   std::vector<float> estimated;    // screen-space k1 + k2, measure_accuracy only
@@ -24,7 +24,7 @@ struct SlotReadback {
 struct SlotStatistics {
   uint64_t stored = 0;        // slots holding a kept fragment with its data
   uint64_t store_misses = 0;  // kept in Z but no data arrived in the data pass
-  uint64_t links = 0;         // neighbour links found (all four directions)
+  uint64_t links = 0;         // neighbour links found (all four directions; 0 without features)
   uint32_t link_checksum = 0; // FNV-1a over the link words of stored slots
   uint64_t kept = 0;            // non-empty keys in Z (stored + store_misses)
   uint64_t covered_pixels = 0;  // pixels with at least one kept fragment

@@ -25,12 +25,26 @@
 #define BKB_COLOR_TRANSFER_UNIT 0
 #define BKB_OPACITY_TRANSFER_UNIT 1
 
-// Uniform locations.
-#define BKB_WIDTH_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 0)
-#define BKB_HEIGHT_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 1)
-#define BKB_DEPTH_NEAR_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 2)
-#define BKB_DEPTH_FAR_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 3)
-#define BKB_INVERSE_PROJECTION_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 4)  // neighbors.frag
-#define BKB_CURVATURE_SCALE_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 5)     // neighbors.frag
+// Uniform buffer binding of the frame's parameters (BkbFrameParams).
+#define BKB_FRAME_PARAMS_BLOCK 0
+
+// The frame's parameters, one std140 uniform block uploaded once per frame
+// (bkb_common.glsl reads it as `bkb`). A mat4 first, then 4-byte scalars:
+// std140 packs them as C++ does (static_assert in bucketed_kbuffer.cpp).
+#ifdef __cplusplus
+#include <glm/mat4x4.hpp>
+namespace oit::bkb {
+using mat4 = glm::mat4;
+#endif
+struct BkbFrameParams {
+  mat4 inverse_projection;       // pixel rays (neighbors.frag)
+  int width, height;             // the frame's pixels
+  float depth_near, depth_far;   // view-depth range mapped onto [0, BKB_DEPTH_MAX]
+  float curvature_scale;         // kappa = tanh(curvature_scale * (k1 + k2)) (neighbors.frag)
+  int unused_0, unused_1, unused_2;  // the block padded to a multiple of 16 bytes
+};
+#ifdef __cplusplus
+}  // namespace oit::bkb
+#endif
 
 #endif

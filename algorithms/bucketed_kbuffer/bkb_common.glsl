@@ -48,17 +48,13 @@ layout(std430, binding = BKB_ESTIMATED_BINDING) coherent buffer BkbEstimated { f
 // surface id, (u, v) bits and the uv footprint of one pixel (fwidth, half2).
 layout(std430, binding = BKB_TRUTH_BINDING) coherent buffer BkbTruth { uvec4 bkb_truth[]; };
 
-layout(location = BKB_WIDTH_LOCATION) uniform int u_width;
-layout(location = BKB_HEIGHT_LOCATION) uniform int u_height;
-// View-depth range mapped linearly onto [0, BKB_DEPTH_MAX].
-layout(location = BKB_DEPTH_NEAR_LOCATION) uniform float u_depth_near;
-layout(location = BKB_DEPTH_FAR_LOCATION) uniform float u_depth_far;
+layout(std140, binding = BKB_FRAME_PARAMS_BLOCK) uniform BkbFrameBlock { BkbFrameParams bkb; };
 
-uint bkb_pixel_base(ivec2 pixel) { return (uint(pixel.y) * uint(u_width) + uint(pixel.x)) * uint(K); }
+uint bkb_pixel_base(ivec2 pixel) { return (uint(pixel.y) * uint(bkb.width) + uint(pixel.x)) * uint(K); }
 uint bkb_pixel_base() { return bkb_pixel_base(ivec2(gl_FragCoord.xy)); }
 
 uint bkb_quantise_depth(float view_depth) {
-  float t = clamp((view_depth - u_depth_near) / (u_depth_far - u_depth_near), 0.0, 1.0);
+  float t = clamp((view_depth - bkb.depth_near) / (bkb.depth_far - bkb.depth_near), 0.0, 1.0);
   return min(uint(t * float(BKB_DEPTH_MAX) + 0.5), BKB_DEPTH_MAX);
 }
 
@@ -74,7 +70,7 @@ uint bkb_shape(uint shape_key) { return shape_key >> (32u - BKB_SHAPE_BITS); }
 uint bkb_depth(uint shape_key) { return shape_key & BKB_DEPTH_MASK; }
 float bkb_depth_unit(uint shape_key) { return float(bkb_depth(shape_key)) / float(BKB_DEPTH_MAX); }
 float bkb_view_depth(uint shape_key) {
-  return mix(u_depth_near, u_depth_far, bkb_depth_unit(shape_key));
+  return mix(bkb.depth_near, bkb.depth_far, bkb_depth_unit(shape_key));
 }
 
 // 15 bits x, 15 bits y, 1 bit sign of z, 1 bit "written" (murray2016 4.2:

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <limits>
 #include <cmath>
+#include <cstddef>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -22,7 +23,6 @@
 #include "harness/core/passes.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "harness/gl/uniforms.h"
 #include "algorithms/bucketed_kbuffer/choices.h"
 #include "algorithms/bucketed_kbuffer/transfer_functions.h"
 #include "algorithms/bucketed_kbuffer/bindings.h"
@@ -31,6 +31,8 @@ namespace oit {
 namespace {
 
 using bkb::BucketMode;
+using bkb::BkbFrameParams;
+static_assert(sizeof(BkbFrameParams) == 96 && offsetof(BkbFrameParams, curvature_scale) == 80);  // std140 = C++ here
 constexpr int kMaxK = 64;  // the parameter's maximum: the worst case k=auto is compared with
 
 // Every pass takes K as a compile-time define (local arrays, the hash
@@ -64,9 +66,11 @@ class BucketedKBuffer final : public Technique {
         measure_(params.boolean("measure_accuracy")),
         merge_search_(params.choice("neighbor_search", bkb::kNeighborSearches) == bkb::NeighborSearch::merge),
         reverse_check_(params.boolean("reverse_check")),
+        paper_slots_(params.choice("slot_layout", bkb::kSlotLayouts) == bkb::SlotLayout::paper),
         curvature_scale_(params.real("curvature_scale")),
         mode_(params.choice("buckets", bkb::kBucketModes)) {
     counter_ = make_buffer(sizeof(GLuint));
+    frame_params_ = make_buffer(sizeof(BkbFrameParams), nullptr, GL_DYNAMIC_STORAGE_BIT);
     if (!slots_.automatic()) programs_for(slots_.fixed());  // compile errors surface at construction
     if (!identity_) {
       if (!color_texels_.empty()) color_transfer_ = bkb::make_color_texture(color_texels_);
@@ -99,7 +103,7 @@ class BucketedKBuffer final : public Technique {
     buckets_ = make_buffer(slots * 4);
     colors_ = make_buffer(slots * 4);
     normals_ = make_buffer(slots * 4);
-    features_ = make_buffer(slots * 4);
+    if (keeps_features()) features_ = make_buffer(slots * 4);
     if (measure_) {
       links_ = make_buffer(slots * 4);
       expected_ = make_buffer(slots * 4);
@@ -110,8 +114,11 @@ class BucketedKBuffer final : public Technique {
     allocated_k_ = k;
   }
 
-  // Z + B + colour + normal + features (+ links, expected, estimated, truth)
-  uint64_t bytes_per_slot() const { return measure_ ? 48 : 20; }
+  // Z + B + colour + normal (+ features unless slot_layout=paper) (+ features,
+  // links, expected, estimated, truth with measure_accuracy)
+  uint64_t bytes_per_slot() const { return measure_ ? 48 : paper_slots_ ? 16 : 20; }
+  // The features word (kappa, found mask): slot_layout=full, or measure_accuracy's counters.
+  bool keeps_features() const { return !paper_slots_ || measure_; }
 
   void render(const Frame& frame) override {
     const int k = slots_.for_frame(frame);
@@ -132,15 +139,13 @@ class BucketedKBuffer final : public Technique {
     fullscreen_pass(frame, "sort", sort_program());
     if (search_ != Search::single_bucket) fullscreen_pass(frame, "bucket", programs_->bucket.id());
     geometry_pass(frame, "store", store_program());
-    fullscreen_pass(frame, "neighbors", neighbors_program());
+    if (color_transfer_) glBindTextureUnit(BKB_COLOR_TRANSFER_UNIT, color_transfer_.id());
+    if (opacity_transfer_) glBindTextureUnit(BKB_OPACITY_TRANSFER_UNIT, opacity_transfer_.id());
+    fullscreen_pass(frame, "neighbors", neighbors_program());  // slot_layout=paper: stylizes too
     {
-      // Both identity: colour and alpha stay as stored; the stage does no work.
+      // Both identity, or slot_layout=paper: the stage does no work.
       auto stylize = frame.clock.stage("stylize");
-      if (!identity_) {
-        if (color_transfer_) glBindTextureUnit(BKB_COLOR_TRANSFER_UNIT, color_transfer_.id());
-        if (opacity_transfer_) glBindTextureUnit(BKB_OPACITY_TRANSFER_UNIT, opacity_transfer_.id());
-        run_fullscreen(frame, programs_->stylize.id());
-      }
+      if (programs_->stylize) run_fullscreen(frame, programs_->stylize.id());
     }
     auto compose = frame.clock.stage("compose");
     frame.bind_target();
@@ -163,7 +168,7 @@ class BucketedKBuffer final : public Technique {
     bkb::SlotReadback r;
     r.keys = read_uints(z_, slots);
     r.normals = read_uints(normals_, slots);
-    r.features = read_uints(features_, slots);
+    if (features_) r.features = read_uints(features_, slots);
     if (measure_) r.links = read_uints(links_, slots);
     GLuint dropped = 0;
     glGetNamedBufferSubData(counter_.id(), 0, sizeof dropped, &dropped);
@@ -178,13 +183,15 @@ class BucketedKBuffer final : public Technique {
                // list and buckets=on can only add the hash look-up's cost.
                {"buckets_per_pixel", s.covered_pixels ? double(s.buckets) / double(s.covered_pixels) : 0.0, Combine::mean},
                {"fragments_per_bucket", s.buckets ? double(s.kept) / double(s.buckets) : 0.0, Combine::mean},
-               {"neighbor_links", double(s.links)},
-               {"neighbor_links_per_fragment", s.stored ? double(s.links) / double(s.stored) : 0.0},
                {"store_misses", double(s.store_misses)},
                {"depth_near", depth_near_},
                {"depth_far", depth_far_},
                {"depth_step", (depth_far_ - depth_near_) / double((1u << depth_bits_) - 2u)}};
     slots_.add_figures(c.extra, allocated_k_);
+    if (features_) {  // slot_layout=paper keeps no found masks to count links from
+      c.extra.push_back({"neighbor_links", double(s.links)});
+      c.extra.push_back({"neighbor_links_per_fragment", s.stored ? double(s.links) / double(s.stored) : 0.0});
+    }
     if (measure_) {
       c.extra.push_back({"link_checksum", double(s.link_checksum)});
       c.extra.push_back({"neighbor_mutual_links", double(bkb::mutual_links(r, width_, height_, int(k)))});
@@ -212,7 +219,7 @@ class BucketedKBuffer final : public Technique {
   // found-neighbour count, from the Z, normal and feature buffers.
   std::vector<DiagnosticImage> diagnostic_images() const override {
     const size_t pixels = size_t(width_) * size_t(height_), k = size_t(allocated_k_);
-    if (pixels == 0) return {};
+    if (pixels == 0 || !features_) return {};  // slot_layout=paper keeps no kappa
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     const std::vector<uint32_t> keys = read_uints(z_, pixels * k), normals = read_uints(normals_, pixels * k),
                                 features = read_uints(features_, pixels * k);
@@ -260,7 +267,15 @@ class BucketedKBuffer final : public Technique {
     ShaderDefines d = search_defines(k, search);
     d.push_back({"SEARCH_MERGE", merge_search_ ? "1" : "0"});
     d.push_back({"REVERSE_CHECK", reverse_check_ ? "1" : "0"});
+    d.push_back({"WRITE_FEATURES", keeps_features() ? "1" : "0"});
+    const bool stylize_here = paper_slots_ && !identity_;
+    d.push_back({"STYLIZE_HERE", stylize_here ? "1" : "0"});
+    if (stylize_here) add_transfer_defines(d);
     return d;
+  }
+  void add_transfer_defines(ShaderDefines& d) const {
+    d.push_back({"COLOR_TRANSFER", color_texels_.empty() ? "0" : "1"});
+    d.push_back({"OPACITY_TRANSFER", opacity_texels_.empty() ? "0" : "1"});
   }
 
   // The programs for k slots per pixel; the neighbour programs are built by
@@ -274,10 +289,9 @@ class BucketedKBuffer final : public Technique {
     p.bucket = build_fullscreen_program("algorithms/bucketed_kbuffer/bucket.frag", defines(k));
     p.store = build_geometry_program("algorithms/bucketed_kbuffer/store.frag", search_defines(k, Search::hashed));
     p.compose = build_fullscreen_program("algorithms/bucketed_kbuffer/compose.frag", defines(k));
-    if (!identity_) {
+    if (!identity_ && !paper_slots_) {
       ShaderDefines d = defines(k);
-      d.push_back({"COLOR_TRANSFER", color_texels_.empty() ? "0" : "1"});
-      d.push_back({"OPACITY_TRANSFER", opacity_texels_.empty() ? "0" : "1"});
+      add_transfer_defines(d);
       p.stylize = build_fullscreen_program("algorithms/bucketed_kbuffer/stylize.frag", d);
     }
     return programs_by_k_.emplace(k, std::move(p)).first->second;
@@ -291,7 +305,7 @@ class BucketedKBuffer final : public Technique {
   }
 
   // Per frame: the depth quantisation range, the bucket decision and the
-  // uniforms of every program.
+  // parameter block (BkbFrameParams) and every program's shared uniforms.
   void prepare_frame(const Frame& frame) {
     const Scene& scene = frame.scene.scene();
     if (bounds_scene_ != frame.scene.serial()) {  // O(vertices): once per scene, not per frame
@@ -309,21 +323,15 @@ class BucketedKBuffer final : public Technique {
     const float radius = bounds_.radius * scale;
     depth_near_ = std::max(centre - radius, 0.0f);
     depth_far_ = std::max(centre + radius, depth_near_ + 1e-6f * std::max(1.0f, depth_near_));
-    const glm::mat4 inverse_projection = glm::inverse(frame.projection);
     const KPrograms& p = *programs_;
     for (GLuint program : {p.fill.id(), sort_program(), p.bucket.id(), store_program(), neighbors_program(),
-                           p.stylize.id(), p.compose.id()}) {
-      if (program == 0) continue;
-      frame.set_shared_uniforms(program);
-      if (uniform_active(program, "u_width")) set_uniform(program, BKB_WIDTH_LOCATION, width_);
-      if (uniform_active(program, "u_height")) set_uniform(program, BKB_HEIGHT_LOCATION, height_);
-      if (uniform_active(program, "u_depth_near")) set_uniform(program, BKB_DEPTH_NEAR_LOCATION, depth_near_);
-      if (uniform_active(program, "u_depth_far")) set_uniform(program, BKB_DEPTH_FAR_LOCATION, depth_far_);
-      if (uniform_active(program, "u_inverse_projection"))
-        set_uniform(program, BKB_INVERSE_PROJECTION_LOCATION, inverse_projection);
-      if (uniform_active(program, "u_curvature_scale"))
-        set_uniform(program, BKB_CURVATURE_SCALE_LOCATION, float(curvature_scale_));
-    }
+                           p.stylize.id(), p.compose.id()})
+      if (program != 0) frame.set_shared_uniforms(program);
+    const BkbFrameParams params{.inverse_projection = glm::inverse(frame.projection), .width = width_,
+                                .height = height_, .depth_near = depth_near_, .depth_far = depth_far_,
+                                .curvature_scale = float(curvature_scale_)};
+    glNamedBufferSubData(frame_params_.id(), 0, sizeof params, &params);
+    glBindBufferBase(GL_UNIFORM_BUFFER, BKB_FRAME_PARAMS_BLOCK, frame_params_.id());
   }
 
   // The merge search reads whole sorted lists, so one program serves every
@@ -399,7 +407,7 @@ class BucketedKBuffer final : public Technique {
   int depth_bits_;
   std::vector<float> color_texels_, opacity_texels_;  // empty: identity (built-in choice, no file)
   bool identity_, measure_;
-  bool merge_search_, reverse_check_;
+  bool merge_search_, reverse_check_, paper_slots_;
   double curvature_scale_;
   BucketMode mode_ = BucketMode::automatic;
   std::map<int, KPrograms> programs_by_k_;
@@ -407,6 +415,7 @@ class BucketedKBuffer final : public Technique {
   int programs_k_ = 0;
   int allocated_k_ = 0;
   Buffer z_, buckets_, colors_, normals_, features_, counter_, links_, expected_, estimated_, truth_;
+  Buffer frame_params_;
   Texture color_transfer_, opacity_transfer_;
   Framebuffer no_attachments_;
   int width_ = 0, height_ = 0;

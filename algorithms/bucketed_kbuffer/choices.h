@@ -18,6 +18,12 @@ enum class NeighborSearch { merge, bucket };
 inline const Choices<NeighborSearch> kNeighborSearches{{NeighborSearch::merge, "merge"},
                                                        {NeighborSearch::bucket, "bucket"}};
 
+// slot_layout: Z, B, colour, normal and a features word (kappa + found mask)
+// per slot, stylized in a pass of its own (full), or murray2016's 128 bits
+// without the features word, stylized in the neighbour pass (paper).
+enum class SlotLayout { full, paper };
+inline const Choices<SlotLayout> kSlotLayouts{{SlotLayout::full, "full"}, {SlotLayout::paper, "paper"}};
+
 // depth_bits: the depth's share of the 32-bit key; the shape id gets the rest.
 inline const Choices<int> kDepthBits{{16, "16"}, {24, "24"}};
 

@@ -17,6 +17,9 @@
 // by a walk of both sorted lists (see merge_candidate): the same links again,
 // whatever BUCKETS says. REVERSE_CHECK=0 (reverse_check=false) skips the
 // reverse check: every best candidate is linked, mutual or not.
+// WRITE_FEATURES=1 (slot_layout=full, or measure_accuracy) keeps kappa and
+// the found mask per slot; STYLIZE_HERE=1 (slot_layout=paper with a transfer
+// function) applies the transfer functions to the colour in this pass.
 //
 // Why the brute force is slower than buckets=on on a one-object scene on
 // llvmpipe, although both visit the same slots: its candidate loop has the
@@ -37,16 +40,16 @@
 // with surfaces bulging towards the viewer negative (the paper: -1 convex,
 // +1 concave). kappa = tanh(scale * (k1 + k2)); a missing neighbour gives -1.
 #include "algorithms/bucketed_kbuffer/bkb_common.glsl"
-
-layout(location = BKB_INVERSE_PROJECTION_LOCATION) uniform mat4 u_inverse_projection;
-layout(location = BKB_CURVATURE_SCALE_LOCATION) uniform float u_curvature_scale;
+#if STYLIZE_HERE
+#include "algorithms/bucketed_kbuffer/bkb_stylize.glsl"
+#endif
 
 const float kNoCandidate = 3.0e38;
 
 uint own_keys[K];
 vec3 own_normals[K];
 uint own_count;
-// K as a value the compiler cannot see (u_width > 0): the merge search's
+// K as a value the compiler cannot see (bkb.width > 0): the merge search's
 // loops stop at the first empty slot or other shape long before K, and a
 // constant bound would let them be unrolled into K masked copies (see the
 // brute force above).
@@ -70,9 +73,9 @@ struct Ray {
   vec3 origin, direction;
 };
 Ray pixel_ray(ivec2 pixel) {
-  vec2 ndc = (vec2(pixel) + 0.5) / vec2(u_width, u_height) * 2.0 - 1.0;
-  vec4 near_point = u_inverse_projection * vec4(ndc, -1.0, 1.0);
-  vec4 far_point = u_inverse_projection * vec4(ndc, 1.0, 1.0);
+  vec2 ndc = (vec2(pixel) + 0.5) / vec2(bkb.width, bkb.height) * 2.0 - 1.0;
+  vec4 near_point = bkb.inverse_projection * vec4(ndc, -1.0, 1.0);
+  vec4 far_point = bkb.inverse_projection * vec4(ndc, 1.0, 1.0);
   vec3 a = near_point.xyz / near_point.w, b = far_point.xyz / far_point.w;
   vec3 direction = (b - a) / (a.z - b.z);
   return Ray(a + direction * a.z, direction);
@@ -87,7 +90,7 @@ uvec2 bucket_range(uint base, uint shape) {
 }
 
 uint neighbour_base(ivec2 q) {
-  return q.x < 0 || q.y < 0 || q.x >= u_width || q.y >= u_height ? BKB_EMPTY : bkb_pixel_base(q);
+  return q.x < 0 || q.y < 0 || q.x >= bkb.width || q.y >= bkb.height ? BKB_EMPTY : bkb_pixel_base(q);
 }
 
 // The best candidate of one search: slot (0xff when none), key, eps, normal.
@@ -236,7 +239,7 @@ void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   uint base = bkb_pixel_base(pixel);
   own_count = 0u;
-  slot_bound = uint(K) + uint(min(u_width, 0));
+  slot_bound = uint(K) + uint(min(bkb.width, 0));
   for (int i = 0; i < K; ++i) {
     uint key = bkb_z[base + uint(i)];
     if (key == BKB_EMPTY) break;
@@ -299,11 +302,22 @@ void main() {
       if (determinant(offsets) != 0.0) {
         mat2 jacobian = normal_changes * inverse(offsets);
         curvature_sum = -(jacobian[0][0] + jacobian[1][1]);
-        kappa = tanh(clamp(u_curvature_scale * curvature_sum, -20.0, 20.0));
+        kappa = tanh(clamp(bkb.curvature_scale * curvature_sum, -20.0, 20.0));
       }
     }
     uint slot = base + i;
-    bkb_features[slot] = (packHalf2x16(vec2(kappa, 0.0)) & 0xffffu) | (found << 16);
+    uint kappa_half = packHalf2x16(vec2(kappa, 0.0)) & 0xffffu;
+#if WRITE_FEATURES
+    bkb_features[slot] = kappa_half | (found << 16);
+#endif
+#if STYLIZE_HERE
+    // slot_layout=paper: no features word to keep kappa for a later pass, so
+    // this fragment's colour is stylized now, as murray2016 does. Only this
+    // pixel reads its own colours, so writing them here races with nothing.
+    // kappa goes through float16 as with the features word: the same image.
+    if (bkb_normals[slot] != 0u)
+      bkb_colors[slot] = bkb_stylize(bkb_colors[slot], unpackHalf2x16(kappa_half).x, own_keys[i]);
+#endif
 #if MEASURE_ACCURACY
     bkb_links[slot] = left | (right << 8) | (down << 16) | (up << 24);
     bkb_estimated[slot] = curvature_sum;

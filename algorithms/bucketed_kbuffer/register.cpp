@@ -53,9 +53,14 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
           ParamSpec::boolean("measure_accuracy", false,
                              "keep links, curvatures and surface id/uv for counters(): link checksum, link "
                              "precision/recall, kappa error on analytic scenes"),
+          bkb::kSlotLayouts.spec(
+              "slot_layout", bkb::SlotLayout::full,
+              "per slot: Z, B, colour, normal and a kappa word, stylized in a pass of its own (full, 20 bytes), or "
+              "murray2016's 128 bits, stylized in the neighbour pass (paper, 16 bytes: the same image, no kappa "
+              "kept: no diagnostic images or link counts unless measure_accuracy)"),
           ParamSpec::integer("auto_k_memory_mb", 1024, 1, 1 << 20,
-                             "k=auto only: most MiB of slot storage (20 bytes per slot, 48 with measure_accuracy); "
-                             "k is capped to fit")},
+                             "k=auto only: most MiB of slot storage (20 bytes per slot, 16 with slot_layout=paper, "
+                             "48 with measure_accuracy); k is capped to fit")},
       .stages = {"count", "clear", "fill", "sort", "bucket", "store", "neighbors", "stylize", "compose"},
       .quality_sweep = {{"k", {"1", "2", "4", "8", "16", "32", "64"}}, {"neighbor_search", {"bucket", "merge"}}},
       .adaptive_switches = {{"buckets_auto",
@@ -78,13 +83,15 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
                  std::to_string(limit) + " shape ids; the scene has " + std::to_string(scene.objects) + " objects";
         return "";
       },
-      // murray2016 searches each fragment's bucket, buckets always on.
-      .paper_preset = {{"neighbor_search", "bucket"}, {"buckets", "on"}},
+      // murray2016 searches each fragment's bucket, buckets always on, in
+      // 128 bits per fragment (section 6).
+      .paper_preset = {{"neighbor_search", "bucket"}, {"buckets", "on"}, {"slot_layout", "paper"}},
       .create = make_bucketed_kbuffer,
       .storage_need = [](const ParamSet& params, const FrameContent& content) {
         const bool measure = params.boolean("measure_accuracy");
+        const bool paper = params.choice("slot_layout", bkb::kSlotLayouts) == bkb::SlotLayout::paper;
         const uint64_t slots = content.pixels() * fragment_pool::slots_per_pixel(content, params, 64);
-        return StorageNeed{slots * (measure ? 16 : 4), slots * (measure ? 48 : 20) + content.pixels() * 4};
+        return StorageNeed{slots * (measure ? 16 : 4), slots * (measure ? 48 : paper ? 16 : 20) + content.pixels() * 4};
       },
       // Links reach the 4 adjacent pixels, and a link is kept only when the
       // neighbour's own search finds the pixel back (reverse check).

@@ -1,18 +1,10 @@
 #version 450 core
-// Stylization (murray2016 5.2): the shaded colour is multiplied by a 1D
-// transfer function indexed by kappa in [-1, 1]; the opacity is replaced by
-// a 2D transfer function indexed by |kappa| and the normalised depth. Both
-// are textures (built-in shapes from transfer_functions.cpp, or files read
-// by transfer_files.cpp) sampled at texel centres so that the end points of
-// each axis are exact. COLOR_TRANSFER = 0 or OPACITY_TRANSFER = 0 (the
-// identity choices, no file) leave that part unchanged;
-// with both 0 the pass does not run at all.
+// Stylization pass (murray2016 5.2, slot_layout=full): every stored
+// fragment's colour through the transfer functions (bkb_stylize.glsl), with
+// the kappa the neighbour pass kept in the features word. With both
+// transfer functions identity the pass does not run at all.
 #include "algorithms/bucketed_kbuffer/bkb_common.glsl"
-
-layout(binding = BKB_COLOR_TRANSFER_UNIT) uniform sampler1D u_color_transfer;
-layout(binding = BKB_OPACITY_TRANSFER_UNIT) uniform sampler2D u_opacity_transfer;
-
-float texel_centre(float x, float size) { return (0.5 + clamp(x, 0.0, 1.0) * (size - 1.0)) / size; }
+#include "algorithms/bucketed_kbuffer/bkb_stylize.glsl"
 
 void main() {
   uint base = bkb_pixel_base();
@@ -22,16 +14,6 @@ void main() {
     if (key == BKB_EMPTY) break;
     if (bkb_normals[slot] == 0u) continue;  // no data stored (counted as a store miss)
     float kappa = unpackHalf2x16(bkb_features[slot] & 0xffffu).x;
-    vec4 color = unpackUnorm4x8(bkb_colors[slot]);
-#if COLOR_TRANSFER
-    float color_size = float(textureSize(u_color_transfer, 0));
-    color.rgb = clamp(color.rgb * texture(u_color_transfer, texel_centre(0.5 * kappa + 0.5, color_size)).rgb, 0.0, 1.0);
-#endif
-#if OPACITY_TRANSFER
-    vec2 opacity_size = vec2(textureSize(u_opacity_transfer, 0));
-    color.a = texture(u_opacity_transfer, vec2(texel_centre(abs(kappa), opacity_size.x),
-                                               texel_centre(bkb_depth_unit(key), opacity_size.y))).r;
-#endif
-    bkb_colors[slot] = packUnorm4x8(color);
+    bkb_colors[slot] = bkb_stylize(bkb_colors[slot], kappa, key);
   }
 }

@@ -1,7 +1,7 @@
 #version 450 core
 // Compose: blend the pixel's owned slots (already sorted by depth key)
-// front to back, ordering runs of tied keys by triangle id, then put the
-// tail (if any) behind them.
+// front to back, ordering runs of tied keys by triangle id (PAPER_SLOTS: by
+// packed colour), then put the tail (if any) behind them.
 #include "shaders/compose.glsl"
 #include "algorithms/kbuffer/kbuffer_storage.glsl"
 #include "algorithms/kbuffer/bindings.h"
@@ -14,7 +14,7 @@ layout(binding = KBUFFER_TAIL_REVEALAGE_UNIT) uniform sampler2D u_tail_revealage
 layout(location = 0) out vec4 out_color;
 
 uint keys[K];
-uint owners[K];
+uint ties[K];
 vec4 colors[K];
 
 // Front-to-back blend of one slot into (accumulated, transmittance).
@@ -32,43 +32,43 @@ void main() {
   uint count = 0u;
   bool tied = false;
   uint previous_key = KBUFFER_EMPTY;
-  for (uint i = 0u; i < uint(u_k); ++i) {
+  for (uint i = 0u; i < uint(kbuffer.k); ++i) {
     const uint key = kbuffer_keys[first + i];
     if (key == KBUFFER_EMPTY) break;
-    if (kbuffer_owners[first + i] == KBUFFER_EMPTY) continue;  // a key whose fragment went to the tail
+    if (!kbuffer_filled(first + i)) continue;  // a key whose fragment went to the tail
     tied = tied || key == previous_key;
     previous_key = key;
-    blend(kbuffer_colors[first + i], accumulated, transmittance);
+    blend(kbuffer_color(first + i), accumulated, transmittance);
     ++count;
   }
   if (tied) {
     // Equal depth keys: which tied fragment claimed which slot depended on
     // timing, so gather the slots (one simple loop), order each run of tied
-    // keys by triangle id with an insertion sort (keys are sorted, so only
-    // ties move) and blend again in that deterministic order.
+    // keys by triangle id (PAPER_SLOTS: by packed colour) with an insertion
+    // sort (keys are sorted, so only ties move) and blend again in that
+    // deterministic order.
     uint gathered = 0u;
-    for (uint i = 0u; i < uint(u_k); ++i) {
+    for (uint i = 0u; i < uint(kbuffer.k); ++i) {
       const uint key = kbuffer_keys[first + i];
       if (key == KBUFFER_EMPTY) break;
-      const uint owner = kbuffer_owners[first + i];
-      if (owner == KBUFFER_EMPTY) continue;
+      if (!kbuffer_filled(first + i)) continue;
       keys[gathered] = key;
-      owners[gathered] = owner;
-      colors[gathered] = kbuffer_colors[first + i];
+      ties[gathered] = kbuffer_tie_word(first + i);
+      colors[gathered] = kbuffer_color(first + i);
       ++gathered;
     }
     for (uint i = 1u; i < gathered; ++i) {
-      const uint key = keys[i], owner = owners[i];
+      const uint key = keys[i], tie = ties[i];
       const vec4 color = colors[i];
       int j = int(i) - 1;
-      while (j >= 0 && (keys[j] > key || (keys[j] == key && owners[j] > owner))) {
+      while (j >= 0 && (keys[j] > key || (keys[j] == key && ties[j] > tie))) {
         keys[j + 1] = keys[j];
-        owners[j + 1] = owners[j];
+        ties[j + 1] = ties[j];
         colors[j + 1] = colors[j];
         --j;
       }
       keys[j + 1] = key;
-      owners[j + 1] = owner;
+      ties[j + 1] = tie;
       colors[j + 1] = color;
     }
     accumulated = vec3(0.0);

@@ -1,5 +1,5 @@
 #version 450 core
-// Pass 1 (fill): insert this fragment's depth key into the pixel's u_k sorted
+// Pass 1 (fill): insert this fragment's depth key into the pixel's k sorted
 // slots by repeated atomicMin. Each slot keeps the smaller of (its value,
 // the travelling key) and the larger one travels on, so concurrent inserts
 // keep every slot's multiset intact and the K smallest keys end up sorted.
@@ -18,13 +18,13 @@ void main() {
   // before it, and atomicMin there would return a smaller value and leave
   // both the slot and the key unchanged. A fragment behind all K nearest
   // thus costs log2(K) reads and no atomic.
-  uint low = 0u, high = uint(u_k);
+  uint low = 0u, high = uint(kbuffer.k);
   while (low < high) {
     const uint middle = (low + high) >> 1;
     if (kbuffer_keys[first + middle] < key) low = middle + 1u;
     else high = middle;
   }
-  for (uint i = low; i < uint(u_k); ++i) {
+  for (uint i = low; i < uint(kbuffer.k); ++i) {
     const uint previous = atomicMin(kbuffer_keys[first + i], key);
     if (previous == KBUFFER_EMPTY) return;  // took an empty slot: nothing left to carry
     key = max(key, previous);

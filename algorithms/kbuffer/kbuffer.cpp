@@ -6,6 +6,7 @@
 // nearest are dropped (counted) or blended, unsorted, behind them (`tail`).
 // Exact whenever K >= the depth complexity of every pixel.
 #include <algorithm>
+#include <cstddef>
 #include <map>
 #include <string>
 
@@ -15,17 +16,24 @@
 #include "harness/core/passes.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "harness/gl/uniforms.h"
 #include "algorithms/kbuffer/bindings.h"
 
 namespace oit {
 namespace {
 
 constexpr GLuint kEmpty = 0xffffffffu;
+using kbuffer::KBufferFrameParams;
+static_assert(sizeof(KBufferFrameParams) == 16 && offsetof(KBufferFrameParams, k) == 4);  // std140 = C++ here
 
-// Per slot: 4 (depth key) + 4 (owner triangle id) + 16 (RGBA32F colour).
-constexpr uint64_t kKeyBytes = 4, kOwnerBytes = 4, kColorBytes = 16;
-constexpr uint64_t kSlotBytes = kKeyBytes + kOwnerBytes + kColorBytes;
+// Per slot, slot_layout=full: 4 (depth key) + 4 (owner triangle id) + 16
+// (RGBA32F colour); slot_layout=paper: 4 (depth key) + 4 (RGBA8 colour).
+enum class SlotLayout { full, paper };
+const Choices<SlotLayout> kSlotLayouts{{SlotLayout::full, "full"}, {SlotLayout::paper, "paper"}};
+constexpr uint64_t kKeyBytes = 4, kOwnerBytes = 4;
+uint64_t color_bytes(SlotLayout layout) { return layout == SlotLayout::paper ? 4 : 16; }
+uint64_t slot_bytes(SlotLayout layout) {
+  return layout == SlotLayout::paper ? kKeyBytes + color_bytes(layout) : kKeyBytes + kOwnerBytes + color_bytes(layout);
+}
 constexpr int kMaxK = 64;  // the parameter's maximum: the worst-case constant k=auto is compared with
 // Per pixel when tail=blend: RGBA16F accumulation + R16F revealage.
 constexpr uint64_t kTailBytesPerPixel = 8 + 2;
@@ -41,21 +49,21 @@ class KBuffer final : public Technique {
   explicit KBuffer(const ParamSet& params)
       : slots_(params, kMaxK),
         tail_blend_(params.choice("tail", kTails) == Tail::blend),
+        layout_(params.choice("slot_layout", kSlotLayouts)),
         fill_(build_geometry_program("algorithms/kbuffer/fill.frag")),
-        store_(build_geometry_program("algorithms/kbuffer/store.frag", tail_defines())),
-        counters_(make_buffer(kCounterBytes, kZeroCounters)) {
+        store_(build_geometry_program("algorithms/kbuffer/store.frag", layout_defines())),
+        counters_(make_buffer(kCounterBytes, kZeroCounters)),
+        frame_params_(make_buffer(sizeof(KBufferFrameParams), nullptr, GL_DYNAMIC_STORAGE_BIT)) {
     if (!slots_.automatic()) compose_for(slots_.fixed());  // compile errors surface at construction
   }
 
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
-    for (const Program* program : {&fill_, &store_}) set_uniform(program->id(), KBUFFER_WIDTH_LOCATION, width);
-    for (const auto& [capacity, compose] : composes_) set_uniform(compose.id(), KBUFFER_WIDTH_LOCATION, width);
     if (slots_.automatic()) {
       // k=auto: the most slots per pixel that fit both the memory cap and
       // the device's largest storage block (the colour buffer is the biggest).
-      slots_.resize(width, height, kSlotBytes, kColorBytes);
+      slots_.resize(width, height, slot_bytes(layout_), color_bytes(layout_));
       // The slots are allocated by the first frame, once its count is known.
       keys_ = Buffer();
       owners_ = Buffer();
@@ -79,14 +87,17 @@ class KBuffer final : public Technique {
   void render(const Frame& frame) override {
     const int k = slots_.for_frame(frame);
     const Program& compose = compose_for(k);
-    for (GLuint program : {fill_.id(), store_.id(), compose.id()})
-      set_uniform(program, KBUFFER_SLOTS_LOCATION, k);
+    const KBufferFrameParams params{.width = width_, .k = k};
+    glNamedBufferSubData(frame_params_.id(), 0, sizeof params, &params);
+    glBindBufferBase(GL_UNIFORM_BUFFER, KBUFFER_FRAME_PARAMS_BLOCK, frame_params_.id());
     {
       auto clear = frame.clock.stage("clear");
       if (k != allocated_k_) allocate_slots(k);  // k=auto: storage follows the view
       const GLuint empty = kEmpty;
       fill_buffer_u32(keys_, empty);
-      fill_buffer_u32(owners_, empty);
+      // The claim word: the owner, or with slot_layout=paper the packed colour (0 = none).
+      if (layout_ == SlotLayout::paper) fill_buffer_u32(colors_, 0);
+      else fill_buffer_u32(owners_, empty);
       fill_buffer_u32(counters_, 0);
       if (tail_blend_) {
         const GLfloat transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f}, revealed = 1.0f;
@@ -140,7 +151,7 @@ class KBuffer final : public Technique {
   // Slot storage, tail targets and counters for k slots per pixel.
   uint64_t bytes_for(int k) const {
     const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
-    return pixels * uint64_t(k) * kSlotBytes + (tail_blend_ ? pixels * kTailBytesPerPixel : 0) + kCounterBytes;
+    return pixels * uint64_t(k) * slot_bytes(layout_) + (tail_blend_ ? pixels * kTailBytesPerPixel : 0) + kCounterBytes;
   }
 
   // The compose program for k slots. Only compose depends on the define K
@@ -155,25 +166,26 @@ class KBuffer final : public Technique {
     }
     auto it = composes_.find(capacity);
     if (it == composes_.end()) {
-      ShaderDefines defines = tail_defines();
+      ShaderDefines defines = layout_defines();
       defines.push_back({"K", std::to_string(capacity)});
       it = composes_.emplace(capacity, build_fullscreen_program("algorithms/kbuffer/compose.frag", defines)).first;
-      set_uniform(it->second.id(), KBUFFER_WIDTH_LOCATION, width_);
     }
     return it->second;
   }
 
-  ShaderDefines tail_defines() const {
-    if (tail_blend_) return {{"TAIL_BLEND", "1"}};
-    return {};
+  ShaderDefines layout_defines() const {
+    ShaderDefines defines;
+    if (tail_blend_) defines.push_back({"TAIL_BLEND", "1"});
+    if (layout_ == SlotLayout::paper) defines.push_back({"PAPER_SLOTS", "1"});
+    return defines;
   }
 
   void allocate_slots(int k) {
     const uint64_t slots = uint64_t(width_) * uint64_t(height_) * uint64_t(k);
-    check_slots_fit("kbuffer", k, width_, height_, slots * kColorBytes, "the colour buffer");
+    check_slots_fit("kbuffer", k, width_, height_, slots * color_bytes(layout_), "the colour buffer");
     keys_ = make_buffer(GLsizeiptr(slots * kKeyBytes));
-    owners_ = make_buffer(GLsizeiptr(slots * kOwnerBytes));
-    colors_ = make_buffer(GLsizeiptr(slots * kColorBytes));
+    owners_ = layout_ == SlotLayout::paper ? Buffer() : make_buffer(GLsizeiptr(slots * kOwnerBytes));
+    colors_ = make_buffer(GLsizeiptr(slots * color_bytes(layout_)));
     gl_check("allocating the k-buffer of " + std::to_string(width_) + "x" + std::to_string(height_) + "x" +
              std::to_string(k));
     allocated_k_ = k;
@@ -188,9 +200,10 @@ class KBuffer final : public Technique {
 
   SlotsPerPixel slots_;
   bool tail_blend_;
+  SlotLayout layout_;
   Program fill_, store_;
   std::map<int, Program> composes_;  // by K
-  Buffer counters_, keys_, owners_, colors_;
+  Buffer counters_, frame_params_, keys_, owners_, colors_;
   Texture tail_accumulation_, tail_revealage_;
   Framebuffer no_attachments_, tail_framebuffer_;
   int width_ = 0, height_ = 0;
@@ -210,8 +223,13 @@ void register_technique_kbuffer(TechniqueRegistry& registry) {
                                             "auto_k_memory_mb)"),
                  kTails.spec("tail", Tail::drop,
                              "fragments beyond the K nearest: drop (counted) or blend unsorted behind them"),
+                 kSlotLayouts.spec("slot_layout", SlotLayout::full,
+                                   "per slot: key, owner triangle id, RGBA32F colour (full, 24 bytes: the reference "
+                                   "within float rounding, ties by triangle id) or key and RGBA8 colour (paper: "
+                                   "murray2016's 8 bytes, colours quantised, ties by packed colour)"),
                  ParamSpec::integer("auto_k_memory_mb", 1024, 1, 1 << 20,
-                                    "k=auto only: most MiB of slot storage (24 bytes per slot); k is capped to fit")},
+                                    "k=auto only: most MiB of slot storage (24 bytes per slot, 8 with "
+                                    "slot_layout=paper); k is capped to fit")},
       .stages = {"count", "clear", "fill", "store", "compose"},  // count: only with k=auto
       // k slots per pixel: exact where k covers the depth complexity; with
       // tail=drop every fragment beyond them is counted in fragments_dropped.
@@ -226,7 +244,8 @@ void register_technique_kbuffer(TechniqueRegistry& registry) {
       .storage_need = [](const ParamSet& params, const FrameContent& content) {
         const uint64_t slots = content.pixels() * fragment_pool::slots_per_pixel(content, params, kMaxK);
         const uint64_t tail = params.choice("tail", kTails) == Tail::blend ? kTailBytesPerPixel : 0;
-        return StorageNeed{slots * kColorBytes, slots * kSlotBytes + content.pixels() * (tail + 4)};
+        const SlotLayout layout = params.choice("slot_layout", kSlotLayouts);
+        return StorageNeed{slots * color_bytes(layout), slots * slot_bytes(layout) + content.pixels() * (tail + 4)};
       },
   });
 }

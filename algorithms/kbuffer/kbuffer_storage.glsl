@@ -1,6 +1,7 @@
-// Storage of the dual-pass k-buffer: per pixel, u_k slots of (depth key, owner,
-// colour), pixel-major (slot i of pixel p at p * u_k + i) so that one pixel's
-// keys are contiguous: llvmpipe shades a pixel on one CPU thread, and its
+// Storage of the dual-pass k-buffer: per pixel, k slots of (depth key, owner,
+// RGBA32F colour), or with PAPER_SLOTS (slot_layout=paper) of (depth key,
+// RGBA8 colour); pixel-major (slot i of pixel p at p * k + i) so that one
+// pixel's keys are contiguous: llvmpipe shades a pixel on one CPU thread, and its
 // cache lines then hold a whole pixel's list.
 #include "shaders/bindings.h"
 #include "shaders/pixel_storage.glsl"
@@ -10,6 +11,20 @@
 
 // Sorted ascending per pixel by the fill pass; EMPTY slots come last.
 layout(std430, binding = KBUFFER_KEYS_BINDING) coherent buffer KBufferKeys { uint kbuffer_keys[]; };
+#ifdef PAPER_SLOTS
+// slot_layout=paper (murray2016 section 6: "64 bits per fragment"): per slot
+// only the key and the RGBA8 colour, packed. The colour word doubles as the
+// claim: cleared to 0 and claimed with atomicCompSwap by the store pass, so
+// 0 = no colour stored (a fragment whose RGBA8 colour is all zero adds
+// nothing to the blend and stays uncounted). Ties are ordered by the packed
+// colour: no owner word is kept.
+layout(std430, binding = KBUFFER_COLORS_BINDING) coherent buffer KBufferPackedColors { uint kbuffer_packed[]; };
+#define KBUFFER_NO_COLOR 0u
+bool kbuffer_filled(uint slot) { return kbuffer_packed[slot] != KBUFFER_NO_COLOR; }
+// The word that orders a run of tied keys in compose.
+uint kbuffer_tie_word(uint slot) { return kbuffer_packed[slot]; }
+vec4 kbuffer_color(uint slot) { return unpackUnorm4x8(kbuffer_packed[slot]); }
+#else
 // Stable triangle id of the fragment whose colour the slot holds, claimed by
 // the store pass with atomicCompSwap; EMPTY = no colour stored. It makes
 // tied depth keys resolvable (see store.frag) and marks valid slots.
@@ -17,6 +32,10 @@ layout(std430, binding = KBUFFER_OWNERS_BINDING) coherent buffer KBufferOwners {
 // Straight RGBA of the slot, read and written as whole vec4s (Mesa 22.3
 // llvmpipe misreads scalar members of struct arrays inside loops).
 layout(std430, binding = KBUFFER_COLORS_BINDING) buffer KBufferColors { vec4 kbuffer_colors[]; };
+bool kbuffer_filled(uint slot) { return kbuffer_owners[slot] != KBUFFER_EMPTY; }
+uint kbuffer_tie_word(uint slot) { return kbuffer_owners[slot]; }
+vec4 kbuffer_color(uint slot) { return kbuffer_colors[slot]; }
+#endif
 // stored: fragments composed from the slots (added by compose, per pixel);
 // dropped: fragments beyond the K nearest whose colour was discarded.
 layout(std430, binding = KBUFFER_COUNTERS_BINDING) coherent buffer KBufferCounters {
@@ -24,14 +43,9 @@ layout(std430, binding = KBUFFER_COUNTERS_BINDING) coherent buffer KBufferCounte
   uint kbuffer_dropped;
 };
 
-layout(location = KBUFFER_WIDTH_LOCATION) uniform int u_width;
-// Slots per pixel, 1 <= u_k <= K. A uniform, not the define K: with k=auto
-// one program (K = the next power of two) serves every k up to K, and loops
-// bounded by a uniform are not unrolled, which made compose faster on
-// llvmpipe (README, "k=auto"). K only sizes compose's local arrays.
-layout(location = KBUFFER_SLOTS_LOCATION) uniform int u_k;
+layout(std140, binding = KBUFFER_FRAME_PARAMS_BLOCK) uniform KBufferFrameBlock { KBufferFrameParams kbuffer; };
 
-uint kbuffer_first_slot() { return oit_pixel_index(u_width) * uint(u_k); }
+uint kbuffer_first_slot() { return oit_pixel_index(kbuffer.width) * uint(kbuffer.k); }
 
 // 32-bit sort key of a view depth. Only the all-ones pattern (a NaN) would
 // collide with EMPTY, so it is clamped below it. Equal depths give equal

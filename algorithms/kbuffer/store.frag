@@ -7,6 +7,8 @@
 // unowned one with atomicCompSwap on the owner word, writing its stable
 // triangle id, and compose orders a tied run by that id: the same
 // deterministic tie-break (depth, then triangle id) as the reference.
+// PAPER_SLOTS: the packed colour word is itself the claim (cleared to 0),
+// and compose orders ties by it.
 // Fragments that find no free slot with their key are the tail.
 #include "shaders/shading.glsl"
 #include "algorithms/kbuffer/kbuffer_storage.glsl"
@@ -23,16 +25,24 @@ void main() {
   const uint first = kbuffer_first_slot();
   const uint key = kbuffer_depth_key(oit_view_depth());
   const vec4 color = oit_shade();
-  uint low = 0u, high = uint(u_k);
+  uint low = 0u, high = uint(kbuffer.k);
   while (low < high) {
     const uint middle = (low + high) >> 1;
     if (kbuffer_keys[first + middle] < key) low = middle + 1u;
     else high = middle;
   }
+#ifdef PAPER_SLOTS
+  const uint rgba8 = packUnorm4x8(color);
+#else
   const uint owner = oit_triangle_id();
-  for (uint i = low; i < uint(u_k) && kbuffer_keys[first + i] == key; ++i) {
+#endif
+  for (uint i = low; i < uint(kbuffer.k) && kbuffer_keys[first + i] == key; ++i) {
+#ifdef PAPER_SLOTS
+    if (atomicCompSwap(kbuffer_packed[first + i], KBUFFER_NO_COLOR, rgba8) == KBUFFER_NO_COLOR) {
+#else
     if (atomicCompSwap(kbuffer_owners[first + i], KBUFFER_EMPTY, owner) == KBUFFER_EMPTY) {
       kbuffer_colors[first + i] = color;
+#endif
 #ifdef TAIL_BLEND
       out_tail_accumulation = vec4(0.0);  // neutral for both blend equations
       out_tail_revealage = vec4(0.0);
