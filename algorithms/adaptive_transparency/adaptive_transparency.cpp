@@ -14,7 +14,8 @@
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "harness/gl/uniforms.h"
+#include "harness/gl/uniform_block.h"
+#include "shaders/pixel_slots.h"
 #include "algorithms/adaptive_transparency/bindings.h"
 
 namespace oit {
@@ -34,15 +35,13 @@ class AdaptiveTransparency final : public Technique {
         fill_(build_geometry_program("algorithms/adaptive_transparency/fill.frag")),
         store_(build_geometry_program("algorithms/adaptive_transparency/store.frag")),
         compose_(build_fullscreen_program("algorithms/adaptive_transparency/compose.frag")) {
-    for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
-      set_uniform(program, ADAPTIVE_TRANSPARENCY_NODES_LOCATION, k_);
+    params_.values.k = k_;
   }
 
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
-    for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
-      set_uniform(program, ADAPTIVE_TRANSPARENCY_WIDTH_LOCATION, width);
+    params_.values.width = width;
     const uint64_t pixels = uint64_t(width) * uint64_t(height);
     nodes_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_ + 1) * kNodeBytes));
     counts_ = make_buffer(GLsizeiptr(4 + pixels * 4));
@@ -56,6 +55,7 @@ class AdaptiveTransparency final : public Technique {
   }
 
   void render(const Frame& frame) override {
+    params_.upload();
     {
       auto clear = frame.clock.stage("clear");
       fill_buffer_u32(counts_, 0);
@@ -100,6 +100,7 @@ class AdaptiveTransparency final : public Technique {
  private:
   int k_;
   Program fill_, store_, compose_;
+  UniformBlock<PixelSlotsParams> params_{OIT_PIXEL_SLOTS_PARAMS_BLOCK};
   Buffer nodes_, counts_;
   PixelLocks locks_;
   Texture accumulation_;

@@ -13,7 +13,8 @@
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "harness/gl/uniforms.h"
+#include "harness/gl/uniform_block.h"
+#include "shaders/pixel_slots.h"
 #include "algorithms/hybrid_transparency/bindings.h"
 
 namespace oit {
@@ -43,13 +44,11 @@ class HybridTransparency final : public Technique {
         store_(build_geometry_program("algorithms/hybrid_transparency/store.frag")),
         compose_(build_fullscreen_program("algorithms/hybrid_transparency/compose.frag")),
         counters_(make_buffer(kCounterBytes, kZeroCounters)) {
-    for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
-      set_uniform(program, HYBRID_TRANSPARENCY_SLOTS_LOCATION, k_);
+    params_.values.k = k_;
   }
 
   void resize(int width, int height) override {
-    for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
-      set_uniform(program, HYBRID_TRANSPARENCY_WIDTH_LOCATION, width);
+    params_.values.width = width;
     const uint64_t pixels = uint64_t(width) * uint64_t(height), core_bytes = core_buffer_bytes(pixels, k_);
     check_slots_fit("hybrid_transparency", k_, width, height, core_bytes, "each core buffer");
     keys_ = make_buffer(GLsizeiptr(core_bytes));
@@ -66,6 +65,7 @@ class HybridTransparency final : public Technique {
   }
 
   void render(const Frame& frame) override {
+    params_.upload();
     {
       auto clear = frame.clock.stage("clear");
       const GLuint empty = kEmpty;
@@ -113,6 +113,7 @@ class HybridTransparency final : public Technique {
  private:
   int k_;
   Program fill_, store_, compose_;
+  UniformBlock<PixelSlotsParams> params_{OIT_PIXEL_SLOTS_PARAMS_BLOCK};
   Buffer counters_, keys_, colors_;
   Texture tail_sum_, tail_count_;
   Framebuffer no_attachments_, tail_framebuffer_;

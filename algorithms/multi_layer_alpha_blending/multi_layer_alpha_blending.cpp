@@ -14,7 +14,8 @@
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "harness/gl/uniforms.h"
+#include "harness/gl/uniform_block.h"
+#include "shaders/pixel_slots.h"
 #include "algorithms/multi_layer_alpha_blending/bindings.h"
 
 namespace oit {
@@ -31,15 +32,13 @@ class MultiLayerAlphaBlending final : public Technique {
       : k_(int(params.integer("k"))),
         fill_(build_geometry_program("algorithms/multi_layer_alpha_blending/fill.frag")),
         compose_(build_fullscreen_program("algorithms/multi_layer_alpha_blending/compose.frag")) {
-    for (GLuint program : {fill_.id(), compose_.id()})
-      set_uniform(program, MULTI_LAYER_ALPHA_BLENDING_LAYERS_LOCATION, k_);
+    params_.values.k = k_;
   }
 
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
-    for (GLuint program : {fill_.id(), compose_.id()})
-      set_uniform(program, MULTI_LAYER_ALPHA_BLENDING_WIDTH_LOCATION, width);
+    params_.values.width = width;
     const uint64_t pixels = uint64_t(width) * uint64_t(height);
     colors_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_) * 16));
     depths_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_) * 4));
@@ -51,6 +50,7 @@ class MultiLayerAlphaBlending final : public Technique {
   }
 
   void render(const Frame& frame) override {
+    params_.upload();
     {
       auto clear = frame.clock.stage("clear");
       fill_buffer_u32(counts_, 0);
@@ -88,6 +88,7 @@ class MultiLayerAlphaBlending final : public Technique {
  private:
   int k_;
   Program fill_, compose_;
+  UniformBlock<PixelSlotsParams> params_{OIT_PIXEL_SLOTS_PARAMS_BLOCK};
   Buffer colors_, depths_, counts_;
   PixelLocks locks_;
   Framebuffer no_attachments_;
