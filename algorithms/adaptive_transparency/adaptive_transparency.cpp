@@ -9,6 +9,7 @@
 // depth complexity; otherwise it depends on the rasterisation order.
 #include <string>
 
+#include "harness/core/fill_store_compose.h"
 #include "harness/core/passes.h"
 #include "harness/core/pixel_locks.h"
 #include "harness/core/technique.h"
@@ -66,21 +67,12 @@ class AdaptiveTransparency final : public Technique {
     bind_storage_buffers({{ADAPTIVE_TRANSPARENCY_NODES_BINDING, &nodes_},
                           {ADAPTIVE_TRANSPARENCY_COUNTS_BINDING, &counts_}});
     locks_.bind(ADAPTIVE_TRANSPARENCY_LOCKS_BINDING);
-    {
-      auto fill = frame.clock.stage("fill");
-      draw_scene_pass(frame, fill_, no_attachments_);
-    }
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    {
-      auto store = frame.clock.stage("store");
-      draw_additive_scene_pass(frame, store_, accumulation_framebuffer_);
-    }
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    {
-      auto compose = frame.clock.stage("compose");
-      glBindTextureUnit(ADAPTIVE_TRANSPARENCY_ACCUMULATION_UNIT, accumulation_.id());
-      draw_fullscreen_pass(frame, compose_);
-    }
+    draw_fill_store_compose(frame, {.fill = fill_,
+                                    .fill_target = no_attachments_,
+                                    .store = store_,
+                                    .store_target = accumulation_framebuffer_,
+                                    .compose = compose_,
+                                    .compose_inputs = {{ADAPTIVE_TRANSPARENCY_ACCUMULATION_UNIT, &accumulation_}}});
   }
 
   TechniqueCounters counters() const override {

@@ -8,6 +8,7 @@
 // complexity; otherwise only the tail is approximate.
 #include <string>
 
+#include "harness/core/fill_store_compose.h"
 #include "harness/core/list_length_pass.h"
 #include "harness/core/passes.h"
 #include "harness/core/technique.h"
@@ -79,22 +80,13 @@ class HybridTransparency final : public Technique {
     bind_storage_buffers({{HYBRID_TRANSPARENCY_KEYS_BINDING, &keys_},
                           {HYBRID_TRANSPARENCY_COLORS_BINDING, &colors_},
                           {HYBRID_TRANSPARENCY_COUNTERS_BINDING, &counters_}});
-    {
-      auto fill = frame.clock.stage("fill");
-      draw_scene_pass(frame, fill_, no_attachments_);
-    }
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    {
-      auto store = frame.clock.stage("store");
-      draw_additive_scene_pass(frame, store_, tail_framebuffer_);
-    }
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    {
-      auto compose = frame.clock.stage("compose");
-      glBindTextureUnit(HYBRID_TRANSPARENCY_TAIL_SUM_UNIT, tail_sum_.id());
-      glBindTextureUnit(HYBRID_TRANSPARENCY_TAIL_COUNT_UNIT, tail_count_.id());
-      draw_fullscreen_pass(frame, compose_);
-    }
+    draw_fill_store_compose(frame, {.fill = fill_,
+                                    .fill_target = no_attachments_,
+                                    .store = store_,
+                                    .store_target = tail_framebuffer_,
+                                    .compose = compose_,
+                                    .compose_inputs = {{HYBRID_TRANSPARENCY_TAIL_SUM_UNIT, &tail_sum_},
+                                                       {HYBRID_TRANSPARENCY_TAIL_COUNT_UNIT, &tail_count_}}});
   }
 
   TechniqueCounters counters() const override {
