@@ -9,12 +9,14 @@
 // depth complexity; otherwise it depends on the rasterisation order.
 #include <string>
 
+#include "harness/core/fill_store_compose.h"
 #include "harness/core/passes.h"
-#include "harness/core/pixel_locks.h"
+#include "harness/core/locked_pixel_counts.h"
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "harness/gl/uniforms.h"
+#include "harness/gl/uniform_block.h"
+#include "shaders/pixel_slots.h"
 #include "algorithms/adaptive_transparency/bindings.h"
 
 namespace oit {
@@ -23,9 +25,9 @@ namespace {
 // Per node: (depth, transmittance) as two 32-bit floats; k + 1 nodes per
 // pixel (one spare for the insertion before compression).
 constexpr uint64_t kNodeBytes = 8;
-// Per pixel: node count (after one word of removals), RGBA32F accumulation;
-// the locks are PixelLocks'.
-constexpr uint64_t kPixelBytes = 4 + 16;
+// Per pixel besides the nodes: the RGBA32F accumulation, and the node count
+// (LockedPixelCounts::kBytesPerPixel).
+constexpr uint64_t kAccumulationBytes = 16;
 
 class AdaptiveTransparency final : public Technique {
  public:
@@ -34,19 +36,16 @@ class AdaptiveTransparency final : public Technique {
         fill_(build_geometry_program("algorithms/adaptive_transparency/fill.frag")),
         store_(build_geometry_program("algorithms/adaptive_transparency/store.frag")),
         compose_(build_fullscreen_program("algorithms/adaptive_transparency/compose.frag")) {
-    for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
-      set_uniform(program, ADAPTIVE_TRANSPARENCY_NODES_LOCATION, k_);
+    params_.values.k = k_;
   }
 
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
-    for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
-      set_uniform(program, ADAPTIVE_TRANSPARENCY_WIDTH_LOCATION, width);
+    params_.values.width = width;
     const uint64_t pixels = uint64_t(width) * uint64_t(height);
     nodes_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_ + 1) * kNodeBytes));
-    counts_ = make_buffer(GLsizeiptr(4 + pixels * 4));
-    locks_.resize(width, height);
+    counts_.resize(width, height);
     gl_check("allocating " + std::to_string(k_) + "-node visibility functions of " + std::to_string(width) + "x" +
              std::to_string(height));
     no_attachments_ = make_attachmentless_framebuffer(width, height);
@@ -56,52 +55,38 @@ class AdaptiveTransparency final : public Technique {
   }
 
   void render(const Frame& frame) override {
+    params_.upload();
     {
       auto clear = frame.clock.stage("clear");
-      fill_buffer_u32(counts_, 0);
-      locks_.clear();
+      counts_.clear();
       const GLfloat transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f};
       glClearNamedFramebufferfv(accumulation_framebuffer_.id(), GL_COLOR, 0, transparent);
     }
-    bind_storage_buffers({{ADAPTIVE_TRANSPARENCY_NODES_BINDING, &nodes_},
-                          {ADAPTIVE_TRANSPARENCY_COUNTS_BINDING, &counts_}});
-    locks_.bind(ADAPTIVE_TRANSPARENCY_LOCKS_BINDING);
-    {
-      auto fill = frame.clock.stage("fill");
-      draw_scene_pass(frame, fill_, no_attachments_);
-    }
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    {
-      auto store = frame.clock.stage("store");
-      draw_additive_scene_pass(frame, store_, accumulation_framebuffer_);
-    }
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    {
-      auto compose = frame.clock.stage("compose");
-      glBindTextureUnit(ADAPTIVE_TRANSPARENCY_ACCUMULATION_UNIT, accumulation_.id());
-      draw_fullscreen_pass(frame, compose_);
-    }
+    bind_storage_buffers({{ADAPTIVE_TRANSPARENCY_NODES_BINDING, &nodes_}});
+    counts_.bind(ADAPTIVE_TRANSPARENCY_COUNTS_BINDING, ADAPTIVE_TRANSPARENCY_LOCKS_BINDING);
+    draw_fill_store_compose(frame, {.fill = fill_,
+                                    .fill_target = no_attachments_,
+                                    .store = store_,
+                                    .store_target = accumulation_framebuffer_,
+                                    .compose = compose_,
+                                    .compose_inputs = {{ADAPTIVE_TRANSPARENCY_ACCUMULATION_UNIT, &accumulation_}}});
   }
 
   TechniqueCounters counters() const override {
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    GLuint removals = 0;
-    glGetNamedBufferSubData(counts_.id(), 0, 4, &removals);
     TechniqueCounters c;
     const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
-    c.bytes_allocated = pixels * (uint64_t(k_ + 1) * kNodeBytes + kPixelBytes) + 4 + locks_.bytes();
-    c.fragments_dropped = locks_.failures();  // fragments missing from the visibility function
+    c.bytes_allocated = pixels * (uint64_t(k_ + 1) * kNodeBytes + kAccumulationBytes);
     c.passes = 2;
-    c.extra = {{"node_removals", double(removals)}};
-    for (auto& counter : locks_.counters()) c.extra.push_back(std::move(counter));
+    counts_.report(c, "node_removals");  // its drops: fragments missing from the visibility function
     return c;
   }
 
  private:
   int k_;
   Program fill_, store_, compose_;
-  Buffer nodes_, counts_;
-  PixelLocks locks_;
+  UniformBlock<PixelSlotsParams> params_{OIT_PIXEL_SLOTS_PARAMS_BLOCK};
+  Buffer nodes_;
+  LockedPixelCounts counts_;
   Texture accumulation_;
   Framebuffer no_attachments_, accumulation_framebuffer_;
   int width_ = 0, height_ = 0;
@@ -122,7 +107,7 @@ void register_technique_adaptive_transparency(TechniqueRegistry& registry) {
       .create = make_technique<AdaptiveTransparency>,
       .storage_need = [](const ParamSet& params, const FrameContent& content) {
         const uint64_t nodes = content.pixels() * uint64_t(params.integer("k") + 1);
-        return StorageNeed{nodes * kNodeBytes, nodes * kNodeBytes + content.pixels() * kPixelBytes};
+        return StorageNeed{nodes * kNodeBytes, nodes * kNodeBytes + content.pixels() * (kAccumulationBytes + LockedPixelCounts::kBytesPerPixel)};
       },
   });
 }

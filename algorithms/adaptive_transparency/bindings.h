@@ -1,4 +1,4 @@
-// adaptive_transparency's binding points and uniform locations, included by its C++ and
+// adaptive_transparency's binding points, included by its C++ and
 // its GLSL alike so that no number is copied by hand between the two
 // (shaders/bindings.h: a technique's own start at OIT_FIRST_TECHNIQUE_*).
 #ifndef OIT_ADAPTIVE_TRANSPARENCY_BINDINGS_H
@@ -14,8 +14,6 @@
 // Texture units.
 #define ADAPTIVE_TRANSPARENCY_ACCUMULATION_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 0)
 
-// Uniform locations.
-#define ADAPTIVE_TRANSPARENCY_WIDTH_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 0)
-#define ADAPTIVE_TRANSPARENCY_NODES_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 1)
+// Its parameters: shaders/pixel_slots.h (k: the nodes per pixel).
 
 #endif

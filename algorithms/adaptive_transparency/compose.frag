@@ -13,9 +13,9 @@ layout(binding = ADAPTIVE_TRANSPARENCY_ACCUMULATION_UNIT) uniform sampler2D u_ac
 layout(location = 0) out vec4 out_color;
 
 void main() {
-  const uint pixel = avf_pixel();
+  const uint pixel = slots_pixel();
   const uint count = avf_counts[pixel];
-  const float total_transmittance = count > 0u ? avf_nodes[pixel * uint(u_k + 1) + count - 1u].y : 1.0;
+  const float total_transmittance = count > 0u ? avf_nodes[pixel * uint(slots.k + 1) + count - 1u].y : 1.0;
   const vec4 accumulation = texelFetch(u_accumulation, ivec2(gl_FragCoord.xy), 0);
   const vec3 average = accumulation.a > 0.0 ? accumulation.rgb / accumulation.a : vec3(0.0);
   out_color = oit_finish(average * (1.0 - total_transmittance), total_transmittance);

@@ -4,7 +4,7 @@
 // each pixel's visibility function in its ordered critical section. A
 // fragment (z, a) adds a node at z whose T is the visibility just in front
 // of z times (1 - a), and multiplies every node behind z by (1 - a). When
-// that makes u_k + 1 nodes, the node whose removal changes the area under
+// that makes slots.k + 1 nodes, the node whose removal changes the area under
 // the visibility step function least is removed (section 4): removing node
 // i lets T_(i-1) extend over [z_i, z_(i+1)), an area change of
 // (T_(i-1) - T_i)(z_(i+1) - z_i). The last node is never a candidate, so
@@ -32,9 +32,9 @@ void remove_smallest_area_node(uint first, uint count) {
 }
 
 // Adds the fragment to the function; a full function has one spare node
-// (u_k + 1 allocated per pixel) that the compression frees again.
+// (slots.k + 1 allocated per pixel) that the compression frees again.
 void insert_node(uint pixel, float depth, float alpha) {
-  const uint first = pixel * uint(u_k + 1);
+  const uint first = pixel * uint(slots.k + 1);
   const uint count = avf_counts[pixel];
   uint slot = count;
   while (slot > 0u && avf_nodes[first + slot - 1u].x > depth) {
@@ -44,7 +44,7 @@ void insert_node(uint pixel, float depth, float alpha) {
   }
   const float in_front = slot > 0u ? avf_nodes[first + slot - 1u].y : 1.0;
   avf_nodes[first + slot] = vec2(depth, in_front * (1.0 - alpha));
-  if (count + 1u > uint(u_k)) {
+  if (count + 1u > uint(slots.k)) {
     remove_smallest_area_node(first, count + 1u);
     avf_counts[pixel] = count;
   } else {
@@ -55,6 +55,6 @@ void insert_node(uint pixel, float depth, float alpha) {
 void main() {
   const float alpha = oit_shade().a;
   const float depth = oit_view_depth();
-  const uint pixel = avf_pixel();
+  const uint pixel = slots_pixel();
   OIT_ORDERED(pixel, if (alpha > 0.0) insert_node(pixel, depth, alpha))
 }

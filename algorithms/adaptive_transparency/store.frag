@@ -10,8 +10,8 @@ layout(location = 0) out vec4 out_accumulation;
 void main() {
   const vec4 color = oit_shade();
   const float depth = oit_view_depth();
-  const uint pixel = avf_pixel();
-  const uint first = pixel * uint(u_k + 1);
+  const uint pixel = slots_pixel();
+  const uint first = pixel * uint(slots.k + 1);
   float visibility = 1.0;
   for (uint i = 0u; i < avf_counts[pixel]; ++i) {
     const vec2 node = avf_nodes[first + i];

@@ -23,6 +23,7 @@
 #include "harness/core/passes.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
+#include "harness/gl/uniform_block.h"
 #include "algorithms/bucketed_kbuffer/choices.h"
 #include "algorithms/bucketed_kbuffer/transfer_functions.h"
 #include "algorithms/bucketed_kbuffer/bindings.h"
@@ -70,7 +71,6 @@ class BucketedKBuffer final : public Technique {
         curvature_scale_(params.real("curvature_scale")),
         mode_(params.choice("buckets", bkb::kBucketModes)) {
     counter_ = make_buffer(sizeof(GLuint));
-    frame_params_ = make_buffer(sizeof(BkbFrameParams), nullptr, GL_DYNAMIC_STORAGE_BIT);
     if (!slots_.automatic()) programs_for(slots_.fixed());  // compile errors surface at construction
     if (!identity_) {
       if (!color_texels_.empty()) color_transfer_ = bkb::make_color_texture(color_texels_);
@@ -327,11 +327,10 @@ class BucketedKBuffer final : public Technique {
     for (GLuint program : {p.fill.id(), sort_program(), p.bucket.id(), store_program(), neighbors_program(),
                            p.stylize.id(), p.compose.id()})
       if (program != 0) frame.set_shared_uniforms(program);
-    const BkbFrameParams params{.inverse_projection = glm::inverse(frame.projection), .width = width_,
-                                .height = height_, .depth_near = depth_near_, .depth_far = depth_far_,
-                                .curvature_scale = float(curvature_scale_)};
-    glNamedBufferSubData(frame_params_.id(), 0, sizeof params, &params);
-    glBindBufferBase(GL_UNIFORM_BUFFER, BKB_FRAME_PARAMS_BLOCK, frame_params_.id());
+    frame_params_.values = {.inverse_projection = glm::inverse(frame.projection), .width = width_,
+                            .height = height_, .depth_near = depth_near_, .depth_far = depth_far_,
+                            .curvature_scale = float(curvature_scale_)};
+    frame_params_.upload();
   }
 
   // The merge search reads whole sorted lists, so one program serves every
@@ -415,7 +414,7 @@ class BucketedKBuffer final : public Technique {
   int programs_k_ = 0;
   int allocated_k_ = 0;
   Buffer z_, buckets_, colors_, normals_, features_, counter_, links_, expected_, estimated_, truth_;
-  Buffer frame_params_;
+  UniformBlock<BkbFrameParams> frame_params_{BKB_FRAME_PARAMS_BLOCK};
   Texture color_transfer_, opacity_transfer_;
   Framebuffer no_attachments_;
   int width_ = 0, height_ = 0;

@@ -1,4 +1,4 @@
-// hybrid_transparency's binding points and uniform locations, included by its C++ and
+// hybrid_transparency's binding points, included by its C++ and
 // its GLSL alike so that no number is copied by hand between the two
 // (shaders/bindings.h: a technique's own start at OIT_FIRST_TECHNIQUE_*).
 #ifndef OIT_HYBRID_TRANSPARENCY_BINDINGS_H
@@ -15,8 +15,6 @@
 #define HYBRID_TRANSPARENCY_TAIL_SUM_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 0)
 #define HYBRID_TRANSPARENCY_TAIL_COUNT_UNIT (OIT_FIRST_TECHNIQUE_BINDING + 1)
 
-// Uniform locations.
-#define HYBRID_TRANSPARENCY_WIDTH_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 0)
-#define HYBRID_TRANSPARENCY_SLOTS_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 1)
+// Its parameters: shaders/pixel_slots.h (k: the core slots per pixel).
 
 #endif

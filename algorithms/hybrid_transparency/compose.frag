@@ -17,7 +17,7 @@ void main() {
   vec3 accumulated = vec3(0.0);
   float transmittance = 1.0;
   uint stored = 0u;
-  for (uint i = 0u; i < uint(u_k); ++i) {
+  for (uint i = 0u; i < uint(slots.k); ++i) {
     const uint packed_color = core_colors[first + i];
     if (core_keys[first + i] == CORE_EMPTY) break;
     if (packed_color == 0u) continue;  // defensive: store gives every core key its fragment

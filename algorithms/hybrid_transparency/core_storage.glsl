@@ -1,15 +1,15 @@
-// Hybrid transparency's core: per pixel, u_k slots of (depth key, packed
-// colour), pixel-major (slot i of pixel p at p * u_k + i) so one pixel's
+// Hybrid transparency's core: per pixel, slots.k slots of (depth key, packed
+// colour), pixel-major (slot i of pixel p at p * slots.k + i) so one pixel's
 // slots share cache lines on the CPU thread that shades it. 8 bytes a slot:
 // the paper's budget of one 32-bit depth and one RGBA8 colour per core
 // fragment.
 #include "shaders/bindings.h"
-#include "shaders/pixel_storage.glsl"
+#include "shaders/pixel_slots.glsl"
 #include "algorithms/hybrid_transparency/bindings.h"
 
 #define CORE_EMPTY 0xffffffffu
 
-// The u_k smallest depth keys of the pixel, ascending; EMPTY slots last.
+// The slots.k smallest depth keys of the pixel, ascending; EMPTY slots last.
 layout(std430, binding = HYBRID_TRANSPARENCY_KEYS_BINDING) coherent buffer CoreKeys { uint core_keys[]; };
 // packUnorm4x8 of the straight RGBA of the fragment in that slot; 0 = not
 // claimed (a fragment whose packed colour would be 0 has alpha < 1/510 and
@@ -23,17 +23,14 @@ layout(std430, binding = HYBRID_TRANSPARENCY_COUNTERS_BINDING) coherent buffer C
   uint core_tied_to_tail;
 };
 
-layout(location = HYBRID_TRANSPARENCY_WIDTH_LOCATION) uniform int u_width;
-layout(location = HYBRID_TRANSPARENCY_SLOTS_LOCATION) uniform int u_k;
-
-uint core_first_slot() { return oit_pixel_index(u_width) * uint(u_k); }
+uint core_first_slot() { return slots_pixel() * uint(slots.k); }
 
 // Unsigned key that orders like the float view depth, kept below EMPTY.
 uint core_depth_key(float depth) { return min(oit_depth_order(floatBitsToUint(depth)), CORE_EMPTY - 1u); }
 
-// The first slot whose key is >= key (u_k when none): the keys are sorted.
+// The first slot whose key is >= key (slots.k when none): the keys are sorted.
 uint core_lower_bound(uint first, uint key) {
-  uint low = 0u, high = uint(u_k);
+  uint low = 0u, high = uint(slots.k);
   while (low < high) {
     const uint middle = (low + high) / 2u;
     if (core_keys[first + middle] < key) low = middle + 1u;

@@ -8,12 +8,14 @@
 // complexity; otherwise only the tail is approximate.
 #include <string>
 
+#include "harness/core/fill_store_compose.h"
 #include "harness/core/list_length_pass.h"
 #include "harness/core/passes.h"
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "harness/gl/uniforms.h"
+#include "harness/gl/uniform_block.h"
+#include "shaders/pixel_slots.h"
 #include "algorithms/hybrid_transparency/bindings.h"
 
 namespace oit {
@@ -43,13 +45,11 @@ class HybridTransparency final : public Technique {
         store_(build_geometry_program("algorithms/hybrid_transparency/store.frag")),
         compose_(build_fullscreen_program("algorithms/hybrid_transparency/compose.frag")),
         counters_(make_buffer(kCounterBytes, kZeroCounters)) {
-    for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
-      set_uniform(program, HYBRID_TRANSPARENCY_SLOTS_LOCATION, k_);
+    params_.values.k = k_;
   }
 
   void resize(int width, int height) override {
-    for (GLuint program : {fill_.id(), store_.id(), compose_.id()})
-      set_uniform(program, HYBRID_TRANSPARENCY_WIDTH_LOCATION, width);
+    params_.values.width = width;
     const uint64_t pixels = uint64_t(width) * uint64_t(height), core_bytes = core_buffer_bytes(pixels, k_);
     check_slots_fit("hybrid_transparency", k_, width, height, core_bytes, "each core buffer");
     keys_ = make_buffer(GLsizeiptr(core_bytes));
@@ -66,6 +66,7 @@ class HybridTransparency final : public Technique {
   }
 
   void render(const Frame& frame) override {
+    params_.upload();
     {
       auto clear = frame.clock.stage("clear");
       const GLuint empty = kEmpty;
@@ -79,22 +80,13 @@ class HybridTransparency final : public Technique {
     bind_storage_buffers({{HYBRID_TRANSPARENCY_KEYS_BINDING, &keys_},
                           {HYBRID_TRANSPARENCY_COLORS_BINDING, &colors_},
                           {HYBRID_TRANSPARENCY_COUNTERS_BINDING, &counters_}});
-    {
-      auto fill = frame.clock.stage("fill");
-      draw_scene_pass(frame, fill_, no_attachments_);
-    }
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    {
-      auto store = frame.clock.stage("store");
-      draw_additive_scene_pass(frame, store_, tail_framebuffer_);
-    }
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    {
-      auto compose = frame.clock.stage("compose");
-      glBindTextureUnit(HYBRID_TRANSPARENCY_TAIL_SUM_UNIT, tail_sum_.id());
-      glBindTextureUnit(HYBRID_TRANSPARENCY_TAIL_COUNT_UNIT, tail_count_.id());
-      draw_fullscreen_pass(frame, compose_);
-    }
+    draw_fill_store_compose(frame, {.fill = fill_,
+                                    .fill_target = no_attachments_,
+                                    .store = store_,
+                                    .store_target = tail_framebuffer_,
+                                    .compose = compose_,
+                                    .compose_inputs = {{HYBRID_TRANSPARENCY_TAIL_SUM_UNIT, &tail_sum_},
+                                                       {HYBRID_TRANSPARENCY_TAIL_COUNT_UNIT, &tail_count_}}});
   }
 
   TechniqueCounters counters() const override {
@@ -113,6 +105,7 @@ class HybridTransparency final : public Technique {
  private:
   int k_;
   Program fill_, store_, compose_;
+  UniformBlock<PixelSlotsParams> params_{OIT_PIXEL_SLOTS_PARAMS_BLOCK};
   Buffer counters_, keys_, colors_;
   Texture tail_sum_, tail_count_;
   Framebuffer no_attachments_, tail_framebuffer_;

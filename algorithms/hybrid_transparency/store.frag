@@ -1,5 +1,5 @@
 #version 450 core
-// Pass 2 (store): a fragment among the u_k nearest finds its key's slot
+// Pass 2 (store): a fragment among the slots.k nearest finds its key's slot
 // and claims it by writing its packed colour there (atomicCompSwap from 0,
 // so equal keys take consecutive slots one each); every other fragment is
 // the tail, accumulated order-independently as the weighted average of
@@ -19,12 +19,12 @@ void main() {
   const uint first = core_first_slot();
   const uint key = core_depth_key(oit_view_depth());
   const uint packed_color = packUnorm4x8(color);
-  for (uint i = core_lower_bound(first, key); i < uint(u_k) && core_keys[first + i] == key; ++i) {
+  for (uint i = core_lower_bound(first, key); i < uint(slots.k) && core_keys[first + i] == key; ++i) {
     if (atomicCompSwap(core_colors[first + i], 0u, packed_color) == 0u) return;
   }
   // A key equal to the last core key can find its run of slots full when
   // more fragments share it than fit: it joins the tail and is counted.
-  if (core_lower_bound(first, key) < uint(u_k)) OIT_ATOMIC_COUNT(core_tied_to_tail);
+  if (core_lower_bound(first, key) < uint(slots.k)) OIT_ATOMIC_COUNT(core_tied_to_tail);
   out_tail_sum = vec4(color.rgb * color.a, color.a);
   out_tail_count = vec4(1.0);
 }

@@ -12,7 +12,7 @@ namespace oit::illustration_buffer {
 static_assert(sizeof(IbFrameParams) == 96 && offsetof(IbFrameParams, cutoff_gamma) == 4 * 20);
 static_assert(sizeof(IbPassParams) == 16);
 
-FrameParams::FrameParams(const Settings& s, uint32_t steps) {
+FrameParams::FrameParams(const Settings& s, uint32_t steps) : UniformBlock(IB_FRAME_PARAMS_BLOCK) {
   values.max_per_pixel = s.max_per_pixel;
   values.use_beta = s.uses_beta() ? 1u : 0u;
   values.use_gamma = s.uses_gamma() ? 1u : 0u;
@@ -26,7 +26,6 @@ FrameParams::FrameParams(const Settings& s, uint32_t steps) {
   values.profile_p = s.profile == Profile::power ? s.power_p : s.exponential_p;
   values.normal_variation_scale = s.normal_variation_scale;
   values.focus_region = s.focus_region;
-  frame_ = make_buffer(sizeof(IbFrameParams), nullptr, GL_DYNAMIC_STORAGE_BIT);
   GLint alignment = 1;
   glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
   pass_stride_ = (GLsizeiptr(sizeof(IbPassParams)) + alignment - 1) / alignment * alignment;
@@ -43,11 +42,6 @@ FrameParams::FrameParams(const Settings& s, uint32_t steps) {
   }
   passes_ = make_buffer(GLsizeiptr(passes.size() * sizeof(IbPassParams)), passes.data(), 0);
   gl_check("illustration_buffer: the parameter blocks");
-}
-
-void FrameParams::upload() const {
-  glNamedBufferSubData(frame_.id(), 0, sizeof(IbFrameParams), &values);
-  glBindBufferBase(GL_UNIFORM_BUFFER, IB_FRAME_PARAMS_BLOCK, frame_.id());
 }
 
 void FrameParams::bind_pass(uint32_t index) const {

@@ -12,16 +12,15 @@
 #include "algorithms/illustration_buffer/bindings.h"
 #include "algorithms/illustration_buffer/settings.h"
 #include "harness/gl/handles.h"
+#include "harness/gl/uniform_block.h"
 
 namespace oit::illustration_buffer {
 
-class FrameParams {
+class FrameParams : public UniformBlock<IbFrameParams> {
  public:
   // The settings' parameters in `values`; `steps`: the diffusion steps whose
   // pass records are needed (Settings::iterations).
   FrameParams(const Settings& settings, uint32_t steps);
-  IbFrameParams values{};
-  void upload() const;
   // The sweep in direction `index` (0-3: stylize_stage.cpp, kSweepDirections).
   void bind_sweep(uint32_t index) const { bind_pass(index); }
   // The listed diffusion step `step` (1 .. steps).
@@ -32,7 +31,7 @@ class FrameParams {
 
  private:
   void bind_pass(uint32_t index) const;
-  Buffer frame_, passes_;
+  Buffer passes_;
   GLsizeiptr pass_stride_ = 0;
 };
 

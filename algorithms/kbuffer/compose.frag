@@ -32,7 +32,7 @@ void main() {
   uint count = 0u;
   bool tied = false;
   uint previous_key = KBUFFER_EMPTY;
-  for (uint i = 0u; i < uint(kbuffer.k); ++i) {
+  for (uint i = 0u; i < uint(slots.k); ++i) {
     const uint key = kbuffer_keys[first + i];
     if (key == KBUFFER_EMPTY) break;
     if (!kbuffer_filled(first + i)) continue;  // a key whose fragment went to the tail
@@ -48,7 +48,7 @@ void main() {
     // sort (keys are sorted, so only ties move) and blend again in that
     // deterministic order.
     uint gathered = 0u;
-    for (uint i = 0u; i < uint(kbuffer.k); ++i) {
+    for (uint i = 0u; i < uint(slots.k); ++i) {
       const uint key = kbuffer_keys[first + i];
       if (key == KBUFFER_EMPTY) break;
       if (!kbuffer_filled(first + i)) continue;

@@ -18,13 +18,13 @@ void main() {
   // before it, and atomicMin there would return a smaller value and leave
   // both the slot and the key unchanged. A fragment behind all K nearest
   // thus costs log2(K) reads and no atomic.
-  uint low = 0u, high = uint(kbuffer.k);
+  uint low = 0u, high = uint(slots.k);
   while (low < high) {
     const uint middle = (low + high) >> 1;
     if (kbuffer_keys[first + middle] < key) low = middle + 1u;
     else high = middle;
   }
-  for (uint i = low; i < uint(kbuffer.k); ++i) {
+  for (uint i = low; i < uint(slots.k); ++i) {
     const uint previous = atomicMin(kbuffer_keys[first + i], key);
     if (previous == KBUFFER_EMPTY) return;  // took an empty slot: nothing left to carry
     key = max(key, previous);

@@ -16,14 +16,14 @@
 #include "harness/core/passes.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
+#include "harness/gl/uniform_block.h"
 #include "algorithms/kbuffer/bindings.h"
+#include "shaders/pixel_slots.h"
 
 namespace oit {
 namespace {
 
 constexpr GLuint kEmpty = 0xffffffffu;
-using kbuffer::KBufferFrameParams;
-static_assert(sizeof(KBufferFrameParams) == 16 && offsetof(KBufferFrameParams, k) == 4);  // std140 = C++ here
 
 // Per slot, slot_layout=full: 4 (depth key) + 4 (owner triangle id) + 16
 // (RGBA32F colour); slot_layout=paper: 4 (depth key) + 4 (RGBA8 colour).
@@ -53,7 +53,7 @@ class KBuffer final : public Technique {
         fill_(build_geometry_program("algorithms/kbuffer/fill.frag")),
         store_(build_geometry_program("algorithms/kbuffer/store.frag", layout_defines())),
         counters_(make_buffer(kCounterBytes, kZeroCounters)),
-        frame_params_(make_buffer(sizeof(KBufferFrameParams), nullptr, GL_DYNAMIC_STORAGE_BIT)) {
+        frame_params_(OIT_PIXEL_SLOTS_PARAMS_BLOCK) {
     if (!slots_.automatic()) compose_for(slots_.fixed());  // compile errors surface at construction
   }
 
@@ -87,9 +87,8 @@ class KBuffer final : public Technique {
   void render(const Frame& frame) override {
     const int k = slots_.for_frame(frame);
     const Program& compose = compose_for(k);
-    const KBufferFrameParams params{.width = width_, .k = k};
-    glNamedBufferSubData(frame_params_.id(), 0, sizeof params, &params);
-    glBindBufferBase(GL_UNIFORM_BUFFER, KBUFFER_FRAME_PARAMS_BLOCK, frame_params_.id());
+    frame_params_.values = {.width = width_, .k = k};
+    frame_params_.upload();
     {
       auto clear = frame.clock.stage("clear");
       if (k != allocated_k_) allocate_slots(k);  // k=auto: storage follows the view
@@ -203,7 +202,8 @@ class KBuffer final : public Technique {
   SlotLayout layout_;
   Program fill_, store_;
   std::map<int, Program> composes_;  // by K
-  Buffer counters_, frame_params_, keys_, owners_, colors_;
+  Buffer counters_, keys_, owners_, colors_;
+  UniformBlock<PixelSlotsParams> frame_params_;
   Texture tail_accumulation_, tail_revealage_;
   Framebuffer no_attachments_, tail_framebuffer_;
   int width_ = 0, height_ = 0;

@@ -4,7 +4,7 @@
 // pixel's keys are contiguous: llvmpipe shades a pixel on one CPU thread, and its
 // cache lines then hold a whole pixel's list.
 #include "shaders/bindings.h"
-#include "shaders/pixel_storage.glsl"
+#include "shaders/pixel_slots.glsl"
 #include "algorithms/kbuffer/bindings.h"
 
 #define KBUFFER_EMPTY 0xffffffffu
@@ -43,9 +43,9 @@ layout(std430, binding = KBUFFER_COUNTERS_BINDING) coherent buffer KBufferCounte
   uint kbuffer_dropped;
 };
 
-layout(std140, binding = KBUFFER_FRAME_PARAMS_BLOCK) uniform KBufferFrameBlock { KBufferFrameParams kbuffer; };
-
-uint kbuffer_first_slot() { return oit_pixel_index(kbuffer.width) * uint(kbuffer.k); }
+// The frame's width and k: the shared parameter block of k slots per pixel
+// (shaders/pixel_slots.h), `slots`.
+uint kbuffer_first_slot() { return slots_pixel() * uint(slots.k); }
 
 // 32-bit sort key of a view depth. Only the all-ones pattern (a NaN) would
 // collide with EMPTY, so it is clamped below it. Equal depths give equal

@@ -25,7 +25,7 @@ void main() {
   const uint first = kbuffer_first_slot();
   const uint key = kbuffer_depth_key(oit_view_depth());
   const vec4 color = oit_shade();
-  uint low = 0u, high = uint(kbuffer.k);
+  uint low = 0u, high = uint(slots.k);
   while (low < high) {
     const uint middle = (low + high) >> 1;
     if (kbuffer_keys[first + middle] < key) low = middle + 1u;
@@ -36,7 +36,7 @@ void main() {
 #else
   const uint owner = oit_triangle_id();
 #endif
-  for (uint i = low; i < uint(kbuffer.k) && kbuffer_keys[first + i] == key; ++i) {
+  for (uint i = low; i < uint(slots.k) && kbuffer_keys[first + i] == key; ++i) {
 #ifdef PAPER_SLOTS
     if (atomicCompSwap(kbuffer_packed[first + i], KBUFFER_NO_COLOR, rgba8) == KBUFFER_NO_COLOR) {
 #else

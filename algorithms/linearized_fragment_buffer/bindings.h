@@ -1,4 +1,4 @@
-// linearized_fragment_buffer's binding points, units and uniform locations,
+// linearized_fragment_buffer's binding points, units, parameter blocks and uniform location,
 // included by its C++ and its GLSL alike so that no number is copied by hand
 // between the two (shaders/bindings.h: a technique's own start at
 // OIT_FIRST_TECHNIQUE_*). The resolve is drawn by linked_list's length
@@ -31,9 +31,26 @@
 #define LFB_FLAT_COLORS_UNIT (LINKED_LIST_CLASS_TILES_UNIT + 1)
 #define LFB_FINAL_CURSORS_UNIT (LINKED_LIST_CLASS_TILES_UNIT + 2)
 
-// Uniform locations.
-#define LFB_PREFIX_SUM_COUNT_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 0)  // values at this level
-#define LFB_WIDTH_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 1)
-#define LFB_PIXELS_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 2)  // prefix_sum.comp
+// Uniform block binding points: the fill's and the resolve's parameters,
+// and the prefix sum's; beside LINKED_LIST_CLASSES_PARAMS_BLOCK, which the
+// length classes bind for the resolve.
+#define LFB_PARAMS_BLOCK 0
+#define LFB_PREFIX_SUM_PARAMS_BLOCK 2
+
+OIT_STD140_BEGIN
+struct LfbParams {
+  int width;  // the frame's width in pixels
+  uint unused_0, unused_1, unused_2;
+};
+struct PrefixSumParams {
+  int width;    // of the counts texture (PS_FROM_COUNTS)
+  uint pixels;  // counts in it
+  uint unused_0, unused_1;
+};
+OIT_STD140_END
+
+// The values a prefix sum dispatch scans, a uniform of its own: it differs
+// between the dispatches of one scan (one per level).
+#define LFB_PREFIX_SUM_COUNT_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 0)
 
 #endif

@@ -36,7 +36,6 @@ layout(std430, binding = LFB_KEYS_BINDING) writeonly buffer LfbKeys { uint64_t l
 #else
 layout(binding = LFB_NODES_IMAGE_UNIT, rg32ui) writeonly uniform uimageBuffer u_nodes;
 #endif
-layout(location = LFB_WIDTH_LOCATION) uniform int u_width;
 
 void main() {
   // No bounds check here: the resolve checks every pixel's range once.
@@ -44,7 +43,7 @@ void main() {
   const uint slot = cursor;
   cursor = slot + 1u;
 #else
-  const uint slot = imageAtomicAdd(u_cursors, int(oit_pixel_index(u_width)), 1u);
+  const uint slot = imageAtomicAdd(u_cursors, int(oit_pixel_index(lfb.width)), 1u);
 #endif
   const uvec2 key = uvec2(oit_depth_order(floatBitsToUint(oit_view_depth())), oit_triangle_id());
 #if defined(LFB_KEY64)

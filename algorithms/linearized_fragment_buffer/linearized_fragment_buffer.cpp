@@ -24,7 +24,7 @@
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "harness/gl/uniforms.h"
+#include "harness/gl/uniform_block.h"
 #include "algorithms/linearized_fragment_buffer/bindings.h"
 #include "algorithms/linearized_fragment_buffer/prefix_sum.h"
 
@@ -147,9 +147,7 @@ class LinearizedFragmentBuffer final : public Technique {
     cursors_.resize(width, height, "linearized_fragment_buffer");
     class_capacity_ = 0;
     pool_.reset(1);  // the prefix sum sizes it before every fill
-    for (const Program* fill : {&fill_, &fill_flat_})
-      if (fill->id() != 0) set_uniform(fill->id(), LFB_WIDTH_LOCATION, width);
-    for (auto& [size, program] : programs_) set_uniform(program.id(), LFB_WIDTH_LOCATION, width);
+    params_.values.width = width;
     gl_check("allocating the linearized fragment buffer's per-pixel storage");
   }
 
@@ -168,6 +166,7 @@ class LinearizedFragmentBuffer final : public Technique {
       cursors_.start(offsets_);
       fill_buffer_u32(mismatched_, 0);
     }
+    params_.upload();
     fill(frame);
     auto compose = frame.clock.stage("compose");
     frame.bind_target();
@@ -224,7 +223,6 @@ class LinearizedFragmentBuffer final : public Technique {
     cursors_.bind_image(LFB_CURSORS_IMAGE_UNIT);
     if (flat_ && fill_flat_.id() == 0) {
       fill_flat_ = build_geometry_program(kFillShader, fill_defines(true));
-      set_uniform(fill_flat_.id(), LFB_WIDTH_LOCATION, width_);
     }
     flat_table_bytes_ = flat_ ? frame.scene.flat_colors_bytes() : 0;
     draw_scene_pass(frame, flat_ ? fill_flat_ : fill_, cursors_.fill_framebuffer());
@@ -294,7 +292,6 @@ class LinearizedFragmentBuffer final : public Technique {
                                     linked_list::tile_defines(
                                         resolve_defines(size, blocks, block_, flat_, key64_, cursors_.by_framebuffer_fetch())));
       it = programs_.emplace(std::make_pair(size, flat_), std::move(built)).first;
-      set_uniform(it->second.id(), LFB_WIDTH_LOCATION, width_);
     }
     return it->second.id();
   }
@@ -313,6 +310,7 @@ class LinearizedFragmentBuffer final : public Technique {
   bool flat_ = false;  // this frame stores flat-colour nodes
   uint64_t flat_table_bytes_ = 0;
   Program fill_, fill_flat_;
+  UniformBlock<LfbParams> params_{LFB_PARAMS_BLOCK};
   ListLengthPass list_lengths_;
   lfb::PrefixSum prefix_sum_;
   linked_list::LengthClasses classes_;

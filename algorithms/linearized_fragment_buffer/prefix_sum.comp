@@ -22,8 +22,7 @@ layout(std430, binding = LFB_PREFIX_SUM_SUMS_BINDING) buffer PrefixSumSums { uin
 layout(location = LFB_PREFIX_SUM_COUNT_LOCATION) uniform uint u_count;  // values at this level
 #if defined(PS_FROM_COUNTS)
 layout(binding = LFB_PREFIX_SUM_COUNTS_UNIT) uniform sampler2D u_counts;
-layout(location = LFB_WIDTH_LOCATION) uniform int u_width;
-layout(location = LFB_PIXELS_LOCATION) uniform uint u_pixels;
+layout(std140, binding = LFB_PREFIX_SUM_PARAMS_BLOCK) uniform PrefixSumBlock { PrefixSumParams ps; };
 layout(std430, binding = LFB_PREFIX_SUM_LENGTHS_BINDING) writeonly buffer PrefixSumLengths { uint ps_lengths[]; };
 layout(std430, binding = LFB_PREFIX_SUM_LONGEST_BINDING) buffer PrefixSumLongest { uint ps_longest; };
 shared uint ps_group_longest;
@@ -32,7 +31,7 @@ shared uint ps_group_longest;
 uint value_at(uint i) {
 #if defined(PS_FROM_COUNTS)
   // Blended counts are whole numbers below 2^24: exact in float.
-  return i < u_pixels ? uint(texelFetch(u_counts, ivec2(int(i) % u_width, int(i) / u_width), 0).x) : 0u;
+  return i < ps.pixels ? uint(texelFetch(u_counts, ivec2(int(i) % ps.width, int(i) / ps.width), 0).x) : 0u;
 #else
   return i < u_count ? ps_values[i] : 0u;
 #endif
@@ -56,7 +55,7 @@ void main() {
     running += value;
     longest = max(longest, value);
 #if defined(PS_FROM_COUNTS)
-    if (first + k < u_pixels) ps_lengths[first + k] = value;
+    if (first + k < ps.pixels) ps_lengths[first + k] = value;
 #endif
   }
   ps_tree[t] = running;

@@ -54,8 +54,9 @@ void PrefixSum::dispatch(GLuint program, const Buffer& values, uint64_t count, c
 void PrefixSum::scan_counts(const Texture& counts, int width, const Buffer& offsets, const Buffer& lengths) {
   fill_buffer_u32(longest_, 0);
   bind_storage_buffers({{LFB_PREFIX_SUM_LENGTHS_BINDING, &lengths}, {LFB_PREFIX_SUM_LONGEST_BINDING, &longest_}});
-  set_uniform(scan_counts_.id(), LFB_WIDTH_LOCATION, width);
-  set_uniform(scan_counts_.id(), LFB_PIXELS_LOCATION, GLuint(pixels_));
+  params_.values.width = width;
+  params_.values.pixels = GLuint(pixels_);
+  params_.upload();
   glBindTextureUnit(LFB_PREFIX_SUM_COUNTS_UNIT, counts.id());
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   // Up: every level scans its blocks and hands their totals to the next.

@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "harness/gl/handles.h"
+#include "harness/gl/uniform_block.h"
+#include "algorithms/linearized_fragment_buffer/bindings.h"
 
 namespace oit::lfb {
 
@@ -44,6 +46,7 @@ class PrefixSum {
   void dispatch(GLuint program, const Buffer& values, uint64_t count, const Buffer& sums, uint64_t groups);
 
   Program scan_counts_, scan_, add_;
+  UniformBlock<PrefixSumParams> params_{LFB_PREFIX_SUM_PARAMS_BLOCK};
   uint64_t pixels_ = 0;
   // Level k scans levels_[k] values in blocks; their totals go to sums_[k],
   // which level k+1 scans in place. The last level is one block.

@@ -43,7 +43,6 @@ vec4 color_of(uvec3 e) {
 layout(binding = LFB_OFFSETS_UNIT) uniform usamplerBuffer u_offsets;
 // The list lengths (the counting pass's counts); classify.comp reads them too.
 layout(binding = LFB_LENGTHS_UNIT) uniform usamplerBuffer u_lengths;
-layout(location = LFB_WIDTH_LOCATION) uniform int u_width;
 
 // Every pixel's cursor started at its offset and went up once per fragment
 // the fill wrote, so it must end at offset + length. A pixel where it does
@@ -54,7 +53,7 @@ layout(location = LFB_WIDTH_LOCATION) uniform int u_width;
 // where it was a measurable part of the fill's time.
 #if defined(LFB_FETCH_CURSOR)
 layout(binding = LFB_FINAL_CURSORS_UNIT) uniform usampler2D u_final_cursors;  // the fill's R32UI target
-uint final_cursor(int pixel) { return texelFetch(u_final_cursors, ivec2(pixel % u_width, pixel / u_width), 0).x; }
+uint final_cursor(int pixel) { return texelFetch(u_final_cursors, ivec2(pixel % lfb.width, pixel / lfb.width), 0).x; }
 #else
 layout(binding = LFB_FINAL_CURSORS_UNIT) uniform usamplerBuffer u_final_cursors;  // the fill's cursor buffer
 uint final_cursor(int pixel) { return texelFetch(u_final_cursors, pixel).x; }
@@ -114,7 +113,7 @@ uint64_t e64[LL_CAPACITY];
 #if defined(LFB_NETWORK)
 
 void main() {
-  const int pixel = int(oit_pixel_index(u_width));
+  const int pixel = int(oit_pixel_index(lfb.width));
   const uint base = texelFetch(u_offsets, pixel).x;
   const uint available = texelFetch(u_lengths, pixel).x;
   check_range(pixel, base, available);
@@ -157,7 +156,7 @@ vec4 colors[LL_CAPACITY];
 uvec3 heads[LFB_BLOCKS];
 
 void main() {
-  const int pixel = int(oit_pixel_index(u_width));
+  const int pixel = int(oit_pixel_index(lfb.width));
   const uint start = texelFetch(u_offsets, pixel).x;
   const uint count = texelFetch(u_lengths, pixel).x;
   check_range(pixel, start, count);

@@ -11,6 +11,8 @@
 #include "shaders/pixel_storage.glsl"
 #include "algorithms/linearized_fragment_buffer/bindings.h"
 
+layout(std140, binding = LFB_PARAMS_BLOCK) uniform LfbBlock { LfbParams lfb; };
+
 #if defined(LFB_FLAT_COLOR)
 #define LFB_NODE_TEXELS 1u
 #else

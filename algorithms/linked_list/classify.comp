@@ -18,20 +18,21 @@ layout(std430, binding = LINKED_LIST_CLASS_COMMANDS_BINDING) coherent buffer Lin
 // Class c's tiles are ll_class_tiles[c * tile_count .. c * tile_count + instances).
 layout(std430, binding = LINKED_LIST_CLASS_TILES_BINDING) writeonly buffer LinkedListClassTiles { uint ll_class_tiles[]; };
 
-layout(location = LINKED_LIST_SIZE_LOCATION) uniform ivec2 u_size;
+layout(std140, binding = LINKED_LIST_CLASSES_PARAMS_BLOCK) uniform LengthClassesBlock { LengthClassesParams classes; };
 
 const uint kClassSizes[LL_CLASS_COUNT] = LL_CLASS_SIZES;
 
 void main() {
-  const ivec2 tiles = (u_size + LL_TILE - 1) / LL_TILE;
+  const ivec2 size = ivec2(classes.width, classes.height);
+  const ivec2 tiles = (size + LL_TILE - 1) / LL_TILE;
   const uint tile_count = uint(tiles.x * tiles.y);
   const uint tile = gl_GlobalInvocationID.x;
   if (tile >= tile_count) return;
   const ivec2 origin = ivec2(int(tile) % tiles.x, int(tile) / tiles.x) * LL_TILE;
-  const ivec2 end = min(origin + LL_TILE, u_size);
+  const ivec2 end = min(origin + LL_TILE, size);
   uint longest = 0u;
   for (int y = origin.y; y < end.y; ++y) {
-    for (int x = origin.x; x < end.x; ++x) longest = max(longest, texelFetch(u_lengths, y * u_size.x + x).x);
+    for (int x = origin.x; x < end.x; ++x) longest = max(longest, texelFetch(u_lengths, y * size.x + x).x);
   }
   // Lists longer than the largest class are truncated: the resolve skips
   // them (the truncating draw composites them), so any class will do.

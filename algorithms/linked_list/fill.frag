@@ -11,10 +11,10 @@ void main() {
   const uint position = atomicAdd(ll_lengths[pixel], 1u);
   OIT_ATOMIC_RAISE(ll_max_length, position + 1u);
   // Counted here, composited nowhere: the resolve keeps the nearest max_per_pixel.
-  if (position >= u_max_per_pixel) OIT_ATOMIC_COUNT(ll_dropped);
+  if (position >= ll.max_per_pixel) OIT_ATOMIC_COUNT(ll_dropped);
   uint index;
   OIT_ATOMIC_APPEND(ll_node_count, index);
-  if (index >= u_capacity) return;  // pool overflow: the host grows the pool and re-renders
+  if (index >= ll.capacity) return;  // pool overflow: the host grows the pool and re-renders
   const uint next = atomicExchange(ll_heads[pixel * uint(LL_HEADS) + position % uint(LL_HEADS)], index);
 #if defined(LL_COMPACT)
   ll_words[LL_NODE_WORDS * index + 0u] = floatBitsToUint(oit_view_depth());

@@ -14,10 +14,9 @@ constexpr GLuint kFullScreen = 0xffffffffu;  // u_first_tile of a full-screen dr
 constexpr GLsizeiptr kCommandBytes = 16;     // DrawArraysIndirectCommand
 constexpr GLuint kClassifyGroup = 64;        // classify.comp's local size
 
-void draw_class(const Frame& frame, GLuint program, GLint width, GLint height, GLuint first_tile) {
+void draw_class(const Frame& frame, GLuint program, GLuint first_tile) {
   glUseProgram(program);
   frame.set_shared_uniforms(program);
-  set_uniform(program, LINKED_LIST_SIZE_LOCATION, glm::ivec2(width, height));
   set_uniform(program, LINKED_LIST_FIRST_TILE_LOCATION, first_tile);
 }
 
@@ -57,6 +56,8 @@ ShaderDefines tile_defines(ShaderDefines defines) {
 void LengthClasses::resize(int width, int height, size_t max_classes) {
   width_ = width;
   height_ = height;
+  params_.values.width = width;
+  params_.values.height = height;
   max_classes_ = max_classes;
   tile_count_ = uint32_t((width + kTile - 1) / kTile) * uint32_t((height + kTile - 1) / kTile);
   commands_ = make_buffer(GLsizeiptr(max_classes) * kCommandBytes);
@@ -85,8 +86,9 @@ GLuint LengthClasses::classify_program(const std::vector<uint32_t>& sizes) {
 
 void LengthClasses::draw(const Frame& frame, const std::vector<uint32_t>& sizes,
                          const std::function<GLuint(uint32_t size)>& program_for) {
+  params_.upload();
   if (sizes.size() == 1) {
-    draw_class(frame, program_for(sizes[0]), width_, height_, kFullScreen);
+    draw_class(frame, program_for(sizes[0]), kFullScreen);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     return;
   }
@@ -99,7 +101,6 @@ void LengthClasses::draw(const Frame& frame, const std::vector<uint32_t>& sizes,
   glNamedBufferSubData(commands_.id(), 0, GLsizeiptr(commands.size() * 4), commands.data());
   const GLuint classify = classify_program(sizes);
   glUseProgram(classify);
-  set_uniform(classify, LINKED_LIST_SIZE_LOCATION, glm::ivec2(width_, height_));
   bind_storage_buffers({{LINKED_LIST_CLASS_COMMANDS_BINDING, &commands_},
                         {LINKED_LIST_CLASS_TILES_BINDING, &class_tiles_}});
   glDispatchCompute((tile_count_ + kClassifyGroup - 1) / kClassifyGroup, 1, 1);
@@ -121,7 +122,7 @@ void LengthClasses::draw(const Frame& frame, const std::vector<uint32_t>& sizes,
   glBindTextureUnit(LINKED_LIST_CLASS_TILES_UNIT, class_tiles_view_.id());
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, commands_.id());
   for (size_t c = 0; c < sizes.size(); ++c) {
-    draw_class(frame, program_for(sizes[c]), width_, height_, GLuint(c) * tile_count_);
+    draw_class(frame, program_for(sizes[c]), GLuint(c) * tile_count_);
     glDrawArraysIndirect(GL_POINTS, reinterpret_cast<const void*>(c * kCommandBytes));
   }
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);

@@ -17,6 +17,8 @@
 #include "harness/core/technique.h"
 #include "harness/gl/handles.h"
 #include "harness/gl/shader_program.h"
+#include "harness/gl/uniform_block.h"
+#include "algorithms/linked_list/bindings.h"
 
 namespace oit::linked_list {
 
@@ -58,6 +60,7 @@ class LengthClasses {
   GLuint classify_program(const std::vector<uint32_t>& sizes);
 
   int width_ = 0, height_ = 0;
+  UniformBlock<LengthClassesParams> params_{LINKED_LIST_CLASSES_PARAMS_BLOCK};
   uint32_t tile_count_ = 0;
   size_t max_classes_ = 0;
   std::map<std::string, Program> classify_;  // by class list

@@ -20,7 +20,7 @@
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "harness/gl/uniforms.h"
+#include "harness/gl/uniform_block.h"
 #include "algorithms/linked_list/bindings.h"
 #include "algorithms/linked_list/length_classes.h"
 #include "algorithms/linked_list/sorting_network.h"
@@ -84,7 +84,7 @@ class LinkedList final : public Technique {
         counters_(make_buffer(kCounterBytes)),
         pool_("linked_list", pool_kind(pool_sizing_), node_bytes(), [this](uint64_t capacity) { allocate_pool(capacity); },
               1, compact_ ? 4 : 16) {
-    set_uniform(fill_.id(), LINKED_LIST_MAX_PER_PIXEL_LOCATION, max_per_pixel_);
+    params_.values.max_per_pixel = max_per_pixel_;
     if (pool_sizing_ == PoolSizing::count) {
       count_ = build_geometry_program("algorithms/linked_list/count.frag");
       count_query_ = make_query(GL_SAMPLES_PASSED);
@@ -106,8 +106,7 @@ class LinkedList final : public Technique {
       case PoolSizing::worst_case: pool_.reset(worst_case_nodes()); break;
     }
     dummy_framebuffer_ = make_attachmentless_framebuffer(width, height);
-    set_uniform(fill_.id(), LINKED_LIST_WIDTH_LOCATION, width_);
-    for (auto& [key, program] : programs_) set_uniform(program.id(), LINKED_LIST_WIDTH_LOCATION, width_);
+    params_.values.width = width;
   }
 
   void render(const Frame& frame) override {
@@ -124,6 +123,7 @@ class LinkedList final : public Technique {
           fill_buffer_u32(counters_, 0);
         },
         [&] {
+          params_.upload();  // the capacity may have grown since the last fill
           bind_storage();
           draw_scene_pass(frame, fill_, dummy_framebuffer_);
           glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -279,7 +279,6 @@ class LinkedList final : public Technique {
               : build_fullscreen_program("algorithms/linked_list/resolve_truncated.frag",
                                          with_storage({{"LL_CAPACITY", std::to_string(array_size)}}));
       it = programs_.emplace(key, std::move(built)).first;
-      set_uniform(it->second.id(), LINKED_LIST_WIDTH_LOCATION, width_);
     }
     return it->second.id();
   }
@@ -287,7 +286,7 @@ class LinkedList final : public Technique {
   void allocate_pool(uint64_t capacity) {
     nodes_ = make_buffer(GLsizeiptr(capacity) * node_bytes());
     nodes_view_ = make_buffer_texture(nodes_, node_format());
-    set_uniform(fill_.id(), LINKED_LIST_CAPACITY_LOCATION, GLuint(capacity));
+    params_.values.capacity = GLuint(capacity);
   }
 
   void bind_storage() const {
@@ -304,6 +303,7 @@ class LinkedList final : public Technique {
   uint64_t nodes_per_pixel_;
   bool compact_;  // storage=compact: 12-byte nodes
   Program fill_, count_;
+  UniformBlock<LinkedListParams> params_{LINKED_LIST_PARAMS_BLOCK};
   Query count_query_;  // pool_sizing=count's fragment count
   std::map<std::string, Program> programs_;  // by "kind:sort:array size"
   linked_list::LengthClasses classes_;         // tiles by list length (length_classes)

@@ -43,8 +43,6 @@ layout(std430, binding = LINKED_LIST_COUNTERS_BINDING) coherent buffer LinkedLis
 };
 layout(std430, binding = LINKED_LIST_LENGTHS_BINDING) coherent buffer LinkedListLengths { uint ll_lengths[]; };
 
-layout(location = LINKED_LIST_CAPACITY_LOCATION) uniform uint u_capacity;
-layout(location = LINKED_LIST_WIDTH_LOCATION) uniform int u_width;
-layout(location = LINKED_LIST_MAX_PER_PIXEL_LOCATION) uniform uint u_max_per_pixel;
+layout(std140, binding = LINKED_LIST_PARAMS_BLOCK) uniform LinkedListBlock { LinkedListParams ll; };
 
-uint ll_pixel() { return oit_pixel_index(u_width); }
+uint ll_pixel() { return oit_pixel_index(ll.width); }

@@ -9,7 +9,7 @@
 #include "algorithms/linked_list/bindings.h"
 
 layout(binding = LINKED_LIST_CLASS_TILES_UNIT) uniform usamplerBuffer u_class_tiles;
-layout(location = LINKED_LIST_SIZE_LOCATION) uniform ivec2 u_size;
+layout(std140, binding = LINKED_LIST_CLASSES_PARAMS_BLOCK) uniform LengthClassesBlock { LengthClassesParams classes; };
 layout(location = LINKED_LIST_FIRST_TILE_LOCATION) uniform uint u_first_tile;
 
 void main() {
@@ -19,7 +19,7 @@ void main() {
     return;
   }
   // The viewport is rounded up to whole tiles (length_classes.cpp).
-  const ivec2 tiles = (u_size + LL_TILE - 1) / LL_TILE;
+  const ivec2 tiles = (ivec2(classes.width, classes.height) + LL_TILE - 1) / LL_TILE;
   const int tile = int(texelFetch(u_class_tiles, int(u_first_tile) + gl_InstanceID).x);
   const vec2 centre = (vec2(tile % tiles.x, tile / tiles.x) + 0.5) / vec2(tiles);
   gl_Position = vec4(centre * 2.0 - 1.0, 0.0, 1.0);

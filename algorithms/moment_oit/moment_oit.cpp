@@ -16,7 +16,7 @@
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "harness/gl/uniforms.h"
+#include "harness/gl/uniform_block.h"
 #include "algorithms/moment_oit/bindings.h"
 
 namespace oit {
@@ -75,11 +75,9 @@ class MomentOit final : public Technique {
       throw std::invalid_argument("moment_oit: moment_bias_scale=" + std::to_string(params.real("moment_bias_scale")) +
                                   " makes the moment bias " + std::to_string(moment_bias_) +
                                   " >= 1, which discards the moments entirely");
-    for (GLuint program : {fill_.id(), store_.id()}) {
-      set_uniform(program, MOMENT_OIT_WRAPPING_ZONE_LOCATION, float(wrapping_zone_));
-    }
-    set_uniform(store_.id(), MOMENT_OIT_MOMENT_BIAS_LOCATION, float(moment_bias_));
-    set_uniform(store_.id(), MOMENT_OIT_OVERESTIMATION_LOCATION, float(overestimation_));
+    params_.values.wrapping_zone = float(wrapping_zone_);
+    params_.values.moment_bias = float(moment_bias_);
+    params_.values.overestimation = float(overestimation_);
   }
 
   void resize(int width, int height) override {
@@ -99,7 +97,7 @@ class MomentOit final : public Technique {
   }
 
   void render(const Frame& frame) override {
-    set_depth_warp(frame);
+    upload_params(frame);
     {
       auto clear = frame.clock.stage("clear");
       const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -148,18 +146,19 @@ class MomentOit final : public Technique {
 
   std::string precision_text() const { return half_ ? "16-bit float" : "32-bit float"; }
 
-  // Depths are warped onto [-1, 1] between the projection's planes:
+  // Uploads the parameters with this frame's depth warp. Depths are warped
+  // onto [-1, 1] between the projection's planes:
   // logarithmically under perspective (the paper's warp: relative depth
   // differences matter equally near and far), linearly for an orthographic
   // projection, whose near plane may sit at or behind the eye.
-  void set_depth_warp(const Frame& frame) const {
+  void upload_params(const Frame& frame) {
     const bool perspective = frame.projection[2][3] != 0.0f;
     glm::vec2 near_far = frame.near_far();
     if (perspective) near_far = glm::log(near_far);
-    for (GLuint program : {fill_.id(), store_.id()}) {
-      set_uniform(program, MOMENT_OIT_DEPTH_WARP_LOCATION, glm::vec2(near_far.x, 1.0f / (near_far.y - near_far.x)));
-      set_uniform(program, MOMENT_OIT_LOG_DEPTH_LOCATION, perspective ? 1 : 0);
-    }
+    params_.values.warp_offset = near_far.x;
+    params_.values.warp_scale = 1.0f / (near_far.y - near_far.x);
+    params_.values.log_depth = perspective ? 1u : 0u;
+    params_.upload();
   }
 
   void bind_moments() const {
@@ -172,6 +171,7 @@ class MomentOit final : public Technique {
   bool half_;
   double moment_bias_, overestimation_, wrapping_zone_;
   Program fill_, store_, compose_;
+  UniformBlock<MomentOitParams> params_{MOMENT_OIT_PARAMS_BLOCK};
   Texture zeroth_, moments_1_4_, moments_5_8_, accumulation_;
   Framebuffer moments_framebuffer_, accumulation_framebuffer_;
   int width_ = 0, height_ = 0;

@@ -18,14 +18,7 @@
 #define MOMENT_ORDER (MOMENT_COUNT / 2)
 #define MOMENT_PI 3.14159265358979
 
-// Warp: d = clamp(2 (f(z) - f(near)) u_depth_warp.y - 1, -1, 1), f = ln for a
-// perspective projection, identity for an orthographic one;
-// u_depth_warp = (f(near), 1 / (f(far) - f(near))).
-layout(location = MOMENT_OIT_DEPTH_WARP_LOCATION) uniform vec2 u_depth_warp;
-layout(location = MOMENT_OIT_LOG_DEPTH_LOCATION) uniform bool u_log_depth;
-// Trigonometric moments: the angle left free between the far and the near
-// end of the depth range (radians), so that they do not wrap onto each other.
-layout(location = MOMENT_OIT_WRAPPING_ZONE_LOCATION) uniform float u_wrapping_zone;
+layout(std140, binding = MOMENT_OIT_PARAMS_BLOCK) uniform MomentOitBlock { MomentOitParams moment_params; };
 
 // The paper clamps a fragment's absorbance so that alpha = 1 stays finite
 // (and half-float sums stay far from overflow): e^-10 = 4.5e-5 of the light
@@ -35,14 +28,15 @@ const float kMaxAbsorbance = 10.0;
 float moment_absorbance(float alpha) { return min(-log(max(1.0 - alpha, 1e-30)), kMaxAbsorbance); }
 
 float moment_warped_depth(float view_depth) {
-  const float f = u_log_depth ? log(max(view_depth, 1e-30)) : view_depth;
-  return clamp(2.0 * (f - u_depth_warp.x) * u_depth_warp.y - 1.0, -1.0, 1.0);
+  const float f = moment_params.log_depth != 0u ? log(max(view_depth, 1e-30)) : view_depth;
+  return clamp(2.0 * (f - moment_params.warp_offset) * moment_params.warp_scale - 1.0, -1.0, 1.0);
 }
 
 // The angle of a warped depth: [-1, 1] onto [-pi + w/2, pi - w/2]; the
 // wrapping zone of width w is centred on pi = -pi.
 float moment_angle(float warped_depth) {
-  return -MOMENT_PI + 0.5 * u_wrapping_zone + 0.5 * (warped_depth + 1.0) * (2.0 * MOMENT_PI - u_wrapping_zone);
+  const float zone = moment_params.wrapping_zone;
+  return -MOMENT_PI + 0.5 * zone + 0.5 * (warped_depth + 1.0) * (2.0 * MOMENT_PI - zone);
 }
 
 // The moment vector (without the zeroth) of one unit atom at this view depth.

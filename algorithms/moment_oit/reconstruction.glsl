@@ -22,9 +22,6 @@
 #include "algorithms/moment_oit/moments.glsl"
 #include "algorithms/moment_oit/bindings.h"
 
-layout(location = MOMENT_OIT_MOMENT_BIAS_LOCATION) uniform float u_moment_bias;
-layout(location = MOMENT_OIT_OVERESTIMATION_LOCATION) uniform float u_overestimation;
-
 #define ABERTH_ITERATIONS 12
 #define MATRIX_SIZE (MOMENT_ORDER + 1)
 
@@ -99,7 +96,7 @@ float front_fraction(const float normalized[MOMENT_COUNT], float warped_depth) {
   vec2 c[MATRIX_SIZE];
   c[0] = vec2(1.0, 0.0);
   for (int k = 1; k <= MOMENT_ORDER; ++k)
-    c[k] = (1.0 - u_moment_bias) * vec2(normalized[2 * k - 2], normalized[2 * k - 1]);
+    c[k] = (1.0 - moment_params.moment_bias) * vec2(normalized[2 * k - 2], normalized[2 * k - 1]);
   vec2 L[MATRIX_SIZE][MATRIX_SIZE];
   factor(c, L);
   const float theta = moment_angle(warped_depth);
@@ -122,7 +119,7 @@ float front_fraction(const float normalized[MOMENT_COUNT], float warped_depth) {
     const float angle = atan(roots[k].y, roots[k].x);
     if (angle < theta) lower += christoffel(forward(L, angle, y));
   }
-  return clamp(lower + u_overestimation * own_weight, 0.0, 1.0);
+  return clamp(lower + moment_params.overestimation * own_weight, 0.0, 1.0);
 }
 #else
 // Bias targets: moments of a distribution inside the moment space, so that
@@ -163,7 +160,7 @@ float forward(const float L[MATRIX_SIZE][MATRIX_SIZE], float x, out float y[MATR
 float front_fraction(const float normalized[MOMENT_COUNT], float warped_depth) {
   float h[2 * MOMENT_ORDER + 1];
   h[0] = 1.0;
-  for (int k = 0; k < MOMENT_COUNT; ++k) h[k + 1] = mix(normalized[k], kBiasVector[k], u_moment_bias);
+  for (int k = 0; k < MOMENT_COUNT; ++k) h[k + 1] = mix(normalized[k], kBiasVector[k], moment_params.moment_bias);
   float L[MATRIX_SIZE][MATRIX_SIZE];
   factor(h, L);
   float y[MATRIX_SIZE];
@@ -182,6 +179,6 @@ float front_fraction(const float normalized[MOMENT_COUNT], float warped_depth) {
     const float x = roots[k].x;  // real roots: the imaginary part is rounding
     if (x < warped_depth) lower += christoffel(forward(L, x, y));
   }
-  return clamp(lower + u_overestimation * own_weight, 0.0, 1.0);
+  return clamp(lower + moment_params.overestimation * own_weight, 0.0, 1.0);
 }
 #endif

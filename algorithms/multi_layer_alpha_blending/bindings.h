@@ -1,4 +1,4 @@
-// multi_layer_alpha_blending's binding points and uniform locations, included by its C++ and
+// multi_layer_alpha_blending's binding points, included by its C++ and
 // its GLSL alike so that no number is copied by hand between the two
 // (shaders/bindings.h: a technique's own start at OIT_FIRST_TECHNIQUE_*).
 #ifndef OIT_MULTI_LAYER_ALPHA_BLENDING_BINDINGS_H
@@ -12,8 +12,6 @@
 #define MULTI_LAYER_ALPHA_BLENDING_COUNTS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 2)
 #define MULTI_LAYER_ALPHA_BLENDING_LOCKS_BINDING (OIT_FIRST_TECHNIQUE_BINDING + 3)
 
-// Uniform locations.
-#define MULTI_LAYER_ALPHA_BLENDING_WIDTH_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 0)
-#define MULTI_LAYER_ALPHA_BLENDING_LAYERS_LOCATION (OIT_FIRST_TECHNIQUE_UNIFORM + 1)
+// Its parameters: shaders/pixel_slots.h (k: the layers per pixel).
 
 #endif

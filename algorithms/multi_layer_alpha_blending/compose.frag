@@ -6,8 +6,8 @@
 layout(location = 0) out vec4 out_color;
 
 void main() {
-  const uint pixel = mlab_pixel();
-  const uint first = pixel * uint(u_k);
+  const uint pixel = slots_pixel();
+  const uint first = pixel * uint(slots.k);
   vec3 accumulated = vec3(0.0);
   float transmittance = 1.0;
   for (uint i = 0u; i < mlab_counts[pixel]; ++i) {

@@ -1,9 +1,9 @@
-// Multi-layer alpha blending's per-pixel state: up to u_k layers sorted
+// Multi-layer alpha blending's per-pixel state: up to slots.k layers sorted
 // front to back, each a premultiplied colour with its transmittance and the
 // depth of its nearest fragment; pixel-major (layer i of pixel p at
-// p * u_k + i). How many layers a pixel holds is its count word.
+// p * slots.k + i). How many layers a pixel holds is its count word.
 #include "shaders/bindings.h"
-#include "shaders/pixel_storage.glsl"
+#include "shaders/pixel_slots.glsl"
 #include "algorithms/multi_layer_alpha_blending/bindings.h"
 
 // (premultiplied rgb, transmittance) of each layer.
@@ -15,8 +15,3 @@ layout(std430, binding = MULTI_LAYER_ALPHA_BLENDING_COUNTS_BINDING) coherent buf
   uint mlab_merges;
   uint mlab_counts[];
 };
-
-layout(location = MULTI_LAYER_ALPHA_BLENDING_WIDTH_LOCATION) uniform int u_width;
-layout(location = MULTI_LAYER_ALPHA_BLENDING_LAYERS_LOCATION) uniform int u_k;
-
-uint mlab_pixel() { return oit_pixel_index(u_width); }

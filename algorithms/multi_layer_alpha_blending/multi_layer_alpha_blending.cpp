@@ -10,11 +10,12 @@
 #include <string>
 
 #include "harness/core/passes.h"
-#include "harness/core/pixel_locks.h"
+#include "harness/core/locked_pixel_counts.h"
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "harness/gl/uniforms.h"
+#include "harness/gl/uniform_block.h"
+#include "shaders/pixel_slots.h"
 #include "algorithms/multi_layer_alpha_blending/bindings.h"
 
 namespace oit {
@@ -22,8 +23,6 @@ namespace {
 
 // Per layer: RGBA32F (premultiplied rgb, transmittance) + 32-bit float depth.
 constexpr uint64_t kLayerBytes = 16 + 4;
-// Per pixel: the layer count (after one word of merges); the locks are PixelLocks'.
-constexpr uint64_t kCountBytes = 4;
 
 class MultiLayerAlphaBlending final : public Technique {
  public:
@@ -31,35 +30,31 @@ class MultiLayerAlphaBlending final : public Technique {
       : k_(int(params.integer("k"))),
         fill_(build_geometry_program("algorithms/multi_layer_alpha_blending/fill.frag")),
         compose_(build_fullscreen_program("algorithms/multi_layer_alpha_blending/compose.frag")) {
-    for (GLuint program : {fill_.id(), compose_.id()})
-      set_uniform(program, MULTI_LAYER_ALPHA_BLENDING_LAYERS_LOCATION, k_);
+    params_.values.k = k_;
   }
 
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
-    for (GLuint program : {fill_.id(), compose_.id()})
-      set_uniform(program, MULTI_LAYER_ALPHA_BLENDING_WIDTH_LOCATION, width);
+    params_.values.width = width;
     const uint64_t pixels = uint64_t(width) * uint64_t(height);
     colors_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_) * 16));
     depths_ = make_buffer(GLsizeiptr(pixels * uint64_t(k_) * 4));
-    counts_ = make_buffer(GLsizeiptr(4 + pixels * 4));
-    locks_.resize(width, height);
+    counts_.resize(width, height);
     gl_check("allocating " + std::to_string(k_) + " layers of " + std::to_string(width) + "x" +
              std::to_string(height));
     no_attachments_ = make_attachmentless_framebuffer(width, height);
   }
 
   void render(const Frame& frame) override {
+    params_.upload();
     {
       auto clear = frame.clock.stage("clear");
-      fill_buffer_u32(counts_, 0);
-      locks_.clear();
+      counts_.clear();
     }
     bind_storage_buffers({{MULTI_LAYER_ALPHA_BLENDING_COLORS_BINDING, &colors_},
-                          {MULTI_LAYER_ALPHA_BLENDING_DEPTHS_BINDING, &depths_},
-                          {MULTI_LAYER_ALPHA_BLENDING_COUNTS_BINDING, &counts_}});
-    locks_.bind(MULTI_LAYER_ALPHA_BLENDING_LOCKS_BINDING);
+                          {MULTI_LAYER_ALPHA_BLENDING_DEPTHS_BINDING, &depths_}});
+    counts_.bind(MULTI_LAYER_ALPHA_BLENDING_COUNTS_BINDING, MULTI_LAYER_ALPHA_BLENDING_LOCKS_BINDING);
     {
       auto fill = frame.clock.stage("fill");
       draw_scene_pass(frame, fill_, no_attachments_);
@@ -72,24 +67,19 @@ class MultiLayerAlphaBlending final : public Technique {
   }
 
   TechniqueCounters counters() const override {
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    GLuint merges = 0;
-    glGetNamedBufferSubData(counts_.id(), 0, 4, &merges);
     TechniqueCounters c;
-    const uint64_t pixels = uint64_t(width_) * uint64_t(height_);
-    c.bytes_allocated = pixels * (uint64_t(k_) * kLayerBytes + kCountBytes) + 4 + locks_.bytes();
-    c.fragments_dropped = locks_.failures();  // fragments whose critical section never ran
+    c.bytes_allocated = uint64_t(width_) * uint64_t(height_) * uint64_t(k_) * kLayerBytes;
     c.passes = 1;
-    c.extra = {{"merges", double(merges)}};
-    for (auto& counter : locks_.counters()) c.extra.push_back(std::move(counter));
+    counts_.report(c, "merges");
     return c;
   }
 
  private:
   int k_;
   Program fill_, compose_;
-  Buffer colors_, depths_, counts_;
-  PixelLocks locks_;
+  UniformBlock<PixelSlotsParams> params_{OIT_PIXEL_SLOTS_PARAMS_BLOCK};
+  Buffer colors_, depths_;
+  LockedPixelCounts counts_;
   Framebuffer no_attachments_;
   int width_ = 0, height_ = 0;
 };
@@ -114,7 +104,7 @@ void register_technique_multi_layer_alpha_blending(TechniqueRegistry& registry) 
       .storage_need = [](const ParamSet& params, const FrameContent& content) {
         const uint64_t layers = content.pixels() * uint64_t(params.integer("k"));
         // The largest buffer: the RGBA32F colours.
-        return StorageNeed{layers * 16, layers * kLayerBytes + content.pixels() * kCountBytes};
+        return StorageNeed{layers * 16, layers * kLayerBytes + content.pixels() * LockedPixelCounts::kBytesPerPixel};
       },
   });
 }

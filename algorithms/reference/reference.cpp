@@ -18,7 +18,7 @@
 #include "harness/core/passes.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "harness/gl/uniforms.h"
+#include "harness/gl/uniform_block.h"
 #include "algorithms/reference/bindings.h"
 
 namespace oit {
@@ -40,6 +40,7 @@ class Reference final : public Technique {
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
+    params_.values.width = width;
     heads_ = make_buffer(GLsizeiptr(width) * height * 4);
     lengths_ = make_buffer(GLsizeiptr(width) * height * 4);
     pool_.reset(uint64_t(width) * uint64_t(height) * uint64_t(nodes_per_pixel_));
@@ -55,6 +56,7 @@ class Reference final : public Technique {
           fill_buffer_u32(counter_, 0);
         },
         [&] {
+          params_.upload();  // the capacity may have grown since the last fill
           bind_storage();
           draw_scene_pass(frame, fill_, no_attachments_);
           glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -136,16 +138,13 @@ class Reference final : public Technique {
       it = resolve_.emplace(size, build_fullscreen_program("algorithms/reference/resolve.frag",
                                                            {{"MAX_FRAGMENTS", std::to_string(size)}}))
                .first;
-      set_uniform(it->second.id(), REFERENCE_WIDTH_LOCATION, width_);
     }
     return it->second;
   }
 
   void allocate_pool(uint64_t capacity) {
     nodes_ = make_buffer(GLsizeiptr(capacity) * kNodeBytes);
-    set_uniform(fill_.id(), REFERENCE_CAPACITY_LOCATION, GLuint(capacity));
-    set_uniform(fill_.id(), REFERENCE_WIDTH_LOCATION, width_);
-    for (auto& [size, program] : resolve_) set_uniform(program.id(), REFERENCE_WIDTH_LOCATION, width_);
+    params_.values.capacity = GLuint(capacity);
   }
 
   void bind_storage() const {
@@ -158,6 +157,7 @@ class Reference final : public Technique {
   int64_t nodes_per_pixel_;
   Program fill_;
   std::map<uint32_t, Program> resolve_;
+  UniformBlock<ReferenceParams> params_{REFERENCE_PARAMS_BLOCK};
   Buffer counter_, heads_, lengths_, nodes_;
   Framebuffer no_attachments_;
   Texture cpu_result_;  // only for frames resolved on the CPU

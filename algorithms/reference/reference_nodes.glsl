@@ -22,5 +22,4 @@ layout(std430, binding = REFERENCE_COUNTER_BINDING) coherent buffer ReferenceCou
 };
 layout(std430, binding = REFERENCE_LENGTHS_BINDING) coherent buffer ReferenceLengths { uint lengths[]; };
 
-layout(location = REFERENCE_CAPACITY_LOCATION) uniform uint u_capacity;
-layout(location = REFERENCE_WIDTH_LOCATION) uniform int u_width;
+layout(std140, binding = REFERENCE_PARAMS_BLOCK) uniform ReferenceBlock { ReferenceParams reference; };

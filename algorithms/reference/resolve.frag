@@ -25,7 +25,7 @@ uint indices[MAX_FRAGMENTS];
 
 void main() {
   uint count = 0u;
-  uint cursor = heads[oit_pixel_index(u_width)];
+  uint cursor = heads[oit_pixel_index(reference.width)];
   while (cursor != REFERENCE_NIL && count < uint(MAX_FRAGMENTS)) {
     uvec4 link = nodes[cursor].link;
     keys[count] = sort_key(link);

@@ -6,8 +6,7 @@
 #include "shaders/shading.glsl"
 #include "algorithms/weighted_blended/bindings.h"
 
-// View depths of the projection's near and far planes (eqs. 7-9 only).
-layout(location = WEIGHTED_BLENDED_NEAR_FAR_LOCATION) uniform vec2 u_near_far;
+layout(std140, binding = WEIGHTED_BLENDED_PARAMS_BLOCK) uniform WeightedBlendedBlock { WeightedBlendedParams wb; };
 
 layout(location = 0) out vec4 out_accumulation;
 layout(location = 1) out vec4 out_revealage;
@@ -16,7 +15,7 @@ layout(location = 1) out vec4 out_revealage;
 // Scenes here come in any scale, so the view depth is mapped linearly from
 // [near, far] of the projection onto that range first.
 float paper_depth(float view_depth) {
-  const float t = clamp((view_depth - u_near_far.x) / (u_near_far.y - u_near_far.x), 0.0, 1.0);
+  const float t = clamp((view_depth - wb.near_view_depth) / (wb.far_view_depth - wb.near_view_depth), 0.0, 1.0);
   return mix(0.1, 500.0, t);
 }
 

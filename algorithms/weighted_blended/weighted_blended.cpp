@@ -9,7 +9,7 @@
 #include "harness/core/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
-#include "harness/gl/uniforms.h"
+#include "harness/gl/uniform_block.h"
 #include "algorithms/weighted_blended/bindings.h"
 
 namespace oit {
@@ -48,7 +48,10 @@ class WeightedBlended final : public Technique {
     }
     {
       auto fill = frame.clock.stage("fill");
-      set_uniform(fill_.id(), WEIGHTED_BLENDED_NEAR_FAR_LOCATION, frame.near_far());
+      const glm::vec2 near_far = frame.near_far();
+      params_.values.near_view_depth = near_far.x;
+      params_.values.far_view_depth = near_far.y;
+      params_.upload();
       draw_weighted_blended_scene_pass(frame, fill_, framebuffer_);
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -72,6 +75,7 @@ class WeightedBlended final : public Technique {
  private:
   bool half_;
   Program fill_, compose_;
+  UniformBlock<WeightedBlendedParams> params_{WEIGHTED_BLENDED_PARAMS_BLOCK};
   Texture accumulation_, revealage_;
   Framebuffer framebuffer_;
   int width_ = 0, height_ = 0;

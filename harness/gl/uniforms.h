@@ -2,6 +2,9 @@
 // The one way to set a uniform: at the location that shaders/bindings.h or
 // the technique's algorithms/<id>/bindings.h fixes for C++ and GLSL alike
 // (`layout(location = ...)`), with the GL call chosen by the value's type.
+// A technique's parameters are a uniform block instead
+// (harness/gl/uniform_block.h); a plain uniform is left for a value that
+// changes between the draws or dispatches of one frame.
 #include <glm/glm.hpp>
 
 #include "harness/gl/gl.h"
