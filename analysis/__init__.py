@@ -1,4 +1,4 @@
-"""oitbench analysis: result CSVs (harness/core/results_csv.cpp) into plots.
+"""oitbench analysis: result CSVs (harness/run/results_csv.cpp) into plots.
 
 Every module is both importable (the tests inspect the matplotlib figures its
 functions return) and runnable from the repository root as

@@ -105,7 +105,7 @@ ERROR_FLOOR, ERROR_CEILING = 1e-4, 1.0
 
 def srgb(linear):
     """Linear RGB in [0, 1] as sRGB for display (IEC 61966-2-1, as the
-    harness's display PNGs: harness/core/image.h srgb_encode)."""
+    harness's display PNGs: harness/output/image.h srgb_encode)."""
     c = np.clip(linear, 0.0, 1.0)
     return np.where(c <= 0.0031308, 12.92 * c, 1.055 * np.power(c, 1 / 2.4) - 0.055)
 

@@ -19,7 +19,7 @@ from collections import OrderedDict
 RUN_COLUMNS = ["technique", "params", "scene", "scene_params", "camera", "width", "height", "scene_rect"]
 MACHINE_COLUMNS = ["device", "gl_version", "platform"]
 KEY_COLUMNS = ["technique", "status"]  # what every reader of results needs
-# What each column of a row can hold (harness/core/results_csv.cpp,
+# What each column of a row can hold (harness/run/results_csv.cpp,
 # csv_rows): a row shifted by a stray quote or a lost field fails these.
 PLAUSIBLE = {"timestamp": (r"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ", "a UTC timestamp"),
              "git_revision": (r"[0-9A-Za-z._+-]*", "a git revision"),

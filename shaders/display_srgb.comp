@@ -1,5 +1,5 @@
 #version 450 core
-// The viewer's scene area as the PNG writer writes it (harness/core/image.h,
+// The viewer's scene area as the PNG writer writes it (harness/output/image.h,
 // PngEncoding::display): the linear image's RGB clamped and sRGB-encoded
 // (IEC 61966-2-1), alpha 1, into an RGBA8 image the window copies 1:1.
 layout(local_size_x = 8, local_size_y = 8) in;

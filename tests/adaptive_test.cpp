@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "harness/app/adaptive.h"
-#include "harness/core/results_csv.h"
+#include "harness/run/results_csv.h"
 #include "tests/oitbench_process.h"
 
 namespace oit {

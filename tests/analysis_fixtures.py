@@ -1,5 +1,5 @@
 """CSV fixtures for the analysis tests, in the exact column layout the harness
-writes: the column list is read from harness/core/results_csv.cpp itself, so
+writes: the column list is read from harness/run/results_csv.cpp itself, so
 a new column there cannot leave the fixtures silently out of date."""
 import csv
 import itertools
@@ -12,7 +12,7 @@ DEVICE = "llvmpipe (LLVM 15.0.6, 256 bits)"  # holds a comma: the fixtures must 
 
 
 def csv_columns():
-    with open(os.path.join(REPO, "harness", "core", "results_csv.cpp")) as f:
+    with open(os.path.join(REPO, "harness", "run", "results_csv.cpp")) as f:
         source = f.read()
     block = re.search(r"csv_columns\(\) \{.*?=\s*\{(.*?)\};", source, re.S).group(1)
     return re.findall(r'"([a-z0-9_]+)"', block)

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """analysis/plot_stages.py reads the CSV the harness writes and plots the
 median of each stage: checked on a CSV with known numbers, in the exact
-column layout of harness/core/results_csv.cpp."""
+column layout of harness/run/results_csv.cpp."""
 import os
 import subprocess
 import sys

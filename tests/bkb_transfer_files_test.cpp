@@ -14,7 +14,7 @@
 
 #include "algorithms/bucketed_kbuffer/transfer_files.h"
 #include "algorithms/bucketed_kbuffer/transfer_functions.h"
-#include "harness/core/error_metrics.h"
+#include "harness/output/error_metrics.h"
 #include "tests/gl_fixture.h"
 
 namespace oit {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "algorithms/bucketed_kbuffer/transfer_functions.h"
-#include "harness/core/error_metrics.h"
+#include "harness/output/error_metrics.h"
 #include "tests/gl_fixture.h"
 #include "tests/kbuffer_checks.h"
 #include "scenes/stacked_quads.h"

@@ -12,7 +12,7 @@
 #include "base/suggest.h"
 #include "harness/app/bench_report.h"
 #include "harness/app/sweep.h"
-#include "harness/core/technique.h"
+#include "harness/toolkit/technique.h"
 
 namespace oit {
 namespace {

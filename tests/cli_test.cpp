@@ -16,10 +16,10 @@
 
 #include "harness/app/commands.h"
 #include "harness/app/pareto.h"
-#include "harness/core/image.h"
+#include "harness/output/image.h"
 #include "tests/oitbench_process.h"
-#include "harness/core/results_csv.h"
-#include "harness/core/technique.h"
+#include "harness/run/results_csv.h"
+#include "harness/toolkit/technique.h"
 #include "scenes/scene_library.h"
 #include "scenes/stacked_quads.h"
 

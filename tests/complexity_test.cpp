@@ -10,8 +10,8 @@
 
 #include "harness/app/sweep.h"
 #include "scenes/cameras.h"
-#include "harness/core/complexity.h"
-#include "harness/core/heatmap.h"
+#include "harness/run/complexity.h"
+#include "harness/output/heatmap.h"
 #include "tests/gl_fixture.h"
 #include "scenes/scene_library.h"
 

@@ -8,7 +8,7 @@
 
 #include "harness/app/doctor.h"
 #include "harness/app/stress.h"
-#include "harness/core/technique.h"
+#include "harness/toolkit/technique.h"
 #include "tests/oitbench_process.h"
 
 namespace oit {

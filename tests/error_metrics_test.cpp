@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "harness/core/error_metrics.h"
+#include "harness/output/error_metrics.h"
 
 namespace oit {
 namespace {
@@ -66,7 +66,7 @@ TEST(ErrorMetrics, NanMakesTheErrorInfiniteAndSizesMustMatch) {
 }  // namespace
 }  // namespace oit
 
-#include "harness/core/heatmap.h"
+#include "harness/output/heatmap.h"
 
 namespace oit {
 namespace {

@@ -14,7 +14,7 @@
 #include <sstream>
 #include <thread>
 
-#include "harness/core/output_file.h"
+#include "harness/output/output_file.h"
 #include "scenes/scene_library.h"
 #include "tests/gl_fixture.h"
 #include "tests/oitbench_process.h"

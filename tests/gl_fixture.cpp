@@ -12,8 +12,8 @@
 #include <map>
 #include <stdexcept>
 
-#include "harness/core/image.h"
-#include "harness/core/prepared_run.h"
+#include "harness/output/image.h"
+#include "harness/run/prepared_run.h"
 #include "harness/gl/check.h"
 #include "scenes/scene.h"
 #include "scenes/scene_library.h"

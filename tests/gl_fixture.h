@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/runner.h"
+#include "harness/run/runner.h"
 
 namespace oit::test {
 

@@ -3,7 +3,7 @@
 // Registered in tests/CMakeLists.txt to run under `xvfb-run -a`.
 #include <gtest/gtest.h>
 
-#include "harness/core/runner.h"
+#include "harness/run/runner.h"
 #include "harness/gl/glfw_window.h"
 #include "scenes/stacked_quads.h"
 #include "tests/gl_fixture.h"

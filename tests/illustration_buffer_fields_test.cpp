@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/image.h"
+#include "harness/output/image.h"
 #include "scenes/random_scenes.h"
 #include "tests/gl_fixture.h"
 

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "harness/core/image.h"
+#include "harness/output/image.h"
 #include "tests/gl_fixture.h"
 
 namespace oit {

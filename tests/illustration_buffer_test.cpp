@@ -12,8 +12,8 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "harness/core/complexity.h"
-#include "harness/core/image.h"
+#include "harness/run/complexity.h"
+#include "harness/output/image.h"
 #include "harness/gl/context.h"
 #include "tests/gl_fixture.h"
 #include "scenes/scene_library.h"

@@ -16,10 +16,10 @@
 #include <utility>
 
 #include "harness/app/sweep.h"
-#include "harness/core/error_metrics.h"
-#include "harness/core/flip.h"
-#include "harness/core/heatmap.h"
-#include "harness/core/image.h"
+#include "harness/output/error_metrics.h"
+#include "harness/output/flip.h"
+#include "harness/output/heatmap.h"
+#include "harness/output/image.h"
 #include "tests/oitbench_process.h"
 #include "tests/png_file.h"
 

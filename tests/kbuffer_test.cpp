@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "harness/core/error_metrics.h"
+#include "harness/output/error_metrics.h"
 #include "tests/gl_fixture.h"
 #include "tests/kbuffer_checks.h"
 

@@ -13,7 +13,7 @@
 
 #include "algorithms/linked_list/length_classes.h"
 #include "algorithms/linked_list/sorting_network.h"
-#include "harness/core/complexity.h"
+#include "harness/run/complexity.h"
 #include "tests/gl_fixture.h"
 #include "scenes/scene_library.h"
 #include "scenes/stacked_quads.h"

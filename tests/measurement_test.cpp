@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/statistics.h"
+#include "harness/run/statistics.h"
 #include "tests/gl_fixture.h"
 #include "tests/oitbench_process.h"
 

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <set>
 
-#include "harness/core/complexity.h"
+#include "harness/run/complexity.h"
 #include "tests/gl_fixture.h"
 #include "scenes/mesh_loader.h"
 #include "scenes/model_files.h"

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "harness/core/results_csv.h"
+#include "harness/run/results_csv.h"
 
 namespace oit::test {
 

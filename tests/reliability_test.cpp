@@ -20,10 +20,10 @@
 #include <sstream>
 
 #include "harness/app/sweep.h"
-#include "harness/core/memory_failure.h"
-#include "harness/core/output_file.h"
+#include "harness/run/memory_failure.h"
+#include "harness/output/output_file.h"
 #include "harness/gl/check.h"
-#include "harness/core/results_csv.h"
+#include "harness/run/results_csv.h"
 #include "tests/oitbench_process.h"
 
 namespace oit {

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "harness/core/results_csv.h"
+#include "harness/run/results_csv.h"
 
 namespace oit {
 namespace {

@@ -1,4 +1,4 @@
-// The harness's scene rectangle (core/scene_rect.h, render_frame): the
+// The harness's scene rectangle (harness/toolkit/scene_rect.h, render_frame): the
 // projection of the bounding box, and that scissoring every technique to it
 // changes no image, also when the rectangle moves from frame to frame (a
 // technique's per-pixel state outside the old rectangle must not leak in).
@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "harness/app/sweep.h"
-#include "harness/core/results_csv.h"
+#include "harness/run/results_csv.h"
 #include "tests/gl_fixture.h"
 #include "scenes/scene.h"
 #include "scenes/scene_library.h"

@@ -4,7 +4,7 @@
 
 #include <set>
 
-#include "harness/core/complexity.h"
+#include "harness/run/complexity.h"
 #include "tests/gl_fixture.h"
 #include "scenes/scene_library.h"
 

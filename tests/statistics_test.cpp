@@ -1,7 +1,7 @@
 // Order statistics of per-frame samples (what every CSV row reports).
 #include <gtest/gtest.h>
 
-#include "harness/core/statistics.h"
+#include "harness/run/statistics.h"
 
 namespace oit {
 namespace {

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/list_length_pass.h"
-#include "harness/core/technique.h"
+#include "harness/toolkit/list_length_pass.h"
+#include "harness/toolkit/technique.h"
 #include "scenes/scene_library.h"
 #include "tests/gl_fixture.h"
 

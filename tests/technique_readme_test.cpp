@@ -12,7 +12,7 @@
 #include <set>
 
 #include "harness/app/commands.h"
-#include "harness/core/technique.h"
+#include "harness/toolkit/technique.h"
 #include "tests/oitbench_process.h"
 
 namespace oit {

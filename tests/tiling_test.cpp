@@ -1,4 +1,4 @@
-// Automatic screen tiling (core/tiling.h): tile plans against the device's
+// Automatic screen tiling (harness/run/tiling.h): tile plans against the device's
 // limits, the sub-frustum of a window, and every technique rendering the
 // same image in tiles as untiled (forced with a small memory budget, tile
 // borders through the middle of the objects), plus the papers' 512x512
@@ -10,8 +10,8 @@
 
 #include <cmath>
 
-#include "harness/core/fragment_pool.h"
-#include "harness/core/tiling.h"
+#include "harness/toolkit/fragment_pool.h"
+#include "harness/run/tiling.h"
 #include "scenes/scene_library.h"
 #include "scenes/stacked_quads.h"
 #include "tests/gl_fixture.h"

@@ -6,7 +6,7 @@
 // harness's error_heatmap for the error view.
 //
 // Tolerance: every RGB channel within 1 of 255. Both sRGB-encode the
-// linear image (harness/core/image.h, PngEncoding::display): the viewer in
+// linear image (harness/output/image.h, PngEncoding::display): the viewer in
 // a compute shader (GLSL pow, conversion to 8 bits by GL), the PNG writer
 // with std::pow and lround; the two may round differently at a half step.
 // Alpha is not compared (both are opaque).
@@ -17,9 +17,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "harness/core/heatmap.h"
-#include "harness/core/image.h"
-#include "harness/core/runner.h"
+#include "harness/output/heatmap.h"
+#include "harness/output/image.h"
+#include "harness/run/runner.h"
 #include "tests/gl_fixture.h"
 #include "tests/png_file.h"
 

@@ -9,10 +9,10 @@
 // depth complexity; otherwise it depends on the rasterisation order.
 #include <string>
 
-#include "harness/core/fill_store_compose.h"
-#include "harness/core/passes.h"
-#include "harness/core/locked_pixel_counts.h"
-#include "harness/core/technique.h"
+#include "harness/toolkit/fill_store_compose.h"
+#include "harness/toolkit/passes.h"
+#include "harness/toolkit/locked_pixel_counts.h"
+#include "harness/toolkit/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
 #include "harness/gl/uniform_block.h"

@@ -18,9 +18,9 @@
 #include <stdexcept>
 
 #include "algorithms/bucketed_kbuffer/accuracy.h"
-#include "harness/core/list_length_pass.h"
-#include "harness/core/technique.h"
-#include "harness/core/passes.h"
+#include "harness/toolkit/list_length_pass.h"
+#include "harness/toolkit/technique.h"
+#include "harness/toolkit/passes.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
 #include "harness/gl/uniform_block.h"

@@ -1,8 +1,8 @@
 // The descriptor of the bucketed k-buffer: parameters, stages, support check.
 #include <string>
 
-#include "harness/core/fragment_pool.h"
-#include "harness/core/technique.h"
+#include "harness/toolkit/fragment_pool.h"
+#include "harness/toolkit/technique.h"
 #include "algorithms/bucketed_kbuffer/choices.h"
 #include "algorithms/bucketed_kbuffer/transfer_functions.h"
 

@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/passes.h"
-#include "harness/core/peeling.h"
+#include "harness/toolkit/passes.h"
+#include "harness/toolkit/peeling.h"
 #include "harness/gl/check.h"
 #include "harness/gl/pass_queries.h"
 #include "harness/gl/shader_program.h"

@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "algorithms/depth_peeling/by_triangle_id.h"
-#include "harness/core/passes.h"
-#include "harness/core/peeling.h"
-#include "harness/core/technique.h"
+#include "harness/toolkit/passes.h"
+#include "harness/toolkit/peeling.h"
+#include "harness/toolkit/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/pass_queries.h"
 #include "harness/gl/shader_program.h"

@@ -4,7 +4,7 @@
 // whatever the submission order.
 #include <memory>
 
-#include "harness/core/technique.h"
+#include "harness/toolkit/technique.h"
 
 namespace oit {
 

@@ -14,9 +14,9 @@
 #include <string>
 
 #include "algorithms/dual_depth_peeling/by_triangle_id.h"
-#include "harness/core/technique.h"
-#include "harness/core/passes.h"
-#include "harness/core/peeling.h"
+#include "harness/toolkit/technique.h"
+#include "harness/toolkit/passes.h"
+#include "harness/toolkit/peeling.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
 #include "algorithms/dual_depth_peeling/bindings.h"

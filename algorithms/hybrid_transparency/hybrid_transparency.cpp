@@ -8,10 +8,10 @@
 // complexity; otherwise only the tail is approximate.
 #include <string>
 
-#include "harness/core/fill_store_compose.h"
-#include "harness/core/list_length_pass.h"
-#include "harness/core/passes.h"
-#include "harness/core/technique.h"
+#include "harness/toolkit/fill_store_compose.h"
+#include "harness/toolkit/list_length_pass.h"
+#include "harness/toolkit/passes.h"
+#include "harness/toolkit/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
 #include "harness/gl/uniform_block.h"

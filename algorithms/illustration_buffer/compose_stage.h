@@ -6,7 +6,7 @@
 // opacity.
 #include "algorithms/illustration_buffer/frame_plan.h"
 #include "algorithms/illustration_buffer/settings.h"
-#include "harness/core/technique.h"
+#include "harness/toolkit/technique.h"
 
 namespace oit::illustration_buffer {
 

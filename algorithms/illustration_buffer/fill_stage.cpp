@@ -4,7 +4,7 @@
 
 #include "algorithms/illustration_buffer/bindings.h"
 #include "algorithms/illustration_buffer/shader_variant.h"
-#include "harness/core/passes.h"
+#include "harness/toolkit/passes.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
 

@@ -15,8 +15,8 @@
 #include "algorithms/illustration_buffer/frame_params.h"
 #include "algorithms/illustration_buffer/frame_plan.h"
 #include "algorithms/illustration_buffer/records.h"
-#include "harness/core/list_length_pass.h"
-#include "harness/core/technique.h"
+#include "harness/toolkit/list_length_pass.h"
+#include "harness/toolkit/technique.h"
 
 namespace oit::illustration_buffer {
 

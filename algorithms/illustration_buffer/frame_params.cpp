@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "harness/core/passes.h"
+#include "harness/toolkit/passes.h"
 #include "harness/gl/check.h"
 
 namespace oit::illustration_buffer {

@@ -10,7 +10,7 @@
 #include "algorithms/illustration_buffer/dispatch.h"
 #include "algorithms/illustration_buffer/frame_params.h"
 #include "algorithms/illustration_buffer/settings.h"
-#include "harness/core/technique.h"
+#include "harness/toolkit/technique.h"
 
 namespace oit::illustration_buffer {
 

@@ -11,7 +11,7 @@
 
 #include "algorithms/illustration_buffer/accuracy.h"
 #include "algorithms/illustration_buffer/settings.h"
-#include "harness/core/fragment_pool.h"
+#include "harness/toolkit/fragment_pool.h"
 #include "harness/gl/handles.h"
 
 namespace oit::illustration_buffer {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/list_length_pass.h"
-#include "harness/core/technique.h"
+#include "harness/toolkit/list_length_pass.h"
+#include "harness/toolkit/technique.h"
 
 namespace oit::illustration_buffer {
 

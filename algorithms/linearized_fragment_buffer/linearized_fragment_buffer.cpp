@@ -1,5 +1,5 @@
 // linearized_fragment_buffer: the l-LFB of Knowles et al. 2012, exact. A
-// counting pass (additive blending, core/list_length_pass.h) gives every
+// counting pass (additive blending, harness/toolkit/list_length_pass.h) gives every
 // pixel's fragment count; a prefix sum in compute turns the counts into
 // offsets, so each pixel owns one contiguous range of a pool of exactly the
 // frame's fragments; the fill writes every fragment at its pixel's offset +
@@ -18,10 +18,10 @@
 
 #include "algorithms/linked_list/length_classes.h"
 #include "algorithms/linked_list/sorting_network.h"
-#include "harness/core/fragment_pool.h"
-#include "harness/core/list_length_pass.h"
-#include "harness/core/passes.h"
-#include "harness/core/technique.h"
+#include "harness/toolkit/fragment_pool.h"
+#include "harness/toolkit/list_length_pass.h"
+#include "harness/toolkit/passes.h"
+#include "harness/toolkit/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
 #include "harness/gl/uniform_block.h"

@@ -6,7 +6,7 @@
 // n totals, not n log n), and writes its block's total to ps_sums. PS_ADD:
 // adds the scanned block totals of the level above to every value.
 // PS_FROM_COUNTS: the level-0 values are read from the R32F per-pixel count
-// target of core/list_length_pass.h (pixel i at (i % width, i / width);
+// target of harness/toolkit/list_length_pass.h (pixel i at (i % width, i / width);
 // index width*height and beyond are 0) instead of ps_values; that level
 // also writes each pixel's count as a uint (ps_lengths) and raises
 // ps_longest to the largest count, so that the host reads back two words

@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "harness/core/list_length_pass.h"
+#include "harness/toolkit/list_length_pass.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
 #include "harness/gl/uniforms.h"

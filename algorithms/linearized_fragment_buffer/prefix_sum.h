@@ -1,6 +1,6 @@
 #pragma once
 // The prefix sum of the linearized fragment buffer: per-pixel fragment
-// counts (the R32F target of core/list_length_pass.h) into per-pixel offsets.
+// counts (the R32F target of harness/toolkit/list_length_pass.h) into per-pixel offsets.
 // On the GPU: a work-efficient scan (prefix_sum.comp) of 1024 values per
 // workgroup, applied recursively to the workgroups' totals and added back,
 // so any number of pixels takes O(n) work in a few dispatches (two levels up

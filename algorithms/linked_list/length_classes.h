@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/technique.h"
+#include "harness/toolkit/technique.h"
 #include "harness/gl/handles.h"
 #include "harness/gl/shader_program.h"
 #include "harness/gl/uniform_block.h"

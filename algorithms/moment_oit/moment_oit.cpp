@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/passes.h"
-#include "harness/core/technique.h"
+#include "harness/toolkit/passes.h"
+#include "harness/toolkit/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
 #include "harness/gl/uniform_block.h"

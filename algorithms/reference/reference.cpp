@@ -13,9 +13,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "harness/core/fragment_pool.h"
-#include "harness/core/technique.h"
-#include "harness/core/passes.h"
+#include "harness/toolkit/fragment_pool.h"
+#include "harness/toolkit/technique.h"
+#include "harness/toolkit/passes.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
 #include "harness/gl/uniform_block.h"

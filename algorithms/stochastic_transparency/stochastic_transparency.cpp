@@ -10,8 +10,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "harness/core/passes.h"
-#include "harness/core/technique.h"
+#include "harness/toolkit/passes.h"
+#include "harness/toolkit/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
 #include "harness/gl/uniforms.h"

@@ -1,6 +1,6 @@
 // unsorted: alpha blending in submission order, no sorting at all. The speed
 // floor and the error ceiling of every comparison.
-#include "harness/core/technique.h"
+#include "harness/toolkit/technique.h"
 #include "harness/gl/shader_program.h"
 
 namespace oit {

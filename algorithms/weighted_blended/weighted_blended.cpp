@@ -5,8 +5,8 @@
 // no per-fragment storage: approximate, but independent of submission order.
 #include <string>
 
-#include "harness/core/passes.h"
-#include "harness/core/technique.h"
+#include "harness/toolkit/passes.h"
+#include "harness/toolkit/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
 #include "harness/gl/uniform_block.h"

@@ -7,7 +7,7 @@
 
 #include "base/suggest.h"
 #include "harness/app/commands.h"
-#include "harness/core/results_csv.h"
+#include "harness/run/results_csv.h"
 #include "scenes/scene_library.h"
 
 namespace oit {

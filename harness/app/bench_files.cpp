@@ -4,7 +4,7 @@
 
 #include <cstdio>
 
-#include "harness/core/output_file.h"
+#include "harness/output/output_file.h"
 
 namespace oit {
 namespace {

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/csv_file.h"
-#include "harness/core/results_csv.h"
+#include "harness/output/csv_file.h"
+#include "harness/run/results_csv.h"
 
 namespace oit {
 

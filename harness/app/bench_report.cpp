@@ -10,8 +10,8 @@
 #include <sstream>
 
 #include "harness/app/sweep.h"
-#include "harness/core/results_csv.h"
-#include "harness/core/system_load.h"
+#include "harness/run/results_csv.h"
+#include "harness/run/system_load.h"
 #include "scenes/scene_library.h"
 
 namespace oit {

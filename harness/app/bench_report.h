@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/runner.h"
+#include "harness/run/runner.h"
 
 namespace oit {
 

@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "harness/app/sweep.h"
-#include "harness/core/results_csv.h"
+#include "harness/run/results_csv.h"
 
 namespace oit {
 
@@ -41,7 +41,7 @@ struct RenderOptions {
   std::string camera = "default";
   std::string scene_rect = "on";  // RunSpec::scene_rect
   std::string memory_budget;      // RunSpec::memory_budget; empty: the device's default
-  std::string png = "display";    // parse_png_encoding (harness/core/image.h)
+  std::string png = "display";    // parse_png_encoding (harness/output/image.h)
 };
 
 // `oitbench stats`: the fragment statistics of one scene view (stats_command.cpp).

@@ -11,7 +11,7 @@
 
 #include "harness/app/check_order.h"
 #include "harness/app/stress.h"
-#include "harness/core/gpu_clocks.h"
+#include "harness/run/gpu_clocks.h"
 #include "harness/gl/gl.h"
 #include "scenes/model_files.h"
 

@@ -7,9 +7,9 @@
 #include <map>
 
 #include "harness/app/commands.h"
-#include "harness/core/csv_file.h"
-#include "harness/core/output_file.h"
-#include "harness/core/results_csv.h"
+#include "harness/output/csv_file.h"
+#include "harness/output/output_file.h"
+#include "harness/run/results_csv.h"
 
 namespace oit {
 namespace {

@@ -16,7 +16,7 @@
 #include "harness/app/stress.h"
 #include "harness/app/sweep_cli.h"
 #include "harness/app/viewer/view_command.h"
-#include "harness/core/output_file.h"
+#include "harness/output/output_file.h"
 #include "harness/gl/context.h"
 
 namespace {

@@ -6,7 +6,7 @@
 
 #include "harness/app/commands.h"
 #include "scenes/cameras.h"
-#include "harness/core/complexity.h"
+#include "harness/run/complexity.h"
 #include "scenes/scene_library.h"
 
 namespace oit {

@@ -14,7 +14,7 @@
 #include <map>
 #include <sstream>
 
-#include "harness/core/results_csv.h"
+#include "harness/run/results_csv.h"
 #include "scenes/scene_library.h"
 #include "scenes/stacked_quads.h"
 #include "oit_revision.h"

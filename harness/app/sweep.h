@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/results_csv.h"
-#include "harness/core/runner.h"
+#include "harness/run/results_csv.h"
+#include "harness/run/runner.h"
 
 namespace oit {
 

@@ -59,7 +59,7 @@ const char* to_string(SceneShading shading);
 
 // Every program built while a scope lives is built for `shading` (a nested
 // scope restores the outer one when it ends). The harness opens one where it
-// creates and renders a technique for a scene (core/runner.cpp,
+// creates and renders a technique for a scene (harness/run/runner.cpp,
 // app/viewer/live_technique.cpp); programs built outside any scope are `any`.
 class SceneShadingScope {
  public:

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/prepared_run.h"
+#include "harness/run/prepared_run.h"
 
 namespace oit {
 
@@ -33,7 +33,7 @@ class LiveTechnique {
   // gets the technique created again for it first.
   // Whenever the view changes, the storage need is measured again (the
   // harness's counting pass) and the technique re-planned into screen tiles
-  // (core/tiling.h) as a bench run would be.
+  // (harness/run/tiling.h) as a bench run would be.
   void render(const SceneGpu& scene, const glm::mat4& view, const glm::mat4& projection, const glm::vec3& background);
 
   const RenderTarget& target() const { return *target_; }

@@ -1,5 +1,5 @@
 #pragma once
-// Dear ImGui widgets generated from a parameter schema (core/params.h):
+// Dear ImGui widgets generated from a parameter schema (base/params.h):
 // integer and real parameters get sliders over their range (integers that
 // accept "auto" also an "auto" checkbox beside it), booleans a checkbox,
 // choices a combo box, paths a text field applied on Enter. Nothing here

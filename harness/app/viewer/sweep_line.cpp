@@ -1,6 +1,6 @@
 #include "harness/app/viewer/sweep_line.h"
 
-#include "harness/core/output_file.h"
+#include "harness/output/output_file.h"
 
 namespace oit {
 namespace {

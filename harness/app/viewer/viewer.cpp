@@ -13,7 +13,7 @@
 #include "harness/app/viewer/param_editor.h"
 #include "scenes/cameras.h"
 #include "harness/gl/check.h"
-#include "harness/core/passes.h"
+#include "harness/toolkit/passes.h"
 #include "harness/gl/shader_program.h"
 #include "scenes/scene_library.h"
 

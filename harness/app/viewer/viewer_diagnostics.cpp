@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "harness/app/viewer/viewer.h"
-#include "harness/core/heatmap.h"
+#include "harness/output/heatmap.h"
 #include "harness/gl/check.h"
 
 namespace oit {
