@@ -6,9 +6,12 @@
 #include <optional>
 #include <string>
 
-#include "harness/run/runner.h"
-
 namespace oit {
+
+// The clocks of the GPU at one moment (a run's start or end: RunResult).
+struct GpuClockReading {
+  unsigned sm_mhz = 0, memory_mhz = 0, temperature_c = 0;
+};
 
 class GpuClocks {
  public:

@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-#include "harness/run/runner.h"
+#include "harness/run/tiling.h"
 
 namespace oit {
 

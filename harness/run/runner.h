@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "harness/run/complexity.h"
+#include "harness/run/gpu_clocks.h"
 #include "harness/output/error_metrics.h"
 #include "harness/output/image.h"
 #include "harness/run/reference_cache.h"
@@ -84,12 +85,6 @@ struct StageResult {
   std::vector<double> samples_ms;
 };
 
-// The clocks of the GPU at a run's start and end (gpu_clocks.h), where NVML
-// reports them.
-struct GpuClockReading {
-  unsigned sm_mhz = 0, memory_mhz = 0, temperature_c = 0;
-};
-
 struct RunResult {
   RunSpec spec;
   // Canonical "k=16 tail=drop": as run, every auto resolved (params), and as
@@ -137,50 +132,7 @@ struct RunResult {
   double median_total_ms() const;
 };
 
-// The RGBA32F image a technique composes into (Frame::target_framebuffer).
-struct RenderTarget {
-  Texture color;
-  Framebuffer framebuffer;
-  RenderTarget(int width, int height);  // throws GlError when incomplete
-};
-
-// The tile target of a technique rendered at one size in tiles: the plan
-// and an RGBA32F target of one tile's window. The technique must have been
-// resized to plan.frame_width() x plan.frame_height().
-class Tiling {
- public:
-  explicit Tiling(TilePlan plan);
-  const TilePlan& plan() const { return plan_; }
-  GLuint framebuffer() const { return target_ ? target_->framebuffer.id() : 0; }
-
- private:
-  TilePlan plan_;
-  std::unique_ptr<RenderTarget> target_;  // only when tiled
-};
-
-// One frame exactly as Harness::run renders it: default GL state, the whole
-// target cleared to the background (alpha 0), then, with `scene_rect`, the
-// scissor test enabled on the scene's projected rectangle (scene_rect.h)
-// while the technique renders inside the `total` stage. Scissoring limits
-// draws, glClear*/glClearNamedFramebuffer* and blits, not compute
-// dispatches, glClearTexImage or buffer clears; no fragment falls outside
-// the rectangle, so the image is the same. Shared with the interactive
-// viewer so that it has no rendering path of its own. `record` = false: a
-// warm-up frame. Returns the rectangle the technique was confined to (the
-// full image without `scene_rect`).
-// With a tiled `tiling`, each tile is a frame of its own for the technique
-// (the tile's window and projection, Frame::tile_index), rendered into the
-// tile target and its inner rectangle copied into the frame's target;
-// tiles outside the scene rectangle are skipped; `total` covers every tile.
-// `after_tile(i)` runs after tile i (after the whole frame untiled), for
-// reading counters tile by tile in a frame that is not recorded.
-ScreenRect render_frame(Technique& technique, const Frame& frame, bool record, bool scene_rect = true,
-                        const Tiling* tiling = nullptr, const std::function<void(int)>& after_tile = {});
-// The scene's projected rectangle for this frame's camera and size.
-ScreenRect scene_rect_of(const Frame& frame);
-
 class PreparedRun;
-class GpuClocks;
 
 // A run in progress (Harness::start): its technique resolved, created and
 // warmed up, its timed frames added by Harness::render_round, alone or in

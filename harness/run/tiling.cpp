@@ -9,6 +9,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "harness/gl/check.h"
 #include "harness/gl/gl.h"
 
 namespace oit {
@@ -232,6 +233,107 @@ std::vector<DiagnosticImage> combine_tile_diagnostics(const std::vector<std::vec
     }
   }
   return all;
+}
+
+void reset_gl_state() {
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glUseProgram(0);
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_SCISSOR_TEST);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+RenderTarget::RenderTarget(int width, int height) {
+  color = make_texture_2d(GL_RGBA32F, width, height);
+  framebuffer = make_framebuffer();
+  glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, color.id(), 0);
+  if (glCheckNamedFramebufferStatus(framebuffer.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    throw GlError("RGBA32F render target of " + std::to_string(width) + "x" + std::to_string(height) +
+                  " is incomplete (the device could not allocate it)");
+  }
+}
+
+ScreenRect scene_rect_of(const Frame& frame) {
+  return projected_scene_rect(frame.scene.bounding_box(), frame.projection * frame.view, frame.width, frame.height);
+}
+
+Tiling::Tiling(TilePlan plan) : plan_(std::move(plan)) {
+  if (plan_.tiled()) target_ = std::make_unique<RenderTarget>(plan_.frame_width(), plan_.frame_height());
+}
+
+void begin_target(GLuint framebuffer, const glm::vec3& background, const ScreenRect* rect) {
+  reset_gl_state();
+  const GLfloat clear_color[4] = {background.r, background.g, background.b, 0.0f};
+  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, clear_color);
+  if (rect) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(rect->x, rect->y, rect->width, rect->height);
+  }
+}
+
+namespace {
+
+ScreenRect intersection(const ScreenRect& a, const ScreenRect& b) {
+  const int x0 = std::max(a.x, b.x), y0 = std::max(a.y, b.y);
+  const int x1 = std::min(a.x + a.width, b.x + b.width), y1 = std::min(a.y + a.height, b.y + b.height);
+  return x1 > x0 && y1 > y0 ? ScreenRect{x0, y0, x1 - x0, y1 - y0} : ScreenRect{};
+}
+
+// Tile `index` of a tiled frame: the technique renders the tile's window as
+// a frame of its own; the tile's inner rectangle is copied into the target.
+// False when the tile lies outside the scene's rectangle: nothing to render.
+bool render_tile(Technique& technique, const Frame& frame, const Tiling& tiling, int index, const ScreenRect* rect) {
+  const TilePlan& plan = tiling.plan();
+  const ScreenRect& tile = plan.tiles[size_t(index)];
+  if (rect && intersection(*rect, tile).pixels() == 0) return false;
+  const ScreenRect window = plan.window(tile);
+  const Frame part{frame.scene,           frame.view,  window_projection(frame.projection, window, frame.width, frame.height),
+                   window.width,          window.height, frame.background, tiling.framebuffer(), frame.clock, index,
+                   plan.count(),          window.x,    window.y};
+  ScreenRect local;
+  if (rect) {
+    local = intersection(*rect, window);
+    local.x -= window.x;
+    local.y -= window.y;
+  }
+  begin_target(tiling.framebuffer(), frame.background, rect ? &local : nullptr);
+  frame.scene.bind();
+  technique.render(part);
+  reset_gl_state();
+  glBlitNamedFramebuffer(tiling.framebuffer(), frame.target_framebuffer, tile.x - window.x, tile.y - window.y,
+                         tile.x - window.x + tile.width, tile.y - window.y + tile.height, tile.x, tile.y,
+                         tile.x + tile.width, tile.y + tile.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  return true;
+}
+
+}  // namespace
+
+ScreenRect render_frame(Technique& technique, const Frame& frame, bool record, bool scene_rect, const Tiling* tiling,
+                        const std::function<void(int)>& after_tile) {
+  // Before the scissor: the pixels the scene cannot reach show the background.
+  const ScreenRect rect = scene_rect ? scene_rect_of(frame) : ScreenRect{0, 0, frame.width, frame.height};
+  const bool tiled = tiling && tiling->plan().tiled();
+  begin_target(frame.target_framebuffer, frame.background, scene_rect && !tiled ? &rect : nullptr);
+  frame.clock.begin_frame(record);
+  {
+    auto total = frame.clock.stage("total");
+    if (!tiled) {
+      frame.scene.bind();
+      technique.render(frame);
+      if (after_tile) after_tile(0);
+    } else {
+      for (int i = 0; i < tiling->plan().count(); ++i) {
+        if (render_tile(technique, frame, *tiling, i, scene_rect ? &rect : nullptr) && after_tile) after_tile(i);
+      }
+    }
+  }
+  frame.clock.end_frame();
+  reset_gl_state();
+  return rect;
 }
 
 }  // namespace oit

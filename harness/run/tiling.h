@@ -9,11 +9,14 @@
 // the one target. Techniques that read neighbouring pixels declare a halo
 // (TechniqueDescriptor::tile_halo): each tile is rendered with that margin
 // of the image around it, so the pixels it keeps see everything they depend
-// on. Nothing here knows any technique.
+// on. The frame itself, tiled or not, is rendered here too (render_frame):
+// the one frame path of a bench run, the reference and the viewer. Nothing
+// here knows any technique.
 #include <glm/glm.hpp>
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,6 +24,7 @@
 #include "harness/run/complexity.h"
 #include "harness/toolkit/scene_rect.h"
 #include "harness/toolkit/technique.h"
+#include "harness/gl/handles.h"
 
 namespace oit {
 
@@ -83,5 +87,53 @@ TechniqueCounters combine_tile_counters(const std::vector<TechniqueCounters>& ti
 // Diagnostic images of the tiles of one frame pasted into one image.
 std::vector<DiagnosticImage> combine_tile_diagnostics(const std::vector<std::vector<DiagnosticImage>>& tiles,
                                                       const TilePlan& plan);
+
+// Default GL state every technique may assume at the start of a frame.
+void reset_gl_state();
+// reset_gl_state(), then `framebuffer` cleared to the background (alpha 0);
+// with `rect`, the scissor confines everything after to it.
+void begin_target(GLuint framebuffer, const glm::vec3& background, const ScreenRect* rect);
+
+// The RGBA32F image a technique composes into (Frame::target_framebuffer).
+struct RenderTarget {
+  Texture color;
+  Framebuffer framebuffer;
+  RenderTarget(int width, int height);  // throws GlError when incomplete
+};
+
+// The tile target of a technique rendered at one size in tiles: the plan
+// and an RGBA32F target of one tile's window. The technique must have been
+// resized to plan.frame_width() x plan.frame_height().
+class Tiling {
+ public:
+  explicit Tiling(TilePlan plan);
+  const TilePlan& plan() const { return plan_; }
+  GLuint framebuffer() const { return target_ ? target_->framebuffer.id() : 0; }
+
+ private:
+  TilePlan plan_;
+  std::unique_ptr<RenderTarget> target_;  // only when tiled
+};
+
+// One frame exactly as Harness::run renders it: default GL state, the whole
+// target cleared to the background (alpha 0), then, with `scene_rect`, the
+// scissor test enabled on the scene's projected rectangle (scene_rect.h)
+// while the technique renders inside the `total` stage. Scissoring limits
+// draws, glClear*/glClearNamedFramebuffer* and blits, not compute
+// dispatches, glClearTexImage or buffer clears; no fragment falls outside
+// the rectangle, so the image is the same. Shared with the interactive
+// viewer so that it has no rendering path of its own. `record` = false: a
+// warm-up frame. Returns the rectangle the technique was confined to (the
+// full image without `scene_rect`).
+// With a tiled `tiling`, each tile is a frame of its own for the technique
+// (the tile's window and projection, Frame::tile_index), rendered into the
+// tile target and its inner rectangle copied into the frame's target;
+// tiles outside the scene rectangle are skipped; `total` covers every tile.
+// `after_tile(i)` runs after tile i (after the whole frame untiled), for
+// reading counters tile by tile in a frame that is not recorded.
+ScreenRect render_frame(Technique& technique, const Frame& frame, bool record, bool scene_rect = true,
+                        const Tiling* tiling = nullptr, const std::function<void(int)>& after_tile = {});
+// The scene's projected rectangle for this frame's camera and size.
+ScreenRect scene_rect_of(const Frame& frame);
 
 }  // namespace oit
