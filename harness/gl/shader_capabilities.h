@@ -1,7 +1,7 @@
 #pragma once
 // Defines every program is built with, from what the current context can
 // do, so that a shader takes a faster path where the driver has one and the
-// plain one elsewhere; build_program adds them (shader_program.h).
+// plain one elsewhere; build_program adds them (harness/gl/shader_program.h).
 //
 // OIT_SHADER_BALLOT: GL_ARB_shader_ballot and GL_ARB_gpu_shader_int64, for
 // the subgroup-aggregated atomics of shaders/subgroup_atomics.glsl.
@@ -13,7 +13,7 @@
 // access of shaders/ordered_access.glsl.
 #include <string>
 
-#include "harness/gl/shader_program.h"
+#include "harness/gl/shader_defines.h"
 
 namespace oit {
 

@@ -1,16 +1,12 @@
 #pragma once
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "harness/gl/handles.h"
+#include "harness/gl/shader_defines.h"
 
 namespace oit {
-
-// A #define injected after the #version line, e.g. {"K", "16"}.
-using ShaderDefine = std::pair<std::string, std::string>;
-using ShaderDefines = std::vector<ShaderDefine>;
 
 struct ShaderStageSource {
   GLenum stage;      // GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, GL_COMPUTE_SHADER
