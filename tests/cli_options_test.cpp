@@ -7,6 +7,7 @@
 #include <chrono>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include "base/params.h"
 #include "base/suggest.h"
@@ -154,6 +155,26 @@ TEST(SweepScopes, OneValueCommandsScopeAndRefuseRepeatsTheSameWay) {
             "--scene-set layer=3: scene 'quads' has no parameter 'layer'; did you mean layers?");
   EXPECT_NE(error_of([] { one_value_scene_params({}, "quadz"); }).find("unknown scene 'quadz'; did you mean quads?"),
             std::string::npos);
+}
+
+// A run's Repetition as one value gtest compares and prints: warm-up frames
+// and ms, least frames, precision, frame and seconds caps.
+std::tuple<int, double, int, double, int, double> repetition_of(const RunSpec& spec) {
+  return {spec.warmup, spec.warmup_ms, spec.frames, spec.precision, spec.max_frames, spec.max_seconds};
+}
+
+// A sweep gives every run its Repetition: precision-driven by default (the
+// device's warm-up time for a negative warmup_ms), or --frames N: exactly N
+// timed frames, with no precision target and no cap left over.
+TEST(SweepRepetition, EveryRunTakesTheSweepsRepetitionOrExactlyItsFrames) {
+  SweepOptions sweep = sweep_of({"unsorted"}, {"quads"}, {}, {});
+  sweep.auto_warmup_ms = 250.0;
+  sweep.repetition.frames = 8;
+  sweep.repetition.max_frames = 5;  // below the least frames: raised to them
+  EXPECT_EQ(repetition_of(expand_sweep(sweep, builtin_techniques()).at(0)), std::tuple(1, 250.0, 8, 0.05, 8, 2.0));
+  sweep.repetition.warmup_ms = 40.0;
+  sweep.exact_frames = 3;
+  EXPECT_EQ(repetition_of(expand_sweep(sweep, builtin_techniques()).at(0)), std::tuple(1, 40.0, 3, 0.0, 0, 0.0));
 }
 
 TEST(Baseline, MustBeASelectedTechniqueId) {

@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
           benchmark::RegisterBenchmark(benchmark_name(spec).c_str(), run_benchmark, &harness, spec, &failures)
               ->UseManualTime()
               ->Unit(benchmark::kMillisecond);
-      if (fixed_frames) benchmark->Iterations(sweep.frames);
+      if (fixed_frames) benchmark->Iterations(sweep.exact_frames);
     }
     benchmark::AddCustomContext("device", harness.device().renderer);
     // Debian's libbenchmark is compiled without NDEBUG, so the library warns

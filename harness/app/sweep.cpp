@@ -195,17 +195,17 @@ const AssignmentOption kSweepSceneSets{"--scene-set", "scene", "-s", true};
 }  // namespace
 
 void apply_repetition(const SweepOptions& options, RunSpec& spec) {
-  spec.warmup = options.warmup;
-  spec.warmup_ms = options.warmup_ms < 0.0 ? options.auto_warmup_ms : options.warmup_ms;
-  if (options.frames > 0) {
-    spec.frames = options.frames;
-    spec.precision = 0.0;
+  Repetition& repetition = spec;
+  repetition = options.repetition;
+  if (repetition.warmup_ms < 0.0) repetition.warmup_ms = options.auto_warmup_ms;
+  if (options.exact_frames > 0) {
+    repetition.frames = options.exact_frames;
+    repetition.precision = 0.0;
+    repetition.max_frames = 0;
+    repetition.max_seconds = 0.0;
     return;
   }
-  spec.frames = options.min_frames;
-  spec.precision = options.precision;
-  spec.max_frames = std::max(options.max_frames, options.min_frames);
-  spec.max_seconds = options.max_seconds;
+  repetition.max_frames = std::max(repetition.max_frames, repetition.frames);
 }
 
 std::string size_for(const std::string& text, const DeviceProfile& device) {

@@ -32,16 +32,13 @@ struct SweepOptions {
   std::vector<std::string> cameras{"default"};
   // The harness's scene rectangle (RunSpec::scene_rect): "on", "off" or both.
   std::vector<std::string> scene_rects{"on"};
-  // --frames N: exactly N timed frames (0: precision-driven: at least
-  // min_frames, more until `precision` or a cap, RunSpec).
-  int frames = 0;
-  int min_frames = 6;
-  int max_frames = 200;
-  double max_seconds = 2.0;
-  double precision = 0.05;
-  int warmup = 1;
-  // Least warm-up time; negative: the device profile's default_warmup_ms.
-  double warmup_ms = -1.0;
+  // Each run's frames: precision-driven (at least `frames`, more until
+  // `precision` or a cap), warm-up time the device profile's
+  // (warmup_ms < 0).
+  Repetition repetition{.warmup = 1, .warmup_ms = -1.0, .frames = 6, .precision = 0.05, .max_frames = 200,
+                        .max_seconds = 2.0};
+  // --frames N: exactly N timed frames instead, no precision target, no cap (0: none).
+  int exact_frames = 0;
   // What `auto` in sizes and warmup_ms become (expand_sweep): the device
   // profile's, once the context is open; before that, for validation only,
   // the software defaults.

@@ -47,21 +47,21 @@ inline void add_sweep_cli_options(CLI::App* command, SweepOptions& sweep, const 
                       "(repeatable" + size_note + ")");
   command->add_option("--camera", sweep.cameras,
                       "default, random:N:SEED (one run per view), random:N:SEED@I or max_list[:N:SEED] (repeatable)");
-  command->add_option("--frames", sweep.frames,
+  command->add_option("--frames", sweep.exact_frames,
                       "exactly this many timed frames per run, no precision target (default: precision-driven)")
       ->check(CLI::Range(1, 100000))
       ->default_str("");
-  command->add_option("--precision", sweep.precision,
+  command->add_option("--precision", sweep.repetition.precision,
                       "stop a run once the 95% interval of its median total is within +-this fraction of it")
       ->check(CLI::Range(0.001, 1.0));
-  command->add_option("--min-frames", sweep.min_frames, "timed frames at least, before the precision is judged")
+  command->add_option("--min-frames", sweep.repetition.frames, "timed frames at least, before the precision is judged")
       ->check(CLI::Range(1, 100000));
-  command->add_option("--max-frames", sweep.max_frames, "timed frames at most per run")->check(CLI::Range(1, 1000000));
-  command->add_option("--max-seconds", sweep.max_seconds, "seconds of timed frames at most per run")
+  command->add_option("--max-frames", sweep.repetition.max_frames, "timed frames at most per run")->check(CLI::Range(1, 1000000));
+  command->add_option("--max-seconds", sweep.repetition.max_seconds, "seconds of timed frames at most per run")
       ->check(CLI::Range(0.001, 1e6));
-  command->add_option("--warmup", sweep.warmup, "untimed frames first, at least (shader compilation, caches)")
+  command->add_option("--warmup", sweep.repetition.warmup, "untimed frames first, at least (shader compilation, caches)")
       ->check(CLI::Range(0, 1000));
-  command->add_option("--warmup-ms", sweep.warmup_ms,
+  command->add_option("--warmup-ms", sweep.repetition.warmup_ms,
                       "untimed frames for at least this long and until the frame time is stable (default: the "
                       "device's, 500 on a GPU, 0 on software GL; see `list`)")
       ->check(CLI::Range(0.0, 600000.0));

@@ -22,7 +22,29 @@
 
 namespace oit {
 
-struct RunSpec {
+// How many frames a run renders: its warm-up, and its timed frames and when
+// they stop. A run's (RunSpec) and the defaults a sweep gives each of its
+// runs (SweepOptions, harness/app/sweep.h).
+struct Repetition {
+  // Warm-up: at least `warmup` frames and `warmup_ms` of them, and on until
+  // the frame time is stable (the median of the last three frames within 10%
+  // of the three before) or a cap of max(4 x warmup_ms, 1 s) is reached. A
+  // sweep's negative warmup_ms is the device profile's default_warmup_ms
+  // (expand_sweep puts it in each run).
+  int warmup = 2;
+  double warmup_ms = 0.0;
+  // Timed frames: at least `frames`; with `precision` > 0, more until the 95%
+  // interval of the median total lies within +-precision of it (relative),
+  // or `max_frames` or `max_seconds` of timed frames is reached (0: no cap
+  // of that kind; a run that stops there has precision_reached false).
+  int frames = 10;
+  double precision = 0.0;
+  int max_frames = 0;
+  double max_seconds = 0.0;
+};
+
+// What one run renders, and how often (its Repetition).
+struct RunSpec : Repetition {
   std::string technique;
   RawParams params;
   std::string scene = "quads";
@@ -37,19 +59,6 @@ struct RunSpec {
   std::string camera = "default";
   int width = 256;
   int height = 256;
-  // Warm-up: at least `warmup` frames and `warmup_ms` of them, and on until
-  // the frame time is stable (the median of the last three frames within 10%
-  // of the three before) or a cap of max(4 x warmup_ms, 1 s) is reached.
-  int warmup = 2;
-  double warmup_ms = 0.0;
-  // Timed frames: at least `frames`; with `precision` > 0, more until the 95%
-  // interval of the median total lies within +-precision of it (relative),
-  // or `max_frames` or `max_seconds` of timed frames is reached (0: no cap
-  // of that kind; a run that stops there has precision_reached false).
-  int frames = 10;
-  double precision = 0.0;
-  int max_frames = 0;
-  double max_seconds = 0.0;
   std::optional<ClockKind> clock;  // default: the device profile's trusted clock
   glm::vec3 background{0.0f};
   // Scissor the technique's frame to the scene's projected rectangle
