@@ -1,4 +1,4 @@
-// The helpers harness/core gives every technique, checked on their own:
+// The helpers harness/toolkit gives every technique, checked on their own:
 // Frame::near_far for both kinds of projection, make_technique for
 // constructors with and without parameters, and SlotsPerPixel's k (fixed,
 // or counted and capped with k=auto) with the figures it reports, and

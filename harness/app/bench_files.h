@@ -1,6 +1,6 @@
 #pragma once
 // The optional files of `oitbench bench` besides its results CSV, both
-// written through the checked writers of harness/core (output_file.h,
+// written through the checked writers of harness/output (output_file.h,
 // csv_file.h), so a full disk or a bad path is an error naming the file:
 //  - --samples FILE: every timed frame's time of every stage, one row each
 //    (the CSV keeps only summaries), appended one run at a time;
