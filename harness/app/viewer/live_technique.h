@@ -6,7 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "harness/output/image.h"
 #include "harness/run/prepared_run.h"
+#include "harness/run/statistics.h"
 
 namespace oit {
 

@@ -12,6 +12,7 @@
 #include "harness/app/viewer/orbit_camera.h"
 #include "harness/app/viewer/sweep_line.h"
 #include "harness/app/viewer/view_options.h"
+#include "harness/output/error_metrics.h"
 #include "harness/output/heatmap.h"
 #include "harness/gl/glfw_window.h"
 

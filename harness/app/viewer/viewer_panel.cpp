@@ -9,6 +9,7 @@
 
 #include "harness/app/viewer/param_editor.h"
 #include "harness/app/viewer/viewer.h"
+#include "harness/run/runner.h"
 #include "scenes/scene_library.h"
 
 namespace oit {
