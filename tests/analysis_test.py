@@ -120,7 +120,7 @@ class PresentationTest(unittest.TestCase):
 
     def test_defaults_of_the_built_oitbench(self):
         built = presentation.technique_defaults(OITBENCH)
-        self.assertEqual(built["kbuffer"], {"k": "16", "tail": "drop", "auto_k_memory_mb": "1024"})
+        self.assertEqual(built["kbuffer"], {"k": "16", "tail": "drop", "slot_layout": "full", "auto_k_memory_mb": "1024"})
         self.assertEqual(built["unsorted"], {})
 
     def test_an_oitbench_that_does_not_answer_is_an_error_naming_it(self):

@@ -264,7 +264,7 @@ TEST(Cli, BenchResumeRunsErrorRowsAgainAndKeepsSkippedOnes) {
     writer.write(failed, context);
     RunResult skipped = failed;
     skipped.spec.technique = "kbuffer";
-    skipped.technique_params = "k=16 tail=drop auto_k_memory_mb=1024";  // every parameter, defaults included
+    skipped.technique_params = "k=16 tail=drop slot_layout=full auto_k_memory_mb=1024";  // every parameter, defaults included
     skipped.status = RunStatus::skipped;
     skipped.message = "needs something, \"else\"";
     writer.write(skipped, context);

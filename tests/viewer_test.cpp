@@ -138,7 +138,7 @@ TEST(ViewerLiveTechnique, RendersTheHarnessImageWithStageTimings) {
   for (const auto& t : live.timings()) has_total |= t.stage == "total" && t.summary.median > 0.0;
   EXPECT_TRUE(has_total);
   EXPECT_GT(live.counters().fragments_stored, 0u);
-  EXPECT_EQ(live.canonical_params(), "k=2 tail=drop auto_k_memory_mb=1024");
+  EXPECT_EQ(live.canonical_params(), "k=2 tail=drop slot_layout=full auto_k_memory_mb=1024");
 }
 
 // The table's medians are over frames actually timed: the first frame after
@@ -188,7 +188,7 @@ TEST(ViewerLiveTechnique, InvalidParametersAreRefusedWithTheSchemaMessageAndTheO
   EXPECT_NE(live.configure("no_such_technique", {}, quads.facts, quads.gpu.shading(), 16, 16), "");
   ASSERT_TRUE(live.ready());
   EXPECT_EQ(live.id(), "kbuffer");
-  EXPECT_EQ(live.canonical_params(), "k=4 tail=drop auto_k_memory_mb=1024");
+  EXPECT_EQ(live.canonical_params(), "k=4 tail=drop slot_layout=full auto_k_memory_mb=1024");
   const Camera& camera = quads.scene.camera;
   live.render(quads.gpu, camera.view, camera.projection(1.0f), glm::vec3(0.0f));
 }

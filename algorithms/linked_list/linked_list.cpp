@@ -327,7 +327,7 @@ void register_technique_linked_list(TechniqueRegistry& registry) {
   registry.add({
       .id = "linked_list",
       .display_name = "Per-pixel linked lists (A-buffer), float blend",
-      .paper = "Yang et al. 2010; Carnecky et al. 2013; Pastyrik & Kolingerova 2016",
+      .paper = "Yang et al. 2010; Carnecky et al. 2013; Pastyrik & Cmolik 2016",
       .params = {
           kSorts.spec("sort", Sort::network,
                       "resolve sort: insertion (Yang 2010), selection (Carnecky 2013) or an unrolled "
