@@ -1,5 +1,7 @@
 """What the papers' figures add to a plot beyond the data: the paper's own
 numbers beside ours, and which runs were measured on a busy machine."""
+import textwrap
+
 import pandas as pd
 
 from analysis import common
@@ -63,6 +65,10 @@ def finish(fig, ax, rows, what, noisy_rows=None, paper=None, paper_loc="lower ri
     if paper is not None:
         paper_box(ax, paper, loc=paper_loc)
     noisy = noisy_note(rows if noisy_rows is None else noisy_rows)
-    ax.set_title(common.title(rows, what + noisy), fontsize=8)
+    # Wrapped to the figure's width: an 8 pt character is about a fifteenth
+    # of an inch, and a title longer than the figure is cut off at both ends.
+    width = max(40, int(fig.get_figwidth() * 15))
+    text = "\n".join(textwrap.fill(line, width) for line in common.title(rows, what + noisy).split("\n"))
+    ax.set_title(text, fontsize=8)
     fig.tight_layout()
     return fig
