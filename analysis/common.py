@@ -4,6 +4,7 @@ date (times are only comparable within one device)."""
 import argparse
 import os
 import sys
+import textwrap
 
 import matplotlib
 
@@ -76,6 +77,9 @@ def title(runs, what):
     dates = sorted(runs["date"].unique())
     date_text = dates[0] if len(dates) == 1 else f"{dates[0]}..{dates[-1]}"
     devices = ", ".join(sorted(runs["device"].unique()))
+    # `what` wrapped at 110 characters: the narrowest figures (7.5 in at 8 pt)
+    # hold about that many, and a longer title is cut off at both ends.
+    what = "\n".join(textwrap.fill(line, 110) for line in what.split("\n"))
     return f"{what}\n{devices} | {size_text} | clock {', '.join(sorted(runs['clock'].unique()))} | {date_text}"
 
 
