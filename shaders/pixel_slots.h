@@ -1,7 +1,7 @@
 // The parameters of a technique that keeps k entries per pixel, pixel-major
 // (entry i of pixel p at p * k + i, oit_pixel_index): adaptive_transparency's
 // nodes, multi_layer_alpha_blending's layers, hybrid_transparency's core
-// slots. One std140 struct for their C++ (UniformBlock<PixelSlotsParams> at
+// slots, kbuffer's slots. One std140 struct for their C++ (UniformBlock<PixelSlotsParams> at
 // OIT_PIXEL_SLOTS_PARAMS_BLOCK) and their GLSL (shaders/pixel_slots.glsl).
 #ifndef OIT_SHADERS_PIXEL_SLOTS_H
 #define OIT_SHADERS_PIXEL_SLOTS_H
