@@ -220,7 +220,9 @@ def print_table(rows, unmatched, markdown, threshold, paired):
         widths = [max(len(str(line[i])) for line in [header] + lines) for i in range(len(header))]
         for line in [header] + lines:
             print("  ".join(str(cell).ljust(width) for cell, width in zip(line, widths)).rstrip())
-    test = "Wilcoxon signed-rank over the rounds' ratios" if paired else "Mann-Whitney U over the frames"
+    test = ("Wilcoxon signed-rank over the rounds' ratios; new/base is the median of the rounds' ratios, base ms "
+            "and new ms the medians of every frame, so their quotient may differ") if paired \
+        else "Mann-Whitney U over the frames"
     print(f"\n(verdict: faster/slower when p < {ALPHA} ({test}) and the whole 95% interval lies beyond the "
           f"{threshold:g}% noise threshold; `no samples`: a CSV without samples_ms; `N rounds`: fewer than "
           f"{MIN_PAIRED_ROUNDS} rounds held the configuration in both builds)")
