@@ -128,7 +128,10 @@ fi
 ROWS=()      # one Markdown row per step
 FAILED=()    # the steps that failed
 STARTED=$(date -u '+%F %T UTC')
-REVISION=$(git -C "$REPO" rev-parse HEAD 2> /dev/null || echo unknown)
+# What ran is the build's revision (the binaries may have been copied to a node
+# without the checkout's .git); the checkout's, where there is one, beside it.
+BUILD_REVISION=$(sed -n 's/^#define OIT_GIT_REVISION "\(.*\)"$/\1/p' "$BUILD/generated/oit_revision.h" 2> /dev/null)
+CHECKOUT=$(git -C "$REPO" rev-parse HEAD 2> /dev/null || echo "none (no .git here)")
 DIRTY=$(git -C "$REPO" status --porcelain 2> /dev/null | grep -vc '^??' || true)
 
 write_readme() {
@@ -139,7 +142,8 @@ write_readme() {
     echo "Written by \`tools/gpu_survey.sh\`, mode $MODE."
     echo
     echo "- started: $STARTED; this file last written: $(date -u '+%F %T UTC')"
-    echo "- git revision: $REVISION ($DIRTY files changed from it, untracked ones not counted)"
+    echo "- build's revision (what ran; '-dirty' when built from a changed tree): ${BUILD_REVISION:-unknown}"
+    echo "- checkout: $CHECKOUT (${DIRTY:-0} files changed from it, untracked ones not counted)"
     echo "- build: $BUILD"
     [ -z "$COMPARE_BUILD" ] || echo "- compared build (A/B): $COMPARE_BUILD"
     echo "- failed steps: ${FAILED[*]:-none}"
