@@ -52,7 +52,7 @@ class QuickSurvey(unittest.TestCase):
     def test_every_step_ran_and_passed(self):
         self.assertEqual(self.result.returncode, 0, self.result.stdout + self.result.stderr + self.readme)
         rows = step_rows(self.readme)
-        self.assertEqual(list(rows), ["smi_start", "list", "doctor", "ctest", "quads", "engine", "dragon", "smi_end"])
+        self.assertEqual(list(rows), ["smi_start", "list", "doctor", "ctest", "quads", "quads64", "engine", "dragon", "smi_end"])
         for step, (command, seconds, status, output) in rows.items():
             self.assertEqual(status, 0, step)
             self.assertGreaterEqual(seconds, 0.0, step)
@@ -61,8 +61,11 @@ class QuickSurvey(unittest.TestCase):
         self.assertIn("- failed steps: none", self.readme)
 
     def test_readme_records_the_revision_and_the_device(self):
-        revision = subprocess.run(["git", "-C", HERE, "rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
-        self.assertIn(f"- git revision: {revision} ", self.readme)
+        checkout = subprocess.run(["git", "-C", HERE, "rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
+        with open(os.path.join(BUILD, "generated", "oit_revision.h")) as f:
+            built = re.search(r'OIT_GIT_REVISION "(.+)"', f.read()).group(1)
+        self.assertRegex(self.readme, rf"(?m)^- build's revision \(what ran; .*\): {re.escape(built)}$")
+        self.assertIn(f"- checkout: {checkout} ", self.readme)
         self.assertIn(f"- build: {BUILD}\n", self.readme)
         self.assertRegex(self.readme, r"(?m)^# GPU survey: \S")
         device = self.readme.split("## Device (`oitbench list`)")[1]
@@ -77,7 +80,8 @@ class QuickSurvey(unittest.TestCase):
         self.assertRegex(doctor, r"(?m)^  kbuffer +exact while storage covers +exact here ")
 
     def test_bench_csvs_hold_every_run(self):
-        expected = {"quads.csv": ("quads", 2), "engine.csv": ("torus", 1), "dragon.csv": ("nested_spheres", 1)}
+        expected = {"quads.csv": ("quads", 1), "quads64.csv": ("quads", 1), "engine.csv": ("torus", 1),
+                    "dragon.csv": ("nested_spheres", 1)}
         for name, (scene, configurations) in expected.items():
             rows = total_rows(os.path.join(self.out, name))
             self.assertEqual(len(rows), 3 * configurations, name)

@@ -12,7 +12,8 @@
 #   list       `oitbench list`: the device lines, limits, EGL devices
 #   doctor     `oitbench doctor`: profile, clocks, floor, exact techniques held to their class
 #   ctest      the GL tests that matter most on a new device (ctest -R, in the build directory)
-#   quads      bench: every technique on 32 and 64 quads at 1920x1080
+#   quads      bench: every technique on 32 stacked quads at 1920x1080
+#   quads64    bench: every technique on 64 stacked quads at 1920x1080
 #   engine     bench: every technique on the engine model at 1920x1080
 #   dragon     bench: every technique on the largest packaged mesh (dragon_vrip) at 1920x1080
 #   compare    (with --compare-build) `oitbench compare --builds THIS OTHER -- <bench>` in alternating rounds
@@ -21,17 +22,19 @@
 # instead), with a README.md of what ran, rewritten after every step so that
 # a slot cut short still leaves its record.
 #
-# Time on one H100/H200, estimated from sizes (caps in parentheses: the
-# worst case, which still fits a 15-minute slot):
-#   doctor 1 min (180 s): 6 exact techniques x 5 scenes at 64x64, check-order,
-#     24 stress processes: shader compilation dominates.
-#   ctest 1.5 min (150 s): the listed GL suites at their test sizes.
-#   quads 2 min (150 s): 15 techniques x 2 layer counts = 30 runs, each 0.3 s
-#     warm-up and at most 1.5 s of timed frames (precision 2 %), in 3 rounds.
-#   engine, dragon 0.75 min each (75 s): 15 runs each, the same caps.
-#   compare 1.5 min (120 s): 3 techniques on 32 quads, 8 invocations per build
-#     (the fewest with which the paired test can reach p < 0.01).
-#   about 7.5 minutes in all (caps: 12.5 minutes).
+# Caps (seconds; a step past its cap is stopped and recorded as exit 124),
+# sized from the first full survey on an H200 (results/reference/gpu/), where
+# the raster pipeline is slow and the peelers take about 1 s a frame at
+# 1920x1080 with 32 layers, twice that with 64; the worst case still fits a
+# 15-minute slot:
+#   doctor 180: 6 exact techniques x 5 scenes at 64x64, check-order, 24 stress
+#     processes.
+#   ctest 150: the listed GL suites at their test sizes.
+#   quads 150, quads64 200: 15 runs each, each 0.3 s warm-up and at most 1.5 s
+#     of timed frames (precision 2 %) but at least 10 frames, in 3 rounds.
+#   engine, dragon 150 each: 15 runs each, the same repetition.
+#   compare 120: 3 techniques on 32 quads, 8 invocations per build (the
+#     fewest with which the paired test can reach p < 0.01).
 # --quick: llvmpipe in CI, under 2 minutes: tiny sizes, three techniques,
 # the torus and nested spheres for the models, one short ctest; --out is
 # required.
@@ -72,7 +75,7 @@ if [ -n "$COMPARE_BUILD" ]; then
 fi
 [ "$QUICK" = 0 ] || [ -n "$OUT" ] || fail_usage "--quick writes to --out DIR (results/reference is for real surveys): give one"
 
-STEPS="smi_start list doctor ctest quads engine dragon compare smi_end"
+STEPS="smi_start list doctor ctest quads quads64 engine dragon compare smi_end"
 for step in ${ONLY//,/ }; do
   case " $STEPS " in *" $step "*) ;; *) fail_usage "--only: unknown step '$step' (steps: $STEPS)" ;; esac
 done
@@ -105,24 +108,24 @@ if [ "$QUICK" = 1 ]; then
   TECHNIQUES=(-t unsorted -t linked_list -t kbuffer)
   SIZE=32x32
   REPETITION=(--frames 3 --warmup 0 --warmup-ms 0 --rounds 1)
-  QUADS_LAYERS=4,8
+  QUADS_LAYERS=4 QUADS64_LAYERS=8
   ENGINE_SCENE=(-s torus)
   DRAGON_SCENE=(-s nested_spheres)
   DOCTOR=(doctor --technique linked_list --technique kbuffer)
   CTEST_REGEX='^OrderIndependence\.ReferenceAgreesWithUncappedDepthPeelingOnMeshes$'
-  CAP_DOCTOR=100 CAP_CTEST=60 CAP_BENCH=60 CAP_COMPARE=60
+  CAP_DOCTOR=100 CAP_CTEST=60 CAP_BENCH=60 CAP_QUADS64=60 CAP_COMPARE=60
 else
   MODE="full (GPU sizes)"
   TECHNIQUES=(-t all)
   SIZE=1920x1080
   REPETITION=(--precision 0.02 --min-frames 10 --max-frames 300 --max-seconds 1.5 --warmup-ms 300 --rounds 3)
-  QUADS_LAYERS=32,64
+  QUADS_LAYERS=32 QUADS64_LAYERS=64
   ENGINE_SCENE=(-s model --scene-set name=engine)
   DRAGON_SCENE=(-s model --scene-set name=dragon_vrip)
   DOCTOR=(doctor)
   # The suites that hold every technique to its class on this device.
   CTEST_REGEX='^(OrderIndependence\.|Every/PaperSize\.|EveryTechnique/Stress\.|EveryTechnique\.|Reference|Doctor\.)'
-  CAP_DOCTOR=180 CAP_CTEST=150 CAP_BENCH=150 CAP_COMPARE=120
+  CAP_DOCTOR=180 CAP_CTEST=150 CAP_BENCH=150 CAP_QUADS64=200 CAP_COMPARE=120
 fi
 
 ROWS=()      # one Markdown row per step
@@ -201,6 +204,7 @@ step doctor "$CAP_DOCTOR" doctor.txt "$OITBENCH" "${DOCTOR[@]}" "${DOCTOR_ARGS[@
 step ctest "$CAP_CTEST" ctest.txt ctest --test-dir "$BUILD" --output-on-failure --no-tests=error -j 4 \
   --timeout "$CAP_CTEST" -R "$CTEST_REGEX"
 step quads "$CAP_BENCH" quads.txt "${BENCH[@]}" -s quads --scene-set "layers=$QUADS_LAYERS" --csv "$OUT/quads.csv"
+step quads64 "$CAP_QUADS64" quads64.txt "${BENCH[@]}" -s quads --scene-set "layers=$QUADS64_LAYERS" --csv "$OUT/quads64.csv"
 step engine "$CAP_BENCH" engine.txt "${BENCH[@]}" "${ENGINE_SCENE[@]}" --csv "$OUT/engine.csv"
 step dragon "$CAP_BENCH" dragon.txt "${BENCH[@]}" "${DRAGON_SCENE[@]}" --csv "$OUT/dragon.csv"
 if [ -n "$COMPARE_BUILD" ]; then
