@@ -8,7 +8,9 @@
 
 namespace oit {
 
-// The clocks of the GPU at one moment (a run's start or end: RunResult).
+// The clocks of the GPU at one moment: a run's start (right after its
+// warm-up) or end (right after its last timed frame), both read while the
+// GPU is still under the run's load (RunResult).
 struct GpuClockReading {
   unsigned sm_mhz = 0, memory_mhz = 0, temperature_c = 0;
 };

@@ -346,6 +346,11 @@ bool Harness::render_round(ActiveRun& run, int frames, int round) {
       run.timed_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
       result.frame_rounds.push_back(round);
     }
+    // Read while the clock still reflects the load: by finish() the GPU may
+    // have idled (a data-centre part drops to its idle clock within
+    // moments), which would flag every run. Each round overwrites it, so the
+    // last timed frame's is kept.
+    if (frames > 0 && gpu_clocks_) result.gpu_end = gpu_clocks_->read();
     return true;
   } catch (const std::exception& e) {
     result.status = RunStatus::error;
@@ -363,7 +368,6 @@ RunResult Harness::finish(ActiveRun& run) {
   try {
     result.other_process_load = parts.load->stop();
     result.noisy = result.other_process_load > kNoisyLoadThreshold;
-    result.gpu_end = gpu_clocks_ ? gpu_clocks_->read() : std::nullopt;
     if (result.gpu_start && result.gpu_end)
       if (const std::string moved = clock_moved_warning(*result.gpu_start, *result.gpu_end); !moved.empty()) {
         result.noisy = true;
