@@ -19,6 +19,9 @@ const Choices<Modulation> kModulations{{Modulation::none, "none"},
                                        {Modulation::ray_distance, "ray_distance"}};
 const Choices<SortMethod> kSorts{{SortMethod::automatic, "auto"}, {SortMethod::array, "array"},
                                  {SortMethod::dynamic, "dynamic"}, {SortMethod::static_arrays, "static_arrays"}};
+// sort=auto takes the dynamic sort up to this longest list (on a software
+// rasterizer, linked lists), the array's ranks beyond.
+constexpr uint32_t kLongestDynamicList = 4;
 const Choices<Storage> kStorages{{Storage::automatic, "auto"},
                                   {Storage::linked, "linked"},
                                   {Storage::linearized, "linearized"},
@@ -124,7 +127,11 @@ const RawParams kPaperValues = {
 // sweeps reach its fixed point, never eq. 8's), steps elsewhere.
 // flat_color_records=auto: true on a software rasterizer, false on a GPU.
 // fill=auto, where the storage is ranged: framebuffer fetch where the
-// device has it.
+// device has it. sort=auto: the dynamic sort on a software rasterizer where
+// the lists are linked and the view's longest holds at most
+// kLongestDynamicList fragments (faster there:
+// results/reference/illustration_buffer/README.md, Sort variants), else the
+// paper's array; resolved once, so the CSV names the sort that ran.
 RawParams resolve_parameters(const ParamSet& requested, const ResolveInput& input) {
   const bool software = input.device.software;
   RawParams resolved;
@@ -139,6 +146,12 @@ RawParams resolve_parameters(const ParamSet& requested, const ResolveInput& inpu
     resolved["storage"] = kStorages.name(storage);
   }
   if (storage != Storage::linked) resolved["fill"] = kSlotFills.name(resolve_slot_fill(fill, input.device));
+  if (kSorts.value(text("sort")) == SortMethod::automatic) {
+    const uint32_t longest = input.content.longest_list;  // 0: not known (the viewer)
+    const bool short_lists = longest > 0 && longest <= kLongestDynamicList;
+    resolved["sort"] = kSorts.name(software && storage == Storage::linked && short_lists ? SortMethod::dynamic
+                                                                                         : SortMethod::array);
+  }
   if (kDiffusions.value(text("diffusion")) == Diffusion::automatic) {
     const bool may_sweep = requested.real("diffusion_tolerance") == 0.0 &&
                            requested.choice("field_diffusion", kFieldDiffusions) == FieldDiffusion::nonphysical;
@@ -217,8 +230,8 @@ void register_technique_illustration_buffer(TechniqueRegistry& registry) {
               "array = rank sort in a local array (carnecky2013 4.3); dynamic = insertion sort of the linked list in "
               "the buffers (pastyrik2016 Algorithm 2; storage=linked only); static_arrays = selection sort in three "
               "local arrays of 64 entries whatever the lists (pastyrik2016 3.2 and Fig. 7; max_per_pixel <= 64); "
-              "auto = dynamic when the lists are linked and the frame's longest has at most 4 fragments, else "
-              "array; the same records either way"),
+              "auto = dynamic on a software rasterizer when the lists are linked and the view's longest has at most 4 "
+              "fragments, else array; the same records either way"),
           illustration_buffer::kStorages.spec(
               "storage", illustration_buffer::Storage::automatic,
               "where the fill puts the records (the same records and image either way): linked = per-pixel "

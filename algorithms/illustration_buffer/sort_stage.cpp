@@ -15,10 +15,6 @@ namespace {
 // The smallest sort array compiled (lists of up to 4, e.g. the torus's, with
 // storage=linearized or arrays, where the dynamic sort is not offered).
 constexpr uint32_t kSmallestArray = 4;
-// sort=auto takes the dynamic sort up to this longest list: faster there on
-// llvmpipe (results/reference/illustration_buffer/README.md, Sort variants),
-// the array's ranks beyond.
-constexpr uint32_t kLongestDynamicList = 4;
 
 }  // namespace
 
@@ -26,8 +22,7 @@ SortStage::SortStage(const Settings& s, Records& records) : s_(s), records_(reco
 
 SortChoice SortStage::choose(const FillResult& fill) const {
   SortChoice c;
-  c.dynamic = s_.sort == SortMethod::dynamic ||
-              (s_.sort == SortMethod::automatic && !s_.ranged() && fill.longest <= kLongestDynamicList);
+  c.dynamic = s_.sort == SortMethod::dynamic;  // sort=auto is resolved before (resolve_parameters)
   if (s_.sort == SortMethod::static_arrays) {
     c.static_arrays = true;
     c.array = IB_STATIC_ENTRIES;

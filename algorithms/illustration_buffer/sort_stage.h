@@ -30,8 +30,7 @@ class SortStage {
   SortStage(const Settings& settings, Records& records);
   // The sort's local array: the frame's longest list rounded up to a power
   // of two (a few programs serve every frame), at most max_per_pixel. The
-  // dynamic sort (sort=dynamic; sort=auto on linked lists up to
-  // kLongestDynamicList) has no array; sort=static_arrays has the paper's
+  // dynamic sort (sort=dynamic) has no array; sort=static_arrays has the paper's
   // IB_STATIC_ENTRIES whatever the lists.
   SortChoice choose(const FillResult& fill) const;
   void run(const Frame& frame, const FramePlan& plan, const FillResult& fill, const SortChoice& choice,
