@@ -276,8 +276,18 @@ TEST(BucketedKBuffer, AutoOnOneObjectSkipsTheBucketPassAndFindsTheSameLinks) {
       EXPECT_EQ(compare_images(automatic.image, other->image).max_abs, 0.0) << what;
     }
   }
+  // The run names what ran: auto resolves to single on one object, to on
+  // on several; single on several objects is refused, naming the fix.
+  const RunResult torus = run({{"buckets", "auto"}}, "torus", {}, 32);
+  EXPECT_NE(torus.technique_params.find("buckets=single"), std::string::npos) << torus.technique_params;
+  EXPECT_NE(torus.requested_params.find("buckets=auto"), std::string::npos) << torus.requested_params;
+  const RunResult refused = test::harness().run(test::one_frame(kId, {{"buckets", "single"}}, "spheres", {}, 32));
+  EXPECT_EQ(refused.status, RunStatus::skipped);
+  EXPECT_NE(refused.message.find("buckets=single"), std::string::npos) << refused.message;
+  EXPECT_NE(refused.message.find("use buckets=on"), std::string::npos) << refused.message;
   // Several objects: auto is buckets=on, bucket pass included.
   const RunResult spheres = run({{"buckets", "auto"}}, "spheres", {}, 32);
+  EXPECT_NE(spheres.technique_params.find("buckets=on"), std::string::npos) << spheres.technique_params;
   EXPECT_NE(spheres.stage("bucket", "wall"), nullptr);
   EXPECT_EQ(extra_counter(spheres, "buckets_used"), 1.0);
   for (const auto& [name, value, combine] : spheres.counters.work_saved) EXPECT_NE(name, "bucket_passes_skipped");

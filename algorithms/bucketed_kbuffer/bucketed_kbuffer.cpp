@@ -313,9 +313,11 @@ class BucketedKBuffer final : public Technique {
       bounds_scene_ = frame.scene.serial();
     }
     analytic_curvature_ = scene.analytic_curvature;
-    search_ = mode_ == BucketMode::off ? Search::brute_force
-              : mode_ == BucketMode::automatic && scene.object_count <= 1 ? Search::single_bucket
-                                                                           : Search::hashed;
+    // buckets=auto is resolved before a run (register.cpp); a technique
+    // built without the scene's facts (a test's renderer) decides it here,
+    // the same way.
+    const bool single = mode_ == BucketMode::single || (mode_ == BucketMode::automatic && scene.object_count <= 1);
+    search_ = mode_ == BucketMode::off ? Search::brute_force : single ? Search::single_bucket : Search::hashed;
     // The scene's bounding sphere along the view axis bounds every fragment's
     // view depth; the view matrix may carry a uniform scale.
     const float scale = std::cbrt(std::abs(glm::determinant(glm::mat3(frame.view))));

@@ -7,10 +7,14 @@
 namespace oit::bkb {
 
 // buckets: the neighbour query in one hashed bucket (on), over all fragments
-// (off), or on unless the scene has a single object (automatic).
-enum class BucketMode { automatic, on, off };
-inline const Choices<BucketMode> kBucketModes{
-    {BucketMode::automatic, "auto"}, {BucketMode::on, "on"}, {BucketMode::off, "off"}};
+// (off), in each pixel's whole list as its one bucket (single: one-object
+// scenes), or single on a one-object scene and on elsewhere (automatic,
+// resolved before the run).
+enum class BucketMode { automatic, on, off, single };
+inline const Choices<BucketMode> kBucketModes{{BucketMode::automatic, "auto"},
+                                              {BucketMode::on, "on"},
+                                              {BucketMode::off, "off"},
+                                              {BucketMode::single, "single"}};
 
 // neighbor_search: walk the two sorted lists (merge) or scan the bucket or
 // list that `buckets` selects (bucket).

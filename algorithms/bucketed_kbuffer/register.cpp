@@ -22,8 +22,9 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
           bkb::kBucketModes.spec("buckets", bkb::BucketMode::automatic,
                                  "how store (and, with neighbor_search=bucket, the neighbour query) finds a shape's "
                                  "fragments: one hashed bucket (on), all fragments (off: brute force query, hashed "
-                                 "store), or on unless the scene has a single object (auto), where each list is the "
-                                 "one bucket: no bucket pass, no hash look-ups"),
+                                 "store), or each pixel's whole list as its one bucket (single, one-object scenes "
+                                 "only: no bucket pass, no hash look-ups); auto = single on a one-object scene, "
+                                 "else on"),
           bkb::kNeighborSearches.spec(
               "neighbor_search", bkb::NeighborSearch::merge,
               "neighbour query: walk the two sorted lists from the depth-nearest fragment of the shape until the "
@@ -81,7 +82,16 @@ void register_technique_bucketed_kbuffer(TechniqueRegistry& registry) {
         if (scene.objects > limit)
           return "bucketed_kbuffer: depth_bits=" + std::to_string(depth_bits) + " leaves room for " +
                  std::to_string(limit) + " shape ids; the scene has " + std::to_string(scene.objects) + " objects";
+        if (params.choice("buckets", bkb::kBucketModes) == bkb::BucketMode::single && scene.objects > 1)
+          return "bucketed_kbuffer: buckets=single takes each pixel's list as one shape, and the scene has " +
+                 std::to_string(scene.objects) + " objects: use buckets=on (or auto)";
         return "";
+      },
+      .resolve = [](const ParamSet& requested, const ResolveInput& input) -> RawParams {
+        // objects 0: built without a scene (a test's renderer): the frame decides.
+        if (requested.choice("buckets", bkb::kBucketModes) != bkb::BucketMode::automatic || input.scene.objects == 0)
+          return {};
+        return {{"buckets", input.scene.objects == 1 ? "single" : "on"}};
       },
       // murray2016 searches each fragment's bucket, buckets always on, in
       // 128 bits per fragment (section 6).
