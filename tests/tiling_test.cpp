@@ -300,11 +300,15 @@ TEST_P(PaperSize, EveryTechniqueRuns512x512With32Layers) {
   const RunResult r = test::harness().run(spec);
   ASSERT_EQ(r.status, RunStatus::ok) << r.message;
   ASSERT_TRUE(r.error.has_value()) << r.message;
-  if (descriptor.exactness == Exactness::exact) EXPECT_EQ(r.counters.fragments_dropped, 0u);  // 32 is within its caps
+  if (descriptor.exactness == Exactness::exact) {
+    EXPECT_EQ(r.counters.fragments_dropped, 0u);  // 32 is within its caps
+  }
   if (held_to_reference(descriptor.exactness, r.counters.fragments_dropped)) {
     EXPECT_LE(r.error->max_abs, descriptor.exact_tolerance);
   }
-  if (must_tile) EXPECT_GT(r.tiles, 1);
+  if (must_tile) {
+    EXPECT_GT(r.tiles, 1);
+  }
 }
 
 std::vector<std::string> all_techniques() {

@@ -319,7 +319,7 @@ void Harness::warm_up(ActiveRun& run) {
     return std::abs(a - b) <= 0.10 * a;
   };
   while (int(frame_ms.size()) < spec.warmup ||
-         (elapsed_ms < spec.warmup_ms || (spec.warmup_ms > 0.0 && !stable())) && elapsed_ms < cap_ms) {
+         ((elapsed_ms < spec.warmup_ms || (spec.warmup_ms > 0.0 && !stable())) && elapsed_ms < cap_ms)) {
     if (spec.warmup == 0 && spec.warmup_ms <= 0.0) break;
     const auto begin = std::chrono::steady_clock::now();
     parts.rect = parts.prepared->render_frame(*parts.frame, false, spec.scene_rect);
