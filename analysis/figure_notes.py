@@ -72,3 +72,11 @@ def finish(fig, ax, rows, what, noisy_rows=None, paper=None, paper_loc="lower ri
     ax.set_title(text, fontsize=8)
     fig.tight_layout()
     return fig
+
+
+def finish_panels(fig, panels, rows, what, legend_loc="upper left", **finish_options):
+    """`finish` for a figure of panels that share its runs: a legend in each
+    of `panels` at `legend_loc`, the title (and paper box) on the first."""
+    for ax in panels:
+        ax.legend(fontsize=7, loc=legend_loc)
+    return finish(fig, panels[0], rows, what, **finish_options)

@@ -55,11 +55,10 @@ def draw(runs, args=None):
     bottom.set_ylabel(f"{stage} stage (ms)")
     for ax in (top, bottom):
         ax.set_yscale("log")
-        ax.legend(fontsize=7, loc="upper left")
     bottom.set_xticks(positions, order, rotation=30, ha="right")
     bottom.set_xlabel("model (sorted by the fastest variant's total)")
-    return figure_notes.finish(fig, top, rows, f"pastyrik2016 Fig. 7: sort variants of {technique}",
-                               paper=PAPER)
+    return figure_notes.finish_panels(fig, (top, bottom), rows, f"pastyrik2016 Fig. 7: sort variants of {technique}",
+                                      paper=PAPER)
 
 
 if __name__ == "__main__":

@@ -48,10 +48,8 @@ def draw(runs, args=None):
     top.set_ylabel("total ns per fragment (log)")
     bottom.set_ylabel("neighbour stage ns per fragment")
     bottom.set_xlabel("complexity coverage Psi (share of pixels with a list > 2/3 of the longest)")
-    for ax in (top, bottom):
-        ax.legend(fontsize=7, loc="best")
-    return figure_notes.finish(fig, top, rows, "pastyrik2016 section 5: time per fragment against Psi",
-                               paper=PAPER, paper_loc="lower left")
+    return figure_notes.finish_panels(fig, (top, bottom), rows, "pastyrik2016 section 5: time per fragment against Psi",
+                                      legend_loc="best", paper=PAPER, paper_loc="lower left")
 
 
 if __name__ == "__main__":

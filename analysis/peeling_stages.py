@@ -81,10 +81,9 @@ def draw(runs, args=None):
     bottom.set_ylabel("peel stage per geometry pass (ms, log)")
     bottom.set_xticks(positions, order, rotation=30, ha="right")
     bottom.set_xlabel("model (camera position)")
-    for ax in (top, bottom):
-        ax.legend(fontsize=7, loc="upper left")
-    return figure_notes.finish(fig, top, rows, "pastyrik2016 Figs. 11-14: depth peeling vs dual depth peeling",
-                               paper=PAPER, paper_loc="upper right")
+    return figure_notes.finish_panels(fig, (top, bottom), rows,
+                                      "pastyrik2016 Figs. 11-14: depth peeling vs dual depth peeling", paper=PAPER,
+                                      paper_loc="upper right")
 
 
 if __name__ == "__main__":

@@ -5,6 +5,8 @@ import csv
 import itertools
 import os
 import re
+import tempfile
+import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
@@ -54,3 +56,17 @@ def write_csv(path, rows, append=False):
             writer.writeheader()
         for r in rows:
             writer.writerow(r)
+
+
+class TempDirTest(unittest.TestCase):
+    """A test with a fresh temporary directory, removed after it: `self.tmp`,
+    `self.path(name)` for a file there and `self.csv` for the usual results
+    file (runs.csv, not written)."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.addCleanup(self.tmp.cleanup)
+        self.csv = self.path("runs.csv")
+
+    def path(self, name):
+        return os.path.join(self.tmp.name, name)

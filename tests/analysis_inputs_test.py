@@ -36,14 +36,7 @@ def analysis(*arguments, cwd=REPO, timeout=120):
                           capture_output=True, text=True, timeout=timeout)
 
 
-class InputsTest(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.csv = os.path.join(self.tmp.name, "runs.csv")
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
+class InputsTest(fx.TempDirTest):
     def edit_line(self, number, edit):
         with open(self.csv, newline="") as f:
             lines = f.readlines()
@@ -57,7 +50,7 @@ class InputsTest(unittest.TestCase):
         runs = results_io.read_results(self.csv)
         self.assertEqual(len(runs), 24)
         self.assertEqual(sorted(set(runs["technique"])), sorted(f"t{i}" for i in range(13) if i != 1))
-        out = os.path.join(self.tmp.name, "stages.png")
+        out = self.path("stages.png")
         result = analysis("plot_stages", self.csv, "--out", out)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn(f"{self.csv}: line 5: a quote left open (the field runs on into line 6: ',' expected after "
@@ -114,7 +107,7 @@ class InputsTest(unittest.TestCase):
         runs = results_io.read_results(self.csv)
         self.assertEqual(list(runs.columns), fx.csv_columns())
         self.assertEqual([row.get("timestamp") for row in results_io.read_rows(self.csv)], ["2026-11-22T09:00:00Z"] * 4)
-        merged = os.path.join(self.tmp.name, "merged.csv")
+        merged = self.path("merged.csv")
         result = analysis("merge", "--out", merged, self.csv)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertEqual(len(results_io.read_rows(merged)), 4)
@@ -122,7 +115,7 @@ class InputsTest(unittest.TestCase):
     def test_a_binary_file_is_an_error_naming_it(self):
         with open(self.csv, "wb") as f:
             f.write(b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR\xff\xfe")
-        result = analysis("plot_stages", self.csv, "--out", os.path.join(self.tmp.name, "x.png"))
+        result = analysis("plot_stages", self.csv, "--out", self.path("x.png"))
         self.assertEqual(result.returncode, 1)
         self.assertEqual(result.stderr, f"plot_stages: {self.csv}: not a CSV text file (byte 0x89 at offset 0 is not "
                                         "UTF-8)\n")
@@ -146,21 +139,14 @@ class InputsTest(unittest.TestCase):
 BAD_MEDIANS = ["", "nan", "n/a", "0", "-1.5"]
 
 
-class PlotsFromNothingTest(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.csv = os.path.join(self.tmp.name, "runs.csv")
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
+class PlotsFromNothingTest(fx.TempDirTest):
     def write(self, medians):
         fx.write_csv(self.csv, [fx.row(f"t{i}", stage, median if stage == "total" else 1.0, error_rmse=0.1 * i)
                                 for i, median in enumerate(medians) for stage in ("fill", "total")])
 
     def test_runs_without_a_positive_median_are_named_and_left_out(self):
         self.write(["2.0"] + BAD_MEDIANS)
-        stages, files = os.path.join(self.tmp.name, "stages.png"), self.tmp.name
+        stages, files = self.path("stages.png"), self.tmp.name
         for module, arguments in (("plot_stages", ["--out", stages]), ("pareto", ["--out-dir", files])):
             result = analysis(module, self.csv, *arguments)
             self.assertEqual(result.returncode, 0, result.stderr)
@@ -170,11 +156,11 @@ class PlotsFromNothingTest(unittest.TestCase):
         self.assertEqual(list(plot_stages.load_runs(self.csv)["technique"].unique()), ["t0"])
         self.assertEqual(list(pareto.load_totals(self.csv, "error_rmse")["technique"]), ["t0"])
         self.assertTrue(os.path.exists(stages))
-        self.assertTrue(os.path.exists(os.path.join(self.tmp.name, "runs_quads_64x64.png")))
+        self.assertTrue(os.path.exists(self.path("runs_quads_64x64.png")))
 
     def test_nothing_usable_is_no_plot_and_a_failure(self):
         self.write(BAD_MEDIANS)
-        stages = os.path.join(self.tmp.name, "stages.png")
+        stages = self.path("stages.png")
         for module, arguments in (("plot_stages", ["--out", stages]), ("pareto", [])):
             result = analysis(module, self.csv, *arguments)
             self.assertEqual(result.returncode, 1)

@@ -5,7 +5,6 @@ not only that a PNG appears."""
 import os
 import subprocess
 import sys
-import tempfile
 import unittest
 
 import matplotlib
@@ -34,14 +33,9 @@ def stack_tops(ax):
     return tops
 
 
-class PlotTest(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.csv = os.path.join(self.tmp.name, "runs.csv")
-
+class PlotTest(fx.TempDirTest):
     def tearDown(self):
         plt.close("all")
-        self.tmp.cleanup()
 
     def draw(self, module, rows, args=None):
         fx.write_csv(self.csv, rows)
@@ -185,7 +179,7 @@ class CarneckyImagesTest(PlotTest):
     def test_fig9_row_holds_the_papers_five_columns_in_order_at_readable_sizes(self):
         import json
 
-        images = os.path.join(self.tmp.name, "images")
+        images = self.path("images")
         os.makedirs(images)
         captions = {name: caption for name, caption, _ in figure_configs.CARNECKY_FIG9}
         captions.update({"fig10_constant": "constant transparency", "fig10_ours": "illustration buffer",
@@ -252,7 +246,7 @@ class PastyrikTest(PlotTest):
         self.assertEqual([t.get_text() for t in ax.get_legend().get_texts()][-1], "Psi")
 
     def test_fig10_one_panel_per_heatmap_in_total_order(self):
-        heatmaps = os.path.join(self.tmp.name, "heatmaps")
+        heatmaps = self.path("heatmaps")
         os.makedirs(heatmaps)
         for model in ("bunny", "engine"):  # bones has none: left out, not an error
             plt.imsave(os.path.join(heatmaps, f"heatmap_{model}.png"), np.zeros((4, 4, 3)))
@@ -310,7 +304,7 @@ class CommandLineTest(PlotTest):
     def test_every_module_runs_as_a_command(self):
         fx.write_csv(self.csv, PastyrikTest.rows(PastyrikTest()))
         for module in ("pastyrik_fig8", "pastyrik_fig9", "oit_comparison"):
-            out = os.path.join(self.tmp.name, f"{module}.png")
+            out = self.path(f"{module}.png")
             result = self.run_module(module, self.csv, "-o", out)
             self.assertEqual(result.returncode, 0, result.stderr)
             with open(out, "rb") as f:
@@ -318,7 +312,7 @@ class CommandLineTest(PlotTest):
 
     def test_missing_data_is_a_clear_error(self):
         fx.write_csv(self.csv, [fx.row("kbuffer", "total", 1.0)])
-        result = self.run_module("carnecky_fig14", self.csv, "-o", os.path.join(self.tmp.name, "x.png"))
+        result = self.run_module("carnecky_fig14", self.csv, "-o", self.path("x.png"))
         self.assertNotEqual(result.returncode, 0)
         self.assertIn("no illustration_buffer rows", result.stderr)
 

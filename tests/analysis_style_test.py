@@ -221,16 +221,14 @@ def model_rows():
     return rows
 
 
-class FigureStyleTest(unittest.TestCase):
+class FigureStyleTest(fx.TempDirTest):
     def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        path = os.path.join(self.tmp.name, "runs.csv")
-        fx.write_csv(path, model_rows())
-        self.runs = common.load(path)
+        super().setUp()
+        fx.write_csv(self.csv, model_rows())
+        self.runs = common.load(self.csv)
 
     def tearDown(self):
         plt.close("all")
-        self.tmp.cleanup()
 
     def test_comparison_hatches_are_the_techniques_own(self):
         ax = oit_comparison.draw(self.runs).axes[0]
@@ -272,7 +270,7 @@ class FigureStyleTest(unittest.TestCase):
         rows = [dict(r, params="tie_break=submission") if "peeling" in r["technique"] else r for r in model_rows()]
         rows += [dict(r, params="tie_break=triangle_id", median_ms=str(float(r["median_ms"]) * 10))
                  for r in model_rows() if "peeling" in r["technique"]]
-        path = os.path.join(self.tmp.name, "ties.csv")
+        path = self.path("ties.csv")
         fx.write_csv(path, rows)
         runs = common.load(path)
         top = peeling_stages.draw(runs).axes[0]
@@ -287,7 +285,7 @@ class FigureStyleTest(unittest.TestCase):
         np.testing.assert_allclose(sorted(p.get_height() for p in bars["depth_peeling"]), [20, 40, 60])
 
     def test_no_peeling_list_or_buffer_rows_is_no_data(self):
-        path = os.path.join(self.tmp.name, "k.csv")
+        path = self.path("k.csv")
         fx.write_csv(path, [r for r in model_rows() if r["technique"] == "kbuffer"])
         with self.assertRaises(common.NoData):
             pastyrik_fig11_14.draw(common.load(path))

@@ -15,6 +15,7 @@
 #include "algorithms/bucketed_kbuffer/transfer_files.h"
 #include "algorithms/bucketed_kbuffer/transfer_functions.h"
 #include "harness/output/error_metrics.h"
+#include "tests/error_of.h"
 #include "tests/gl_fixture.h"
 
 namespace oit {
@@ -74,16 +75,7 @@ double largest_difference(const std::vector<float>& a, const std::vector<float>&
   return largest;
 }
 
-// The message of the std::invalid_argument a load throws ("" if none).
-template <typename Load>
-std::string error_of(Load load) {
-  try {
-    load();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 RunResult run(const RawParams& params, RunStatus expected = RunStatus::ok) {
   RunResult r = test::harness().run(test::one_frame("bucketed_kbuffer", params, "quads", {{"layers", "8"}}, 48));

@@ -14,20 +14,12 @@
 #include "harness/app/bench_report.h"
 #include "harness/app/sweep.h"
 #include "harness/toolkit/technique.h"
+#include "tests/error_of.h"
 
 namespace oit {
 namespace {
 
-// The message of the std::invalid_argument `call` throws ("" when it does not).
-template <typename Call>
-std::string error_of(Call call) {
-  try {
-    call();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 TEST(Suggest, ClosestNameTakesTyposAndPrefixesButNotStrangers) {
   const std::vector<std::string> techniques = {"kbuffer", "linked_list", "unsorted"};

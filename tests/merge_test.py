@@ -21,6 +21,8 @@ import unittest
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
 sys.path.insert(0, REPO)
+sys.path.insert(0, HERE)
+import analysis_fixtures as fx  # noqa: E402
 from analysis import merge, results_io, shards  # noqa: E402
 
 HEADER = ["timestamp", "git_revision", "device", "gl_version", "platform", "technique", "params", "scene",
@@ -43,16 +45,13 @@ def run(run_id, stages=("fill", "total"), **fields):
     return [row(stage=s, run_id=run_id, run_rows=str(len(stages)), **fields) for s in stages]
 
 
-class MergeTest(unittest.TestCase):
+class MergeTest(fx.TempDirTest):
     def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.out = os.path.join(self.tmp.name, "merged.csv")
-
-    def tearDown(self):
-        self.tmp.cleanup()
+        super().setUp()
+        self.out = self.path("merged.csv")
 
     def write(self, name, rows, header=HEADER):
-        path = os.path.join(self.tmp.name, name)
+        path = self.path(name)
         with open(path, "w", newline="") as f:
             writer = csv.DictWriter(f, fieldnames=header, lineterminator="\n", extrasaction="ignore")
             writer.writeheader()
@@ -172,7 +171,7 @@ class MergeTest(unittest.TestCase):
         self.assertEqual(self.read(self.out), first)
 
     def test_a_file_that_is_not_an_oitbench_csv_is_named(self):
-        bad = os.path.join(self.tmp.name, "notes.csv")
+        bad = self.path("notes.csv")
         with open(bad, "w") as f:
             f.write("a,b\n1,2\n")
         with self.assertRaisesRegex(merge.MergeError, r"notes\.csv: not an oitbench CSV, no column\(s\) technique"):
@@ -191,7 +190,7 @@ class MergeTest(unittest.TestCase):
         os.symlink("/dev/full", self.out)
         for inputs, message in (([shard, "/dev/zero"], "merge: /dev/zero is not a regular file"),
                                 ([shard], f"merge: --out {self.out} is not a regular file")):
-            out = self.out if "/dev/zero" not in inputs else os.path.join(self.tmp.name, "m.csv")
+            out = self.out if "/dev/zero" not in inputs else self.path("m.csv")
             result = subprocess.run([sys.executable, "-m", "analysis.merge", "--out", out] + inputs, cwd=REPO,
                                     capture_output=True, text=True, timeout=60)
             self.assertEqual((result.returncode, result.stderr), (1, message + "\n"))

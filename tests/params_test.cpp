@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "base/params.h"
+#include "tests/error_of.h"
 
 namespace oit {
 namespace {
@@ -20,12 +21,7 @@ const ParamSchema kSchema = {
 };
 
 std::string error_of(const RawParams& raw) {
-  try {
-    ParamSet set(kSchema, raw, "technique 'kbuffer'");
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
+  return test::error_of([&] { ParamSet set(kSchema, raw, "technique 'kbuffer'"); });
 }
 
 TEST(Params, DefaultsFillEveryKeyInSchemaOrder) {

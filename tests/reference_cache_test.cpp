@@ -20,9 +20,36 @@
 namespace oit {
 namespace {
 
-TEST(ReferenceCache, SecondHarnessReadsTheIdenticalImageFromDisk) {
-  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/reference_cache_test";
+// An empty directory `name` under the build's test output, for one test's cache.
+std::string fresh_cache_dir(const std::string& name) {
+  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/" + name;
   std::filesystem::remove_all(dir);
+  return dir;
+}
+
+// The reference the damage tests cache: quads layers=3, 8x8 on black, rendered
+// or read by `harness` through `cache`.
+Image quads_reference(Harness& harness, const ReferenceCache& cache) {
+  harness.set_reference_cache(cache);
+  return harness.reference_image("quads", {{"layers", "3"}}, 8, 8, glm::vec3(0.0f));
+}
+
+// What the damage tests start from: a cache in the fresh directory `name`
+// that holds one entry, the quads reference `good`, stored by a first harness.
+struct CacheOfOneEntry {
+  explicit CacheOfOneEntry(const std::string& name) : dir(fresh_cache_dir(name)), cache(dir) {
+    Harness first(test::gl_context(), builtin_techniques());
+    good = quads_reference(first, cache);
+    entry = std::filesystem::directory_iterator(dir)->path();
+  }
+  std::string dir;
+  ReferenceCache cache;
+  Image good;
+  std::filesystem::path entry;
+};
+
+TEST(ReferenceCache, SecondHarnessReadsTheIdenticalImageFromDisk) {
+  const std::string dir = fresh_cache_dir("reference_cache_test");
   const RawParams scene = {{"layers", "6"}};
   Harness first(test::gl_context(), builtin_techniques());
   first.set_reference_cache(ReferenceCache(dir));
@@ -44,18 +71,12 @@ TEST(ReferenceCache, SecondHarnessReadsTheIdenticalImageFromDisk) {
 }
 
 TEST(ReferenceCache, DamagedFileIsAMissAndIsReplaced) {
-  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/reference_cache_damaged";
-  std::filesystem::remove_all(dir);
-  const ReferenceCache cache(dir);
-  Harness harness(test::gl_context(), builtin_techniques());
-  harness.set_reference_cache(cache);
-  const Image good = harness.reference_image("quads", {{"layers", "3"}}, 8, 8, glm::vec3(0.0f));
+  const CacheOfOneEntry one("reference_cache_damaged");
+  const auto& [dir, cache, good, file] = one;
   ASSERT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1);
-  const auto file = std::filesystem::directory_iterator(dir)->path();
   std::filesystem::resize_file(file, 20);  // truncated
   Harness again(test::gl_context(), builtin_techniques());
-  again.set_reference_cache(cache);
-  const Image image = again.reference_image("quads", {{"layers", "3"}}, 8, 8, glm::vec3(0.0f));
+  const Image image = quads_reference(again, cache);
   EXPECT_EQ(again.references_rendered(), 1);
   EXPECT_EQ(image.rgba, good.rgba);
   EXPECT_GT(std::filesystem::file_size(file), 20u);  // rewritten whole
@@ -64,14 +85,8 @@ TEST(ReferenceCache, DamagedFileIsAMissAndIsReplaced) {
 // A cache entry's damage that keeps its header valid: a flipped payload
 // byte, a payload of NaNs; both are caught by the checksum and rendered again.
 TEST(ReferenceCache, ChecksumMismatchOrNonFinitePayloadIsRenderedAgain) {
-  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/reference_cache_checksum";
-  std::filesystem::remove_all(dir);
-  const ReferenceCache cache(dir);
-  const RawParams scene = {{"layers", "3"}};
-  Harness harness(test::gl_context(), builtin_techniques());
-  harness.set_reference_cache(cache);
-  const Image good = harness.reference_image("quads", scene, 8, 8, glm::vec3(0.0f));
-  const auto file = std::filesystem::directory_iterator(dir)->path();
+  const CacheOfOneEntry one("reference_cache_checksum");
+  const auto& [dir, cache, good, file] = one;
   const auto size = std::filesystem::file_size(file);
   const size_t payload = 8 * 8 * 4 * sizeof(float), checksum = 8;
   const std::vector<std::function<void(std::fstream&)>> damages = {
@@ -93,21 +108,18 @@ TEST(ReferenceCache, ChecksumMismatchOrNonFinitePayloadIsRenderedAgain) {
     }
     ASSERT_EQ(std::filesystem::file_size(file), size);
     Harness again(test::gl_context(), builtin_techniques());
-    again.set_reference_cache(cache);
-    EXPECT_EQ(again.reference_image("quads", scene, 8, 8, glm::vec3(0.0f)).rgba, good.rgba);
+    EXPECT_EQ(quads_reference(again, cache).rgba, good.rgba);
     EXPECT_EQ(again.references_rendered(), 1);
     EXPECT_EQ(again.references_loaded(), 0);
     // Rewritten whole: the next harness reads it.
     Harness next(test::gl_context(), builtin_techniques());
-    next.set_reference_cache(cache);
-    EXPECT_EQ(next.reference_image("quads", scene, 8, 8, glm::vec3(0.0f)).rgba, good.rgba);
+    EXPECT_EQ(quads_reference(next, cache).rgba, good.rgba);
     EXPECT_EQ(next.references_loaded(), 1);
   }
 }
 
 TEST(ReferenceCache, AnImageHoldingNanIsNeverServedEvenWithAMatchingChecksum) {
-  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/reference_cache_nan";
-  std::filesystem::remove_all(dir);
+  const std::string dir = fresh_cache_dir("reference_cache_nan");
   const ReferenceCache cache(dir);
   Image image{2, 2, std::vector<float>(16, 0.5f)};
   cache.store("key", image);
@@ -183,8 +195,7 @@ ChildLoad load_in_child(const ReferenceCache& cache, const std::string& key, int
 // 4 KB entry whose header claims 16384x16384 allocated 4 GiB before its size
 // was checked. Each is now a miss with a warning naming the file.
 TEST(ReferenceCache, EntriesThatAreNotRegularFilesOrClaimTooMuchAreMissesNamedInAWarning) {
-  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/reference_cache_kinds/entries";
-  std::filesystem::remove_all(dir);
+  const std::string dir = fresh_cache_dir("reference_cache_kinds/entries");
   std::filesystem::create_directories(dir);
   const ReferenceCache cache(dir);
   const std::string key = "scene|8x8|0,0,0", path = cache.path_for(key);
@@ -217,8 +228,7 @@ TEST(ReferenceCache, EntriesThatAreNotRegularFilesOrClaimTooMuchAreMissesNamedIn
 // A whole, checksum-valid entry of another image size is a miss (the key
 // says the size, so only a foreign or hand-made file holds one).
 TEST(ReferenceCache, AnEntryOfAnotherImageSizeIsAMiss) {
-  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/reference_cache_size";
-  std::filesystem::remove_all(dir);
+  const std::string dir = fresh_cache_dir("reference_cache_size");
   const ReferenceCache cache(dir);
   cache.store("key", Image{4, 4, std::vector<float>(64, 0.25f)});
   testing::internal::CaptureStderr();
@@ -230,20 +240,13 @@ TEST(ReferenceCache, AnEntryOfAnotherImageSizeIsAMiss) {
 
 // A directory in the way: rendered every time, with a warning, never stored.
 TEST(ReferenceCache, ADirectoryInPlaceOfAnEntryIsRenderedAndLeftWithAWarning) {
-  const std::string dir = std::string(OIT_BINARY_DIR) + "/test_output/reference_cache_directory";
-  std::filesystem::remove_all(dir);
-  const ReferenceCache cache(dir);
-  const RawParams scene = {{"layers", "3"}};
-  Harness first(test::gl_context(), builtin_techniques());
-  first.set_reference_cache(cache);
-  const Image good = first.reference_image("quads", scene, 8, 8, glm::vec3(0.0f));
-  const auto entry = std::filesystem::directory_iterator(dir)->path();
+  const CacheOfOneEntry one("reference_cache_directory");
+  const auto& [dir, cache, good, entry] = one;
   std::filesystem::remove(entry);
   std::filesystem::create_directory(entry);
   Harness again(test::gl_context(), builtin_techniques());
-  again.set_reference_cache(cache);
   testing::internal::CaptureStderr();
-  EXPECT_EQ(again.reference_image("quads", scene, 8, 8, glm::vec3(0.0f)).rgba, good.rgba);
+  EXPECT_EQ(quads_reference(again, cache).rgba, good.rgba);
   const std::string warnings = testing::internal::GetCapturedStderr();
   EXPECT_EQ(again.references_rendered(), 1);
   EXPECT_NE(warnings.find(entry.string() + ": is a directory, not a regular file"), std::string::npos) << warnings;

@@ -12,12 +12,6 @@
 namespace oit {
 namespace {
 
-std::vector<std::string> technique_ids() {
-  std::vector<std::string> ids;
-  for (const auto& t : builtin_techniques().all()) ids.push_back(t.id);
-  return ids;
-}
-
 class Stress : public testing::TestWithParam<std::string> {};
 
 TEST_P(Stress, ReducedSetPasses) {
@@ -36,7 +30,7 @@ TEST_P(Stress, ReducedSetPasses) {
   EXPECT_GE(passed, cases.size() / 2) << technique.id;
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryTechnique, Stress, testing::ValuesIn(technique_ids()),
+INSTANTIATE_TEST_SUITE_P(EveryTechnique, Stress, testing::ValuesIn(builtin_techniques().ids()),
                          [](const testing::TestParamInfo<std::string>& info) { return info.param; });
 
 TEST(StressJudge, OutputRangeIsTheTechniquesOwn) {

@@ -25,12 +25,6 @@ std::string begin_marker(const std::string& id) {
 }
 const std::string kEndMarker = "<!-- end of parameter table -->";
 
-std::vector<std::string> technique_ids() {
-  std::vector<std::string> ids;
-  for (const auto& t : builtin_techniques().all()) ids.push_back(t.id);
-  return ids;
-}
-
 class TechniqueReadme : public testing::TestWithParam<std::string> {};
 
 TEST_P(TechniqueReadme, HoldsTheGeneratedParameterTable) {
@@ -52,12 +46,12 @@ TEST_P(TechniqueReadme, HoldsTheGeneratedParameterTable) {
       << "`build/harness/oitbench list --markdown --params " << id << "`";
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryTechnique, TechniqueReadme, testing::ValuesIn(technique_ids()),
+INSTANTIATE_TEST_SUITE_P(EveryTechnique, TechniqueReadme, testing::ValuesIn(builtin_techniques().ids()),
                          [](const testing::TestParamInfo<std::string>& info) { return info.param; });
 
 // A folder under algorithms/ that the registry lacks would escape the check above.
 TEST(TechniqueReadmes, EveryAlgorithmFolderIsARegisteredTechnique) {
-  const std::vector<std::string> ids = technique_ids();
+  const std::vector<std::string> ids = builtin_techniques().ids();
   const std::set<std::string> registered(ids.begin(), ids.end());
   size_t folders = 0;
   for (const auto& entry : std::filesystem::directory_iterator(std::string(OIT_SOURCE_DIR) + "/algorithms")) {

@@ -311,13 +311,7 @@ TEST_P(PaperSize, EveryTechniqueRuns512x512With32Layers) {
   }
 }
 
-std::vector<std::string> all_techniques() {
-  std::vector<std::string> ids;
-  for (const auto& t : builtin_techniques().all()) ids.push_back(t.id);
-  return ids;
-}
-
-INSTANTIATE_TEST_SUITE_P(Every, PaperSize, testing::ValuesIn(all_techniques()),
+INSTANTIATE_TEST_SUITE_P(Every, PaperSize, testing::ValuesIn(builtin_techniques().ids()),
                          [](const auto& info) { return info.param; });
 
 // 2048x2048 with 32 layers: 134M fragments, 4 GiB of reference nodes on a

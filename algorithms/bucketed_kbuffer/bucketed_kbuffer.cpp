@@ -47,6 +47,13 @@ struct KPrograms {
   Program sort_single_bucket, store_single_bucket, neighbors[3], neighbors_merge;
 };
 
+// One of KPrograms' programs built when a frame needs them: `build`s it the first time.
+template <class Build>
+GLuint built_on_first_use(Program& program, Build build) {
+  if (!program) program = build();
+  return program.id();
+}
+
 // How a frame finds a shape's fragments; the values are bkb_common.glsl's
 // BKB_BUCKETS_* (the BUCKETS define of sort.frag, store.frag and neighbors.frag).
 // single_bucket: buckets=auto on a one-object scene, where every list is one
@@ -340,32 +347,30 @@ class BucketedKBuffer final : public Technique {
   GLuint neighbors_program() {
     const Search search = merge_search_ ? Search::brute_force : search_;
     Program& program = merge_search_ ? programs_->neighbors_merge : programs_->neighbors[int(search)];
-    if (!program)
-      program = build_fullscreen_program("algorithms/bucketed_kbuffer/neighbors.frag",
-                                         neighbor_defines(programs_k_, search));
-    return program.id();
+    return built_on_first_use(program, [&] {
+      return build_fullscreen_program("algorithms/bucketed_kbuffer/neighbors.frag",
+                                      neighbor_defines(programs_k_, search));
+    });
   }
 
   // One object under buckets=auto: the sort pass also records each list's
   // length, which replaces the hash table.
   GLuint sort_program() {
     if (search_ != Search::single_bucket) return programs_->sort.id();
-    Program& program = programs_->sort_single_bucket;
-    if (!program)
-      program = build_fullscreen_program("algorithms/bucketed_kbuffer/sort.frag",
-                                         sort_defines(programs_k_, Search::single_bucket));
-    return program.id();
+    return built_on_first_use(programs_->sort_single_bucket, [&] {
+      return build_fullscreen_program("algorithms/bucketed_kbuffer/sort.frag",
+                                      sort_defines(programs_k_, Search::single_bucket));
+    });
   }
 
   // buckets=off keeps the hashed store: the paper's brute force (Figure 10)
   // concerns only the neighbour query.
   GLuint store_program() {
     if (search_ != Search::single_bucket) return programs_->store.id();
-    Program& program = programs_->store_single_bucket;
-    if (!program)
-      program = build_geometry_program("algorithms/bucketed_kbuffer/store.frag",
-                                       search_defines(programs_k_, Search::single_bucket));
-    return program.id();
+    return built_on_first_use(programs_->store_single_bucket, [&] {
+      return build_geometry_program("algorithms/bucketed_kbuffer/store.frag",
+                                    search_defines(programs_k_, Search::single_bucket));
+    });
   }
 
   void geometry_pass(const Frame& frame, const char* stage, GLuint program) {

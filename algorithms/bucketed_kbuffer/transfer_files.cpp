@@ -161,6 +161,24 @@ std::vector<float> opacity_texels_from_grid(const std::vector<double>& grid, siz
   return texels;
 }
 
+// Throws unless `row` holds the `columns` values of the first row, named
+// `first_row` in the message; `rule` says why every row must.
+void check_row_width(const Source& source, const Row& row, size_t columns, const std::string& first_row,
+                     const std::string& rule) {
+  if (row.values.size() != columns)
+    throw source.error(row.line, std::to_string(row.values.size()) + " values, but " + first_row + " has " +
+                                     std::to_string(columns) + ": " + rule);
+}
+
+// `value`, the `what` of `row`; throws naming it when it is outside [low, high].
+double in_range(const Source& source, const Row& row, const std::string& what, double value, double low,
+                double high) {
+  if (value < low || value > high)
+    throw source.error(row.line, what + " " + number_text(value) + " is outside [" + number_text(low) + ", " +
+                                     number_text(high) + "]");
+  return value;
+}
+
 std::vector<float> parse_color(const std::string& text, const Source& source) {
   const std::vector<Row> rows = numeric_rows(text, source);
   const size_t columns = rows.front().values.size();
@@ -171,14 +189,10 @@ std::vector<float> parse_color(const std::string& text, const Source& source) {
   std::vector<double> kappas;
   std::vector<Rgb> samples;
   for (const Row& row : rows) {
-    if (row.values.size() != columns)
-      throw source.error(row.line, std::to_string(row.values.size()) + " values, but line " +
-                                       std::to_string(rows.front().line) + " has " + std::to_string(columns) +
-                                       ": every line must have the same form");
+    check_row_width(source, row, columns, "line " + std::to_string(rows.front().line),
+                    "every line must have the same form");
     if (keyed) {
-      const double kappa = row.values[0];
-      if (kappa < -1.0 || kappa > 1.0)
-        throw source.error(row.line, "kappa " + number_text(kappa) + " is outside [-1, 1]");
+      const double kappa = in_range(source, row, "kappa", row.values[0], -1.0, 1.0);
       if (!kappas.empty() && kappa <= kappas.back())
         throw source.error(row.line, "kappa " + number_text(kappa) + " does not increase (previous " +
                                          number_text(kappas.back()) + ")");
@@ -186,11 +200,8 @@ std::vector<float> parse_color(const std::string& text, const Source& source) {
     }
     Rgb rgb{};
     for (int c = 0; c < 3; ++c) {
-      const double m = row.values[std::min(size_t(keyed) + size_t(c), columns - 1)];
-      if (m < 0.0 || m > kMaxMultiplier)
-        throw source.error(row.line, "multiplier " + number_text(m) + " is outside [0, " +
-                                         number_text(kMaxMultiplier) + "]");
-      rgb[c] = m;
+      rgb[c] = in_range(source, row, "multiplier", row.values[std::min(size_t(keyed) + size_t(c), columns - 1)],
+                        0.0, kMaxMultiplier);
     }
     samples.push_back(rgb);
   }
@@ -202,17 +213,10 @@ std::vector<float> parse_opacity(const std::string& text, const Source& source) 
   const size_t columns = rows.front().values.size();
   std::vector<double> grid;
   for (const Row& row : rows) {
-    if (row.values.size() != columns)
-      throw source.error(row.line, std::to_string(row.values.size()) + " values, but the first row (line " +
-                                       std::to_string(rows.front().line) + ") has " + std::to_string(columns) +
-                                       ": the grid must be rectangular");
-    for (size_t c = 0; c < columns; ++c) {
-      const double a = row.values[c];
-      if (a < 0.0 || a > 1.0)
-        throw source.error(row.line, "column " + std::to_string(c + 1) + ": opacity " + number_text(a) +
-                                         " is outside [0, 1]");
-      grid.push_back(a);
-    }
+    check_row_width(source, row, columns, "the first row (line " + std::to_string(rows.front().line) + ")",
+                    "the grid must be rectangular");
+    for (size_t c = 0; c < columns; ++c)
+      grid.push_back(in_range(source, row, "column " + std::to_string(c + 1) + ": opacity", row.values[c], 0.0, 1.0));
   }
   return opacity_texels_from_grid(grid, rows.size(), columns);
 }

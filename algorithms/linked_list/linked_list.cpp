@@ -17,6 +17,7 @@
 
 #include "harness/toolkit/fragment_pool.h"
 #include "harness/toolkit/passes.h"
+#include "harness/toolkit/pixel_lists.h"
 #include "harness/toolkit/technique.h"
 #include "harness/gl/check.h"
 #include "harness/gl/shader_program.h"
@@ -81,7 +82,9 @@ class LinkedList final : public Technique {
         nodes_per_pixel_(uint64_t(params.integer("initial_nodes_per_pixel"))),
         compact_(params.choice("storage", kStorages) == Storage::compact),
         fill_(build_geometry_program("algorithms/linked_list/fill.frag", storage_defines())),
-        counters_(make_buffer(kCounterBytes)),
+        lists_({LINKED_LIST_HEADS_BINDING, LINKED_LIST_NODES_BINDING, LINKED_LIST_COUNTERS_BINDING,
+                LINKED_LIST_LENGTHS_BINDING},
+               kCounterBytes),
         pool_("linked_list", pool_kind(pool_sizing_), node_bytes(), [this](uint64_t capacity) { allocate_pool(capacity); },
               1, compact_ ? 4 : 16) {
     params_.values.max_per_pixel = max_per_pixel_;
@@ -94,10 +97,10 @@ class LinkedList final : public Technique {
   void resize(int width, int height) override {
     width_ = width;
     height_ = height;
-    heads_ = make_buffer(GLsizeiptr(width) * height * 4 * kHeads);
-    lengths_ = make_buffer(GLsizeiptr(width) * height * 4);
-    heads_view_ = make_buffer_texture(heads_, GL_RGBA32UI);  // a pixel's four heads in one texel
-    lengths_view_ = make_buffer_texture(lengths_, GL_R32UI);
+    lists_.heads = make_buffer(GLsizeiptr(width) * height * 4 * kHeads);
+    lists_.lengths = make_buffer(GLsizeiptr(width) * height * 4);
+    heads_view_ = make_buffer_texture(lists_.heads, GL_RGBA32UI);  // a pixel's four heads in one texel
+    lengths_view_ = make_buffer_texture(lists_.lengths, GL_R32UI);
     gl_check("creating the linked_list heads and lengths views");
     if (length_classes_) classes_.resize(width, height, classes_for(array_size_for(max_per_pixel_)).size());
     switch (pool_sizing_) {
@@ -115,21 +118,10 @@ class LinkedList final : public Technique {
     if (pool_sizing_ == PoolSizing::count) count_fragments(frame);
     // pool_sizing=count never overflows: the counting pass ran the same
     // geometry, so the fill produces exactly that count.
-    passes_ += pool_.fill_until_fits(
-        frame,
-        [&] {
-          fill_buffer_u32(heads_, 0xffffffffu);  // LL_NIL (nodes.glsl)
-          fill_buffer_u32(lengths_, 0);
-          fill_buffer_u32(counters_, 0);
-        },
-        [&] {
-          params_.upload();  // the capacity may have grown since the last fill
-          bind_storage();
-          draw_scene_pass(frame, fill_, dummy_framebuffer_);
-          glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-          glGetNamedBufferSubData(counters_.id(), 0, sizeof(counts), counts);
-          return uint64_t(counts[0]);
-        });
+    passes_ += lists_.fill_until_fits(frame, pool_, [&] {
+      params_.upload();  // the capacity may have grown since the last fill
+      draw_scene_pass(frame, fill_, dummy_framebuffer_);
+    }, counts);
     dropped_ = counts[2];
     stored_ = counts[0] - counts[2];
 
@@ -137,7 +129,7 @@ class LinkedList final : public Technique {
     longest_ = counts[1];
     array_size_ = array_size_for(counts[1]);
     frame.bind_target();
-    bind_storage();
+    lists_.bind();
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glBindImageTexture(LINKED_LIST_NODES_IMAGE_UNIT, nodes_view_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, node_format());
     glBindTextureUnit(LINKED_LIST_HEADS_UNIT, heads_view_.id());
@@ -223,7 +215,7 @@ class LinkedList final : public Technique {
     if (length_classes_ && array_size_ > 0) {
       std::vector<uint32_t> lengths(size_t(width_) * size_t(height_));
       glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-      glGetNamedBufferSubData(lengths_.id(), 0, GLsizeiptr(lengths.size() * 4), lengths.data());
+      glGetNamedBufferSubData(lists_.lengths.id(), 0, GLsizeiptr(lengths.size() * 4), lengths.data());
       const std::vector<uint32_t> tile_longest = linked_list::tile_longest(lengths, width_, height_);
       const int tiles_x = (width_ + linked_list::LengthClasses::kTile - 1) / linked_list::LengthClasses::kTile;
       // Compare-exchanges of the network each array size runs (size 1: none).
@@ -284,16 +276,9 @@ class LinkedList final : public Technique {
   }
 
   void allocate_pool(uint64_t capacity) {
-    nodes_ = make_buffer(GLsizeiptr(capacity) * node_bytes());
-    nodes_view_ = make_buffer_texture(nodes_, node_format());
+    lists_.nodes = make_buffer(GLsizeiptr(capacity) * node_bytes());
+    nodes_view_ = make_buffer_texture(lists_.nodes, node_format());
     params_.values.capacity = GLuint(capacity);
-  }
-
-  void bind_storage() const {
-    bind_storage_buffers({{LINKED_LIST_HEADS_BINDING, &heads_},
-                          {LINKED_LIST_NODES_BINDING, &nodes_},
-                          {LINKED_LIST_COUNTERS_BINDING, &counters_},
-                          {LINKED_LIST_LENGTHS_BINDING, &lengths_}});
   }
 
   Sort sort_;
@@ -308,7 +293,7 @@ class LinkedList final : public Technique {
   std::map<std::string, Program> programs_;  // by "kind:sort:array size"
   linked_list::LengthClasses classes_;         // tiles by list length (length_classes)
   std::vector<uint32_t> sizes_;                // the last frame's classes (one: a full-screen draw)
-  Buffer counters_, heads_, lengths_, nodes_;
+  PixelLists lists_;
   // The resolve reads the lists through buffer textures (the nodes as an
   // image of the same view): on llvmpipe a texelFetch or imageLoad with
   // per-pixel addresses is a vector gather, while an SSBO load with

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "harness/toolkit/fragment_pool.h"
+#include "harness/toolkit/pixel_lists.h"
 #include "harness/toolkit/technique.h"
 #include "harness/toolkit/passes.h"
 #include "harness/gl/check.h"
@@ -33,7 +34,9 @@ class Reference final : public Technique {
   explicit Reference(const ParamSet& params)
       : nodes_per_pixel_(params.integer("initial_nodes_per_pixel")),
         fill_(build_geometry_program("algorithms/reference/fill.frag")),
-        counter_(make_buffer(2 * sizeof(GLuint))),
+        lists_({REFERENCE_HEADS_BINDING, REFERENCE_NODES_BINDING, REFERENCE_COUNTER_BINDING,
+                REFERENCE_LENGTHS_BINDING},
+               2 * sizeof(GLuint)),
         pool_("reference", FragmentPool::Sizing::previous_frame, kNodeBytes,
               [this](uint64_t capacity) { allocate_pool(capacity); }) {}
 
@@ -41,37 +44,26 @@ class Reference final : public Technique {
     width_ = width;
     height_ = height;
     params_.values.width = width;
-    heads_ = make_buffer(GLsizeiptr(width) * height * 4);
-    lengths_ = make_buffer(GLsizeiptr(width) * height * 4);
+    lists_.heads = make_buffer(GLsizeiptr(width) * height * 4);
+    lists_.lengths = make_buffer(GLsizeiptr(width) * height * 4);
     pool_.reset(uint64_t(width) * uint64_t(height) * uint64_t(nodes_per_pixel_));
     no_attachments_ = make_attachmentless_framebuffer(width, height);
   }
 
   void render(const Frame& frame) override {
-    passes_ = pool_.fill_until_fits(
-        frame,
-        [&] {
-          fill_buffer_u32(heads_, 0xffffffffu);  // REFERENCE_NIL (reference_nodes.glsl)
-          fill_buffer_u32(lengths_, 0);
-          fill_buffer_u32(counter_, 0);
-        },
-        [&] {
-          params_.upload();  // the capacity may have grown since the last fill
-          bind_storage();
-          draw_scene_pass(frame, fill_, no_attachments_);
-          glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-          GLuint counts[2] = {0, 0};  // node_count, max_length
-          glGetNamedBufferSubData(counter_.id(), 0, sizeof(counts), counts);
-          max_length_ = counts[1];
-          stored_ = counts[0];
-          return uint64_t(counts[0]);
-        });
+    GLuint counts[2] = {0, 0};  // node_count, max_length
+    passes_ = lists_.fill_until_fits(frame, pool_, [&] {
+      params_.upload();  // the capacity may have grown since the last fill
+      draw_scene_pass(frame, fill_, no_attachments_);
+    }, counts);
+    max_length_ = counts[1];
+    stored_ = counts[0];
     auto compose = frame.clock.stage("compose");
     if (max_length_ > kMaxGpuListLength) {
       resolve_on_cpu(frame);
       return;
     }
-    bind_storage();
+    lists_.bind();
     draw_fullscreen_pass(frame, resolve_program(max_length_));
   }
 
@@ -95,8 +87,8 @@ class Reference final : public Technique {
     static_assert(sizeof(Node) == kNodeBytes);
     std::vector<uint32_t> heads(size_t(width_) * size_t(height_));
     std::vector<Node> nodes(std::min<uint64_t>(stored_, pool_.capacity()));
-    glGetNamedBufferSubData(heads_.id(), 0, GLsizeiptr(heads.size() * 4), heads.data());
-    glGetNamedBufferSubData(nodes_.id(), 0, GLsizeiptr(nodes.size() * sizeof(Node)), nodes.data());
+    glGetNamedBufferSubData(lists_.heads.id(), 0, GLsizeiptr(heads.size() * 4), heads.data());
+    glGetNamedBufferSubData(lists_.nodes.id(), 0, GLsizeiptr(nodes.size() * sizeof(Node)), nodes.data());
     std::vector<float> image(heads.size() * 4);
     std::vector<std::pair<uint64_t, uint32_t>> list;
     for (size_t pixel = 0; pixel < heads.size(); ++pixel) {
@@ -143,22 +135,15 @@ class Reference final : public Technique {
   }
 
   void allocate_pool(uint64_t capacity) {
-    nodes_ = make_buffer(GLsizeiptr(capacity) * kNodeBytes);
+    lists_.nodes = make_buffer(GLsizeiptr(capacity) * kNodeBytes);
     params_.values.capacity = GLuint(capacity);
-  }
-
-  void bind_storage() const {
-    bind_storage_buffers({{REFERENCE_HEADS_BINDING, &heads_},
-                          {REFERENCE_NODES_BINDING, &nodes_},
-                          {REFERENCE_COUNTER_BINDING, &counter_},
-                          {REFERENCE_LENGTHS_BINDING, &lengths_}});
   }
 
   int64_t nodes_per_pixel_;
   Program fill_;
   std::map<uint32_t, Program> resolve_;
   UniformBlock<ReferenceParams> params_{REFERENCE_PARAMS_BLOCK};
-  Buffer counter_, heads_, lengths_, nodes_;
+  PixelLists lists_;
   Framebuffer no_attachments_;
   Texture cpu_result_;  // only for frames resolved on the CPU
   Framebuffer cpu_result_framebuffer_;

@@ -146,21 +146,32 @@ std::string fit(const std::string& text, size_t width) {
   return width < 3 ? text.substr(0, width) : text.substr(0, width - 3) + "...";
 }
 
-std::string wrap_after(size_t column, const std::string& text) {
+namespace {
+
+// Appends the words of `text` to `out`, whose last line holds `column`
+// columns, breaking before a word that would pass `width` (a longer word
+// stays whole) onto a line indented by `indent` spaces.
+void append_wrapped(std::string& out, const std::string& text, size_t column, size_t width, size_t indent) {
   std::istringstream words(text);
-  std::string wrapped;
   bool first = true;
   for (std::string word; words >> word; first = false) {
-    if (!first && column + 1 + word.size() > kConsoleWidth) {
-      wrapped += "\n    ";
-      column = 4;
+    if (!first && column + 1 + word.size() > width) {
+      out += "\n" + std::string(indent, ' ');
+      column = indent;
     } else if (!first) {
-      wrapped += ' ';
+      out += ' ';
       column += 1;
     }
-    wrapped += word;
+    out += word;
     column += word.size();
   }
+}
+
+}  // namespace
+
+std::string wrap_after(size_t column, const std::string& text) {
+  std::string wrapped;
+  append_wrapped(wrapped, text, column, kConsoleWidth, 4);
   return wrapped;
 }
 
@@ -173,20 +184,7 @@ std::string wrap_text(const std::string& text, size_t width, size_t indent) {
     // Leading spaces are the line's own indentation: kept.
     const size_t lead = std::min(line.find_first_not_of(' '), line.size());
     wrapped += line.substr(0, lead);
-    size_t column = lead;
-    bool line_start = true;
-    std::istringstream words(line.substr(lead));
-    for (std::string word; words >> word; line_start = false) {
-      if (!line_start && column + 1 + word.size() > width) {
-        wrapped += "\n" + std::string(indent, ' ');
-        column = indent;
-      } else if (!line_start) {
-        wrapped += ' ';
-        column += 1;
-      }
-      wrapped += word;
-      column += word.size();
-    }
+    append_wrapped(wrapped, line.substr(lead), lead, width, indent);
   }
   return wrapped;
 }

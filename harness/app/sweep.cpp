@@ -177,12 +177,6 @@ std::vector<RawParams> combinations(const std::vector<Assignment>& assignments) 
   return result;
 }
 
-std::vector<std::string> technique_ids(const TechniqueRegistry& registry) {
-  std::vector<std::string> ids;
-  for (const auto& t : registry.all()) ids.push_back(t.id);
-  return ids;
-}
-
 std::vector<std::string> scene_ids() {
   std::vector<std::string> ids;
   for (const SceneDescriptor& descriptor : scene_library()) ids.push_back(descriptor.id);
@@ -285,7 +279,7 @@ std::vector<RunSpec> expand_sweep(const SweepOptions& options, const TechniqueRe
   for (const TechniqueDescriptor* t : techniques) technique_owners.push_back(technique_owner(*t));
   for (const auto& scene : options.scenes) scene_owners.push_back(scene_owner(scene));
   const std::vector<Assignment> technique_assignments =
-      checked_assignments(kSweepSets, options.technique_sets, technique_owners, technique_ids(registry));
+      checked_assignments(kSweepSets, options.technique_sets, technique_owners, registry.ids());
   const std::vector<Assignment> scene_assignments =
       checked_assignments(kSweepSceneSets, options.scene_sets, scene_owners, scene_ids());
 
@@ -338,7 +332,7 @@ std::vector<RawParams> one_value_technique_params(const std::vector<std::string>
   std::vector<ParamOwner> owners;
   for (const TechniqueDescriptor* t : techniques) owners.push_back(technique_owner(*t));
   const std::vector<Assignment> assignments =
-      checked_assignments({"--set", "technique", "-t", false}, sets, owners, technique_ids(registry));
+      checked_assignments({"--set", "technique", "-t", false}, sets, owners, registry.ids());
   std::vector<RawParams> params;
   for (const ParamOwner& owner : owners) params.push_back(combinations(assignments_of(assignments, owner)).front());
   return params;
@@ -354,7 +348,7 @@ RawParams one_value_scene_params(const std::vector<std::string>& scene_sets, con
 
 void validate_baseline(const std::string& baseline, const std::vector<std::string>& techniques,
                        const TechniqueRegistry& registry) {
-  const std::vector<std::string> ids = technique_ids(registry);
+  const std::vector<std::string> ids = registry.ids();
   if (std::find(ids.begin(), ids.end(), baseline) == ids.end()) {
     // "linked_list:sort=insertion": the ratios divide by a technique, whatever its parameters.
     const std::string id = baseline.substr(0, baseline.find_first_of(":. "));

@@ -112,15 +112,20 @@ void TechniqueRegistry::add(TechniqueDescriptor descriptor) {
   techniques_.push_back(std::move(descriptor));
 }
 
-const TechniqueDescriptor& TechniqueRegistry::get(const std::string& id) const {
+std::vector<std::string> TechniqueRegistry::ids() const {
   std::vector<std::string> ids;
+  for (const auto& technique : techniques_) ids.push_back(technique.id);
+  return ids;
+}
+
+const TechniqueDescriptor& TechniqueRegistry::get(const std::string& id) const {
   for (const auto& technique : techniques_) {
     if (technique.id == id) return technique;
-    ids.push_back(technique.id);
   }
+  const std::vector<std::string> known = ids();
   std::string list;
-  for (const auto& known : ids) list += (list.empty() ? "" : ", ") + known;
-  throw std::invalid_argument("unknown technique '" + id + "'" + did_you_mean(id, ids) + " (registered: " + list + ")");
+  for (const auto& name : known) list += (list.empty() ? "" : ", ") + name;
+  throw std::invalid_argument("unknown technique '" + id + "'" + did_you_mean(id, known) + " (registered: " + list + ")");
 }
 
 const TechniqueDescriptor& TechniqueRegistry::reference() const {

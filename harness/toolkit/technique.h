@@ -262,6 +262,8 @@ class TechniqueRegistry {
  public:
   void add(TechniqueDescriptor descriptor);
   const std::vector<TechniqueDescriptor>& all() const { return techniques_; }
+  // The registered ids, in registration order.
+  std::vector<std::string> ids() const;
   // Throws listing the registered ids when `id` is unknown.
   const TechniqueDescriptor& get(const std::string& id) const;
   const TechniqueDescriptor& reference() const;
