@@ -307,7 +307,12 @@ int run_doctor(const CommonOptions& common, const DoctorOptions& options) {
   int width = 0, height = 0;
   parse_size(options.size, width, height);  // a malformed size fails before anything runs
   std::vector<Findings> findings;
-  for (const auto* t : techniques) findings.push_back({.technique = t, .params = params.at(t->id)});
+  for (const auto* t : techniques) {
+    Findings f;
+    f.technique = t;
+    f.params = params.at(t->id);
+    findings.push_back(std::move(f));
+  }
   const std::vector<StressOutcome> stress = run_stress_subset(common, findings, options.stress_timeout_s);
 
   auto context = create_headless_context(parse_device_choice(common.device), common.debug_gl);
