@@ -23,10 +23,9 @@
 # a slot cut short still leaves its record.
 #
 # Caps (seconds; a step past its cap is stopped and recorded as exit 124),
-# sized from the first full survey on an H200 (results/reference/gpu/), where
-# the raster pipeline is slow and the peelers take about 1 s a frame at
-# 1920x1080 with 32 layers, twice that with 64; the worst case still fits a
-# 15-minute slot:
+# sized from the first full survey on an H200, whose raster pipeline is slow
+# (its steps' times: results/reference/gpu/); together they bound a survey at
+# about 16 minutes, 18 with compare:
 #   doctor 180: 6 exact techniques x 5 scenes at 64x64, check-order, 24 stress
 #     processes.
 #   ctest 150: the listed GL suites at their test sizes.
