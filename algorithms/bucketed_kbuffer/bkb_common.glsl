@@ -87,7 +87,7 @@ vec3 bkb_unpack_normal(uint word) {
   return vec3(xy, (word & 0x40000000u) != 0u ? -z : z);
 }
 
-// A pixel's whole list as one bucket (BKB_BUCKETS_SINGLE: buckets=auto on
+// A pixel's whole list as one bucket (BKB_BUCKETS_SINGLE: buckets=single, auto on
 // a one-object scene, where the bucket pass does not run): the sort pass
 // writes the list's length to the first word of the pixel's bucket table.
 // The scene rectangle's scissor can leave that word stale outside the

@@ -1,7 +1,7 @@
 // bucketed_kbuffer: the bucketed k-buffer of murray2016 with screen-space
 // curvature and curvature/depth transfer functions. Stages: clear, fill (Z:
 // K nearest keys by 32-bit atomicMin), sort (swap to shape-major and sort),
-// bucket (per-pixel hash table; skipped by buckets=auto on one object),
+// bucket (per-pixel hash table; skipped by buckets=single, which auto takes on one object),
 // store (second geometry pass: colour and normal), neighbors (links +
 // curvature), stylize, compose (back to front).
 #include <glm/gtc/matrix_inverse.hpp>
@@ -56,7 +56,7 @@ GLuint built_on_first_use(Program& program, Build build) {
 
 // How a frame finds a shape's fragments; the values are bkb_common.glsl's
 // BKB_BUCKETS_* (the BUCKETS define of sort.frag, store.frag and neighbors.frag).
-// single_bucket: buckets=auto on a one-object scene, where every list is one
+// single_bucket: buckets=single (auto on a one-object scene), where every list is one
 // bucket, so no hash table is built (the bucket stage does not run) and the
 // neighbour search visits whole lists without shape tests.
 enum class Search { brute_force = 0, hashed = 1, single_bucket = 2 };
@@ -353,7 +353,7 @@ class BucketedKBuffer final : public Technique {
     });
   }
 
-  // One object under buckets=auto: the sort pass also records each list's
+  // buckets=single (auto on one object): the sort pass also records each list's
   // length, which replaces the hash table.
   GLuint sort_program() {
     if (search_ != Search::single_bucket) return programs_->sort.id();
